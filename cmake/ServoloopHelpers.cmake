@@ -1,0 +1,38 @@
+include(${CMAKE_CURRENT_LIST_DIR}/ServoloopPlugin.cmake)
+
+# servoloop_add_library(<module> SOURCES ... [PUBLIC_LINK ...] [PRIVATE_LINK ...])
+# One shared library per module folder, with public headers under
+# <module>/include/servoloop/<module>/, exported as servoloop::<module>.
+function(servoloop_add_library module)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_LINK;PRIVATE_LINK" ${ARGN})
+  add_library(${module} SHARED ${ARG_SOURCES})
+  add_library(servoloop::${module} ALIAS ${module})
+  set_target_properties(${module} PROPERTIES OUTPUT_NAME servoloop_${module}
+    VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
+    EXPORT_NAME ${module})
+  target_include_directories(${module} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_compile_features(${module} PUBLIC cxx_std_20)
+  target_link_libraries(${module} PUBLIC ${ARG_PUBLIC_LINK} PRIVATE ${ARG_PRIVATE_LINK})
+  install(TARGETS ${module} EXPORT servoloopTargets
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endfunction()
+
+# servoloop_add_test(<name> SOURCES ... LINK ... [LABELS ...])
+# A gtest executable registered with CTest under its own name.
+function(servoloop_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LINK;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LINK} GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    SERVOLOOP_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    SERVOLOOP_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared")
+  add_test(NAME ${name} COMMAND ${name})
+  if(ARG_LABELS)
+    set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABELS}")
+  endif()
+endfunction()

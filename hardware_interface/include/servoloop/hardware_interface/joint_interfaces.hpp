@@ -1,0 +1,34 @@
+#pragma once
+// Joint-space interfaces, as in ros_control. The state interface hands out
+// read-only handles and claims nothing; each command interface hands out
+// handles whose command means effort, velocity or position, and claims the
+// joint for the controller that asked.
+#include "servoloop/hardware_interface/joint_handle.hpp"
+#include "servoloop/hardware_interface/joint_state_handle.hpp"
+#include "servoloop/hardware_interface/resource_manager.hpp"
+
+namespace servoloop::hardware_interface {
+
+class JointStateInterface : public ResourceManager<JointStateHandle, false> {
+ public:
+  const char* name() const override { return "JointStateInterface"; }
+};
+
+class JointCommandInterface : public ResourceManager<JointHandle, true> {};
+
+class EffortJointInterface : public JointCommandInterface {
+ public:
+  const char* name() const override { return "EffortJointInterface"; }
+};
+
+class VelocityJointInterface : public JointCommandInterface {
+ public:
+  const char* name() const override { return "VelocityJointInterface"; }
+};
+
+class PositionJointInterface : public JointCommandInterface {
+ public:
+  const char* name() const override { return "PositionJointInterface"; }
+};
+
+}  // namespace servoloop::hardware_interface

@@ -1,0 +1,42 @@
+#pragma once
+#include <vector>
+
+#include "servoloop/hardware_interface/controller_info.hpp"
+#include "servoloop/hardware_interface/hardware_info.hpp"
+#include "servoloop/hardware_interface/interface_manager.hpp"
+#include "servoloop/hardware_interface/return_type.hpp"
+#include "servoloop/hardware_interface/time.hpp"
+
+namespace servoloop::hardware_interface {
+
+// A robot's hardware as controllers see it: a set of interfaces plus the
+// read/write calls of the control cycle. Subclasses (real hardware, simulators,
+// the mock) register their interfaces in init().
+class RobotHW : public InterfaceManager {
+ public:
+  virtual ~RobotHW() = default;
+
+  // Non-real-time. Configures the hardware and registers its interfaces.
+  // Throws servoloop::ConfigError naming the file/element at fault.
+  virtual void init(const HardwareInfo& info) = 0;
+
+  // Real-time. Reads the hardware's state into the handles' storage.
+  virtual ReturnType read(Time time, Duration period) = 0;
+  // Real-time. Sends the handles' commands to the hardware.
+  virtual ReturnType write(Time time, Duration period) = 0;
+
+  // Non-real-time. True if the controllers that would be running after a
+  // switch claim some resource twice. The default rule: a resource claimed by
+  // more than one controller (through any claiming interface) is a conflict.
+  virtual bool checkForConflict(const std::vector<ControllerInfo>& running) const;
+
+  // Non-real-time. May refuse a switch the hardware cannot carry out.
+  virtual bool prepareSwitch(const std::vector<ControllerInfo>& start_list,
+                             const std::vector<ControllerInfo>& stop_list);
+
+  // Real-time, fast. Carries out a switch prepareSwitch accepted.
+  virtual void doSwitch(const std::vector<ControllerInfo>& start_list,
+                        const std::vector<ControllerInfo>& stop_list);
+};
+
+}  // namespace servoloop::hardware_interface
