@@ -14,6 +14,9 @@ namespace servoloop::hardware_interface {
 // the mock) register their interfaces in init().
 class RobotHW : public InterfaceManager {
  public:
+  // Backends are plugins of this kind (see the plugin loader).
+  static constexpr const char* kPluginKind = "robot_hw";
+
   virtual ~RobotHW() = default;
 
   // Non-real-time. Configures the hardware and registers its interfaces.
