@@ -1,0 +1,218 @@
+#include "servoloop/controllers/pid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+#include <type_traits>
+
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop::controllers {
+namespace {
+
+std::string describe(const YAML::Node& value) {
+  if (value.IsScalar()) return "'" + value.Scalar() + "'";
+  if (value.IsSequence()) return "a list";
+  if (value.IsMap()) return "a map";
+  return "nothing";
+}
+
+// Reads pid_node[key] into out; false when the key is absent.
+template <class T>
+bool readKey(const YAML::Node& pid_node, const std::string& where, const char* key, T& out) {
+  const YAML::Node value = pid_node[key];
+  if (!value.IsDefined()) return false;
+  const auto fail = [&]() {
+    const char* expected = std::is_same_v<T, bool> ? "a boolean (true or false)" : "a number";
+    return ConfigError(where + "/" + key + ": expected " + expected + ", got " + describe(value));
+  };
+  if (!value.IsScalar()) throw fail();
+  try {
+    out = value.as<T>();
+  } catch (const YAML::BadConversion&) {
+    throw fail();
+  }
+  return true;
+}
+
+}  // namespace
+
+Pid::Pid(double p, double i, double d, double i_max, double i_min, bool antiwindup) {
+  initPid(p, i, d, i_max, i_min, antiwindup);
+}
+
+Pid::Pid(const Pid& other) : active_gains_(other.active_gains_) {
+  setGains(other.getGains());
+  p_error_last_ = other.p_error_last_;
+  p_error_ = other.p_error_;
+  i_error_ = other.i_error_;
+  d_error_ = other.d_error_;
+  command_ = other.command_;
+}
+
+Pid& Pid::operator=(const Pid& other) {
+  if (this == &other) return *this;
+  setGains(other.getGains());
+  active_gains_ = other.active_gains_;
+  p_error_last_ = other.p_error_last_;
+  p_error_ = other.p_error_;
+  i_error_ = other.i_error_;
+  d_error_ = other.d_error_;
+  command_ = other.command_;
+  return *this;
+}
+
+void Pid::initPid(double p, double i, double d, double i_max, double i_min, bool antiwindup) {
+  const Gains gains{p, i, d, i_max, i_min, antiwindup};
+  setGains(gains);
+  active_gains_ = gains;
+  reset();
+}
+
+void Pid::initFromParams(const YAML::Node& pid_node, const std::string& where) {
+  if (pid_node.IsDefined() && !pid_node.IsNull() && !pid_node.IsMap()) {
+    throw ConfigError(where + ": expected a map of gains ({p: ..., i: ..., d: ...}), got " +
+                      describe(pid_node));
+  }
+  const YAML::Node node = pid_node.IsMap() ? pid_node : YAML::Node(YAML::NodeType::Map);
+
+  Gains gains;
+  if (!readKey(node, where, "p", gains.p_gain)) {
+    throw ConfigError(where + ": No p gain specified for pid; add p: <gain> under " + where);
+  }
+  readKey(node, where, "i", gains.i_gain);
+  readKey(node, where, "d", gains.d_gain);
+
+  double clamp = 0.0;
+  if (readKey(node, where, "i_clamp", clamp)) {
+    gains.i_max = std::abs(clamp);
+    gains.i_min = -std::abs(clamp);
+  }
+  // The one-sided keys win over i_clamp, and their signs are forced so that
+  // i_min <= 0 <= i_max whatever was written.
+  if (readKey(node, where, "i_clamp_min", gains.i_min)) gains.i_min = -std::abs(gains.i_min);
+  if (readKey(node, where, "i_clamp_max", gains.i_max)) gains.i_max = std::abs(gains.i_max);
+  readKey(node, where, "antiwindup", gains.antiwindup);
+
+  initPid(gains.p_gain, gains.i_gain, gains.d_gain, gains.i_max, gains.i_min, gains.antiwindup);
+}
+
+void Pid::setGains(double p, double i, double d, double i_max, double i_min, bool antiwindup) {
+  setGains(Gains{p, i, d, i_max, i_min, antiwindup});
+}
+
+void Pid::setGains(const Gains& gains) {
+  std::lock_guard<std::mutex> lock(gains_write_mutex_);
+  // Odd sequence: a write is in progress; readers that saw it, or saw the
+  // number change, discard what they read.
+  const std::uint64_t sequence = gains_sequence_.load(std::memory_order_relaxed);
+  gains_sequence_.store(sequence + 1, std::memory_order_relaxed);
+  std::atomic_thread_fence(std::memory_order_release);
+  shared_p_gain_.store(gains.p_gain, std::memory_order_relaxed);
+  shared_i_gain_.store(gains.i_gain, std::memory_order_relaxed);
+  shared_d_gain_.store(gains.d_gain, std::memory_order_relaxed);
+  shared_i_max_.store(gains.i_max, std::memory_order_relaxed);
+  shared_i_min_.store(gains.i_min, std::memory_order_relaxed);
+  shared_antiwindup_.store(gains.antiwindup, std::memory_order_relaxed);
+  gains_sequence_.store(sequence + 2, std::memory_order_release);
+}
+
+bool Pid::tryReadGains(Gains& gains) const noexcept {
+  const std::uint64_t before = gains_sequence_.load(std::memory_order_acquire);
+  if (before & 1U) return false;
+  Gains read;
+  read.p_gain = shared_p_gain_.load(std::memory_order_relaxed);
+  read.i_gain = shared_i_gain_.load(std::memory_order_relaxed);
+  read.d_gain = shared_d_gain_.load(std::memory_order_relaxed);
+  read.i_max = shared_i_max_.load(std::memory_order_relaxed);
+  read.i_min = shared_i_min_.load(std::memory_order_relaxed);
+  read.antiwindup = shared_antiwindup_.load(std::memory_order_relaxed);
+  std::atomic_thread_fence(std::memory_order_acquire);
+  if (gains_sequence_.load(std::memory_order_relaxed) != before) return false;
+  gains = read;
+  return true;
+}
+
+Pid::Gains Pid::getGains() const {
+  Gains gains;
+  // A writer holds the odd sequence for a few stores; if it was preempted
+  // mid-write, let it run rather than spin.
+  while (!tryReadGains(gains)) std::this_thread::yield();
+  return gains;
+}
+
+void Pid::getGains(double& p, double& i, double& d, double& i_max, double& i_min) const {
+  bool antiwindup = false;
+  getGains(p, i, d, i_max, i_min, antiwindup);
+}
+
+void Pid::getGains(double& p, double& i, double& d, double& i_max, double& i_min,
+                   bool& antiwindup) const {
+  const Gains gains = getGains();
+  p = gains.p_gain;
+  i = gains.i_gain;
+  d = gains.d_gain;
+  i_max = gains.i_max;
+  i_min = gains.i_min;
+  antiwindup = gains.antiwindup;
+}
+
+void Pid::reset() noexcept {
+  p_error_last_ = 0.0;
+  p_error_ = 0.0;
+  i_error_ = 0.0;
+  d_error_ = 0.0;
+  command_ = 0.0;
+}
+
+double Pid::computeCommand(double error, double dt) noexcept {
+  if (dt == 0.0 || !std::isfinite(dt) || !std::isfinite(error)) return 0.0;
+
+  double error_dot = d_error_;
+  if (dt > 0.0) {
+    error_dot = (error - p_error_last_) / dt;
+    p_error_last_ = error;
+  }
+  return computeCommand(error, error_dot, dt);
+}
+
+double Pid::computeCommand(double error, double error_dot, double dt) noexcept {
+  if (dt == 0.0 || !std::isfinite(dt) || !std::isfinite(error) || !std::isfinite(error_dot)) {
+    return 0.0;
+  }
+  // New gains take effect here; a write in progress leaves the previous ones.
+  tryReadGains(active_gains_);
+  const Gains& gains = active_gains_;
+
+  p_error_ = error;
+  d_error_ = error_dot;
+
+  const double p_term = gains.p_gain * p_error_;
+
+  i_error_ += dt * p_error_;
+  if (gains.antiwindup && gains.i_gain != 0.0) {
+    // Keep i_error where i·i_error stays inside [i_min, i_max]; the bounds swap
+    // when the integral gain is negative.
+    const double bound_a = gains.i_min / gains.i_gain;
+    const double bound_b = gains.i_max / gains.i_gain;
+    i_error_ = std::clamp(i_error_, std::min(bound_a, bound_b), std::max(bound_a, bound_b));
+  }
+  double i_term = gains.i_gain * i_error_;
+  if (!gains.antiwindup) {
+    // Limit the term, not the state: i_error keeps integrating.
+    i_term = std::min(std::max(i_term, gains.i_min), gains.i_max);
+  }
+
+  const double d_term = gains.d_gain * d_error_;
+
+  command_ = p_term + i_term + d_term;
+  return command_;
+}
+
+void Pid::getCurrentPIDErrors(double& p_error, double& i_error, double& d_error) const noexcept {
+  p_error = p_error_;
+  i_error = i_error_;
+  d_error = d_error_;
+}
+
+}  // namespace servoloop::controllers
