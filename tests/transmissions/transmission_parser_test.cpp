@@ -1,0 +1,432 @@
+// parseTransmissions on the seed URDFs and on one inline URDF per kind of
+// malformed <transmission>; every error must name the file, the transmission
+// and the fix.
+#include "servoloop/transmissions/transmission_parser.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace st = servoloop::transmissions;
+
+namespace {
+
+std::string readSeed(const std::string& name) {
+  const std::string path = std::string(SERVOLOOP_SHARED_DIR) + "/seed/" + name;
+  std::ifstream file(path);
+  EXPECT_TRUE(file.good()) << "cannot open " << path;
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// A three-link robot with two revolute joints, one prismatic and one fixed,
+// plus the given transmission elements.
+std::string robotWith(const std::string& transmissions) {
+  return R"(<?xml version="1.0"?>
+<robot name="test_bot">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/><link name="tool"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <joint name="slide" type="prismatic"><parent link="l2"/><child link="l3"/>
+    <limit effort="1" velocity="1" lower="0" upper="0.5"/></joint>
+  <joint name="tool_mount" type="fixed"><parent link="l3"/><child link="tool"/></joint>
+)" + transmissions +
+         "\n</robot>\n";
+}
+
+const char* kSimpleOk = R"(
+  <transmission name="t_slide">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="slide"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="slide_motor"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)";
+
+std::string parseError(const std::string& urdf) {
+  try {
+    st::parseTransmissions(urdf, "bad_bot.urdf");
+  } catch (const servoloop::ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected servoloop::ConfigError";
+  return {};
+}
+
+// The message names the file, the transmission and contains every fragment.
+void expectProblem(const std::string& message, const std::string& transmission,
+                   const std::vector<std::string>& fragments) {
+  EXPECT_NE(message.find("bad_bot.urdf: transmission " + transmission + ":"), std::string::npos)
+      << message;
+  for (const auto& fragment : fragments) {
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << "missing '" << fragment << "' in: " << message;
+  }
+}
+
+}  // namespace
+
+// --- Well-formed descriptions.
+
+TEST(TransmissionParser, SeedRobotWithJointControlHasTran1) {
+  const auto infos = st::parseTransmissions(readSeed("minimal_robot_description_w_jnt_ctl.urdf"),
+                                            "minimal_robot_description_w_jnt_ctl.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  const st::TransmissionInfo& tran1 = infos[0];
+  EXPECT_EQ(tran1.name, "tran1");
+  EXPECT_EQ(tran1.type, st::kSimpleTransmissionType);
+  ASSERT_EQ(tran1.joints.size(), 1u);
+  EXPECT_EQ(tran1.joints[0].name, "joint1");
+  EXPECT_EQ(tran1.joints[0].hardware_interfaces, std::vector<std::string>{"EffortJointInterface"});
+  EXPECT_EQ(tran1.joints[0].offset, 0.0);
+  ASSERT_EQ(tran1.actuators.size(), 1u);
+  EXPECT_EQ(tran1.actuators[0].name, "motor1");
+  EXPECT_EQ(tran1.actuators[0].mechanical_reduction, 1.0);
+}
+
+TEST(TransmissionParser, SeedRobotWithoutTransmissionsGivesNone) {
+  EXPECT_TRUE(st::parseTransmissions(readSeed("minimal_robot_description.urdf"),
+                                     "minimal_robot_description.urdf")
+                  .empty());
+}
+
+TEST(TransmissionParser, NormalisesPrefixesAndReadsNumbers) {
+  const auto infos = st::parseTransmissions(robotWith(R"(
+  <transmission name="t1">
+    <type>SimpleTransmission</type>
+    <joint name="j1">
+      <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+      <hardwareInterface>VelocityJointInterface</hardwareInterface>
+      <offset> -0.25 </offset>
+    </joint>
+    <actuator name="m1">
+      <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+      <mechanicalReduction>+50</mechanicalReduction>
+    </actuator>
+  </transmission>)"),
+                                            "ok.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  EXPECT_EQ(infos[0].type, st::kSimpleTransmissionType);
+  EXPECT_EQ(infos[0].joints[0].hardware_interfaces,
+            (std::vector<std::string>{"PositionJointInterface", "VelocityJointInterface"}));
+  EXPECT_EQ(infos[0].joints[0].offset, -0.25);
+  EXPECT_EQ(infos[0].joints[0].mechanical_reduction, 1.0);  // default
+  EXPECT_EQ(infos[0].actuators[0].hardware_interfaces,
+            std::vector<std::string>{"EffortJointInterface"});
+  EXPECT_EQ(infos[0].actuators[0].mechanical_reduction, 50.0);
+}
+
+TEST(TransmissionParser, AcceptsLegacyTypeAttribute) {
+  const auto infos = st::parseTransmissions(robotWith(R"(
+  <transmission name="legacy" type="transmission_interface/SimpleTransmission">
+    <joint name="j2"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m2"><mechanicalReduction>3</mechanicalReduction></actuator>
+  </transmission>)"),
+                                            "legacy.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  EXPECT_EQ(infos[0].type, st::kSimpleTransmissionType);
+}
+
+TEST(TransmissionParser, OrdersTwoJointTransmissionsByRole) {
+  const auto infos = st::parseTransmissions(robotWith(R"(
+  <transmission name="wrist">
+    <type>transmission_interface/DifferentialTransmission</type>
+    <actuator name="m_b"><role>actuator2</role><mechanicalReduction>-20</mechanicalReduction></actuator>
+    <actuator name="m_a"><role>actuator1</role><mechanicalReduction>10</mechanicalReduction></actuator>
+    <joint name="j2"><role>joint2</role><mechanicalReduction>4</mechanicalReduction>
+      <offset>4</offset><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <joint name="j1"><role>joint1</role><mechanicalReduction>-2</mechanicalReduction>
+      <offset>-2</offset><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+  </transmission>)"),
+                                            "wrist.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  const auto& wrist = infos[0];
+  EXPECT_EQ(wrist.type, st::kDifferentialTransmissionType);
+  ASSERT_EQ(wrist.joints.size(), 2u);
+  EXPECT_EQ(wrist.joints[0].name, "j1");
+  EXPECT_EQ(wrist.joints[0].mechanical_reduction, -2.0);
+  EXPECT_EQ(wrist.joints[1].name, "j2");
+  EXPECT_EQ(wrist.joints[1].offset, 4.0);
+  ASSERT_EQ(wrist.actuators.size(), 2u);
+  EXPECT_EQ(wrist.actuators[0].name, "m_a");
+  EXPECT_EQ(wrist.actuators[1].name, "m_b");
+  EXPECT_EQ(wrist.actuators[1].mechanical_reduction, -20.0);
+
+  // The built transmission reproduces the reference differential case.
+  const auto transmission = st::makeTransmission(wrist);
+  double a[2] = {3.0, 5.0}, j[2] = {0.0, 0.0};
+  st::ActuatorData actuator{{&a[0], &a[1]}, {}, {}};
+  st::JointData joint{{&j[0], &j[1]}, {}, {}};
+  transmission->actuatorToJointPosition(actuator, joint);
+  EXPECT_NEAR(j[0], -2.0125, 1e-12);
+  EXPECT_NEAR(j[1], 4.06875, 1e-12);
+}
+
+// --- One malformed case each.
+
+TEST(TransmissionParser, MissingType) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'t1'",
+                {"has no <type>", "add e.g. <type>transmission_interface/SimpleTransmission"});
+}
+
+TEST(TransmissionParser, UnknownType) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/BeltTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'t1'",
+                {"unknown type 'transmission_interface/BeltTransmission'",
+                 "use transmission_interface/SimpleTransmission"});
+}
+
+TEST(TransmissionParser, SimpleActuatorWithoutReduction) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="tran1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="motor1"><hardwareInterface>EffortJointInterface</hardwareInterface></actuator>
+  </transmission>)"));
+  expectProblem(message, "'tran1'",
+                {"actuator 'motor1' has no <mechanicalReduction>",
+                 "add e.g. <mechanicalReduction>1</mechanicalReduction>"});
+}
+
+TEST(TransmissionParser, SimpleWithTwoJoints) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <joint name="j2"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(
+      message, "'t1'",
+      {"SimpleTransmission needs exactly 1 <joint>, found 2", "use one <transmission> per joint"});
+}
+
+TEST(TransmissionParser, DifferentialWithOneActuator) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="wrist">
+    <type>transmission_interface/DifferentialTransmission</type>
+    <joint name="j1"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <joint name="j2"><role>joint2</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'wrist'",
+                {"DifferentialTransmission needs exactly 2 <actuator>, found 1",
+                 "list both actuators, with roles actuator1 and actuator2"});
+}
+
+TEST(TransmissionParser, FourBarJointWithoutRole) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="linkage">
+    <type>transmission_interface/FourBarLinkageTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <joint name="j2"><role>joint2</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
+    <actuator name="m2"><role>actuator2</role><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'linkage'",
+                {"joint 'j1' has no <role>", "<role>joint1</role>", "<role>joint2</role>"});
+}
+
+TEST(TransmissionParser, DifferentialActuatorWithWrongRole) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="wrist">
+    <type>transmission_interface/DifferentialTransmission</type>
+    <joint name="j1"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <joint name="j2"><role>joint2</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
+    <actuator name="m2"><role>motor2</role><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'wrist'",
+                {"actuator 'm2' has role 'motor2'", "use actuator1 or actuator2"});
+}
+
+TEST(TransmissionParser, DifferentialWithDuplicateRole) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="wrist">
+    <type>transmission_interface/DifferentialTransmission</type>
+    <joint name="j1"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <joint name="j2"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
+    <actuator name="m2"><role>actuator2</role><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'wrist'",
+                {"both joints have role 'joint1'", "give one joint1 and the other joint2"});
+}
+
+TEST(TransmissionParser, JointNotInRobot) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="elbow"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(
+      message, "'t1'",
+      {"joint 'elbow' is not a joint of robot 'test_bot'", "fix the name", "j1, j2, slide"});
+}
+
+TEST(TransmissionParser, FixedJoint) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="tool_mount"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'t1'",
+                {"joint 'tool_mount' is not a revolute, continuous or prismatic joint",
+                 "remove the <joint> or change the joint type"});
+}
+
+TEST(TransmissionParser, NonNumericReduction) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>fifty</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'t1'",
+                {"actuator 'm1': <mechanicalReduction> 'fifty' is not a number",
+                 "write a finite decimal number"});
+}
+
+TEST(TransmissionParser, NonNumericOffset) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface>
+      <offset>0.5rad</offset></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'t1'",
+                {"joint 'j1': <offset> '0.5rad' is not a number", "write a finite decimal number"});
+}
+
+TEST(TransmissionParser, ZeroReduction) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>0</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'t1'", {"actuator 'm1': <mechanicalReduction> is 0", "must be non-zero"});
+}
+
+TEST(TransmissionParser, JointWithoutHardwareInterface) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"/>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'t1'",
+                {"joint 'j1' has no <hardwareInterface>",
+                 "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>"});
+}
+
+TEST(TransmissionParser, UnsupportedHardwareInterface) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>hardware_interface/PosVelJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(
+      message, "'t1'",
+      {"<hardwareInterface> 'PosVelJointInterface' is not supported", "use EffortJointInterface"});
+}
+
+TEST(TransmissionParser, JointInTwoTransmissions) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="first">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+  <transmission name="second">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m2"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'second'",
+                {"joint 'j1' is already driven by transmission 'first'",
+                 "each joint may appear in one transmission only"});
+}
+
+TEST(TransmissionParser, CoupledJointsWithDifferentCommandInterfaces) {
+  const std::string message = parseError(robotWith(R"(
+  <transmission name="wrist">
+    <type>transmission_interface/DifferentialTransmission</type>
+    <joint name="j1"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <joint name="j2"><role>joint2</role><hardwareInterface>PositionJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
+    <actuator name="m2"><role>actuator2</role><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "'wrist'",
+                {"name different command interfaces", "give both the same <hardwareInterface>"});
+}
+
+TEST(TransmissionParser, TransmissionWithoutName) {
+  const std::string message = parseError(robotWith(std::string(kSimpleOk) + R"(
+  <transmission>
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>)"));
+  expectProblem(message, "#2", {"has no name attribute", "add name="});
+}
+
+TEST(TransmissionParser, ReportsEveryProblemOnItsOwnLine) {
+  const std::string message = parseError(robotWith(std::string(kSimpleOk) + R"(
+  <transmission name="a">
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+  <transmission name="b">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j2"/>
+    <actuator name="m2"/>
+  </transmission>)"));
+  expectProblem(message, "'a'", {"has no <type>"});
+  expectProblem(message, "'b'", {"joint 'j2' has no <hardwareInterface>"});
+  expectProblem(message, "'b'", {"actuator 'm2' has no <mechanicalReduction>"});
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 2) << message;
+  EXPECT_EQ(message.find("t_slide"), std::string::npos) << message;
+}
+
+TEST(TransmissionParser, MalformedXmlNamesTheFile) {
+  const std::string message = parseError("<robot name='x'><link name='a'></robot>");
+  EXPECT_NE(message.find("bad_bot.urdf: not well-formed XML"), std::string::npos) << message;
+}
+
+TEST(TransmissionParser, MakeTransmissionRejectsZeroReductionNamingTheTransmission) {
+  st::TransmissionInfo info;
+  info.name = "direct";
+  info.type = st::kSimpleTransmissionType;
+  info.joints.push_back({"j1", {"EffortJointInterface"}, "", 1.0, 0.0});
+  info.actuators.push_back({"m1", {}, "", 0.0});
+  try {
+    st::makeTransmission(info);
+    FAIL() << "expected servoloop::ConfigError";
+  } catch (const servoloop::ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("transmission 'direct'"), std::string::npos) << message;
+    EXPECT_NE(message.find("reduction"), std::string::npos) << message;
+  }
+}

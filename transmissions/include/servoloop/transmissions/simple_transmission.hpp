@@ -1,0 +1,41 @@
+#pragma once
+#include "servoloop/transmissions/transmission.hpp"
+
+namespace servoloop::transmissions {
+
+// One actuator driving one joint through a gear of ratio n (actuator turns per
+// joint turn; negative reverses the direction), with the joint's zero shifted
+// by offset o:
+//   joint effort = n · actuator effort,  joint velocity = actuator velocity / n,
+//   joint position = actuator position / n + o.
+class SimpleTransmission final : public Transmission {
+ public:
+  // Throws servoloop::ConfigError if reduction is zero or not finite, or the
+  // offset is not finite.
+  explicit SimpleTransmission(double reduction, double joint_offset = 0.0);
+
+  void actuatorToJointEffort(const ActuatorData& actuator,
+                             JointData& joint) const noexcept override;
+  void actuatorToJointVelocity(const ActuatorData& actuator,
+                               JointData& joint) const noexcept override;
+  void actuatorToJointPosition(const ActuatorData& actuator,
+                               JointData& joint) const noexcept override;
+  void jointToActuatorEffort(const JointData& joint,
+                             ActuatorData& actuator) const noexcept override;
+  void jointToActuatorVelocity(const JointData& joint,
+                               ActuatorData& actuator) const noexcept override;
+  void jointToActuatorPosition(const JointData& joint,
+                               ActuatorData& actuator) const noexcept override;
+
+  std::size_t numActuators() const noexcept override { return 1; }
+  std::size_t numJoints() const noexcept override { return 1; }
+
+  double reduction() const noexcept { return reduction_; }
+  double jointOffset() const noexcept { return joint_offset_; }
+
+ private:
+  double reduction_;
+  double joint_offset_;  // rad or m, in joint space
+};
+
+}  // namespace servoloop::transmissions

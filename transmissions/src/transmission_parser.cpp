@@ -1,0 +1,447 @@
+#include "servoloop/transmissions/transmission_parser.hpp"
+
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <string_view>
+#include <utility>
+
+#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/transmissions/differential_transmission.hpp"
+#include "servoloop/transmissions/four_bar_linkage_transmission.hpp"
+#include "servoloop/transmissions/simple_transmission.hpp"
+
+namespace servoloop::transmissions {
+namespace {
+
+constexpr std::string_view kHardwareInterfacePrefix = "hardware_interface/";
+constexpr std::string_view kTransmissionPrefix = "transmission_interface/";
+constexpr std::array<std::string_view, 4> kJointInterfaces = {
+    "EffortJointInterface", "VelocityJointInterface", "PositionJointInterface",
+    "JointStateInterface"};
+
+// What each transmission type needs from its <joint> and <actuator> elements.
+struct TypeRule {
+  const char* type;
+  const char* short_name;
+  std::size_t num_joints;
+  std::size_t num_actuators;
+  bool needs_roles;  // joint1/joint2 and actuator1/actuator2 decide the order
+};
+constexpr std::array<TypeRule, 3> kTypeRules = {{
+    {kSimpleTransmissionType, "SimpleTransmission", 1, 1, false},
+    {kDifferentialTransmissionType, "DifferentialTransmission", 2, 2, true},
+    {kFourBarLinkageTransmissionType, "FourBarLinkageTransmission", 2, 2, true},
+}};
+
+const TypeRule* findTypeRule(const std::string& type) {
+  for (const TypeRule& rule : kTypeRules) {
+    if (type == rule.type) return &rule;
+  }
+  return nullptr;
+}
+
+std::string trim(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos) return {};
+  const auto last = text.find_last_not_of(" \t\r\n");
+  return std::string(text.substr(first, last - first + 1));
+}
+
+std::string elementText(const tinyxml2::XMLElement* element) {
+  return element != nullptr && element->GetText() != nullptr ? trim(element->GetText()) : "";
+}
+
+std::string withoutPrefix(std::string text, std::string_view prefix) {
+  if (text.compare(0, prefix.size(), prefix) == 0) text.erase(0, prefix.size());
+  return text;
+}
+
+// Locale-independent, whole-string, finite numbers only.
+std::optional<double> parseNumber(const std::string& text) {
+  std::string_view digits = text;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() ||
+      !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+bool isSingleDofMovable(const urdf::Joint& joint) {
+  return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
+         joint.type == urdf::Joint::PRISMATIC;
+}
+
+std::string movableJointList(const urdf::ModelInterface& robot) {
+  std::string names;
+  for (const auto& [name, joint] : robot.joints_) {
+    if (joint && isSingleDofMovable(*joint)) names += (names.empty() ? "" : ", ") + name;
+  }
+  return names.empty() ? "none" : names;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string text;
+  for (const auto& item : items) text += (text.empty() ? "" : ", ") + item;
+  return text;
+}
+
+std::vector<std::string> commandInterfacesOf(const TransmissionJointInfo& joint) {
+  std::vector<std::string> commands;
+  for (const auto& iface : joint.hardware_interfaces) {
+    if (iface != "JointStateInterface") commands.push_back(iface);
+  }
+  std::sort(commands.begin(), commands.end());
+  commands.erase(std::unique(commands.begin(), commands.end()), commands.end());
+  return commands;
+}
+
+// Collects every problem of every transmission so one run reports them all.
+class Problems {
+ public:
+  explicit Problems(std::string source_name) : source_name_(std::move(source_name)) {}
+
+  void setTransmission(std::string label) { label_ = std::move(label); }
+  void add(const std::string& problem_and_fix) {
+    lines_.push_back(source_name_ + ": transmission " + label_ + ": " + problem_and_fix);
+  }
+  bool empty() const { return lines_.empty(); }
+
+  [[noreturn]] void raise() const {
+    std::string message;
+    for (const auto& line : lines_) message += (message.empty() ? "" : "\n") + line;
+    throw ConfigError(message);
+  }
+
+ private:
+  std::string source_name_;
+  std::string label_;
+  std::vector<std::string> lines_;
+};
+
+// Reads an optional numeric child; reports a non-number or (for reductions) a zero.
+void readNumber(const tinyxml2::XMLElement* parent, const char* tag, const std::string& owner,
+                bool is_reduction, double& value, Problems& problems) {
+  const tinyxml2::XMLElement* element = parent->FirstChildElement(tag);
+  if (element == nullptr) return;
+  const std::string text = elementText(element);
+  const std::optional<double> number = parseNumber(text);
+  if (!number) {
+    problems.add(owner + ": <" + tag + "> '" + text +
+                 "' is not a number; write a finite decimal number such as " +
+                 (is_reduction ? "50" : "0.5"));
+    return;
+  }
+  if (is_reduction && *number == 0.0) {
+    problems.add(owner + ": <" + tag +
+                 "> is 0; a reduction must be non-zero (1 for a direct drive, negative to "
+                 "reverse the direction)");
+    return;
+  }
+  value = *number;
+}
+
+std::vector<std::string> readHardwareInterfaces(const tinyxml2::XMLElement* parent,
+                                                const std::string& owner, bool validate_joint_names,
+                                                Problems& problems) {
+  std::vector<std::string> interfaces;
+  for (auto* element = parent->FirstChildElement("hardwareInterface"); element != nullptr;
+       element = element->NextSiblingElement("hardwareInterface")) {
+    std::string name = withoutPrefix(elementText(element), kHardwareInterfacePrefix);
+    if (name.empty()) {
+      problems.add(owner +
+                   " has an empty <hardwareInterface>; write e.g. "
+                   "<hardwareInterface>hardware_interface/EffortJointInterface"
+                   "</hardwareInterface>");
+      continue;
+    }
+    if (validate_joint_names && std::find(kJointInterfaces.begin(), kJointInterfaces.end(), name) ==
+                                    kJointInterfaces.end()) {
+      problems.add(owner + ": <hardwareInterface> '" + name +
+                   "' is not supported; use EffortJointInterface, VelocityJointInterface, "
+                   "PositionJointInterface or JointStateInterface");
+      continue;
+    }
+    interfaces.push_back(std::move(name));
+  }
+  return interfaces;
+}
+
+// Which joints and actuators earlier transmissions already use, to report a
+// joint or actuator driven by two transmissions.
+struct UsedNames {
+  std::map<std::string, std::string> joint_owner;
+  std::map<std::string, std::string> actuator_owner;
+  std::map<std::string, int> transmission_count;
+};
+
+void readJoints(const tinyxml2::XMLElement* transmission, const urdf::ModelInterface& robot,
+                const std::string& label, UsedNames& used, TransmissionInfo& info,
+                Problems& problems) {
+  for (auto* element = transmission->FirstChildElement("joint"); element != nullptr;
+       element = element->NextSiblingElement("joint")) {
+    TransmissionJointInfo joint;
+    const char* name = element->Attribute("name");
+    joint.name = name != nullptr ? trim(name) : "";
+    if (joint.name.empty()) {
+      problems.add("a <joint> has no name attribute; add name=\"<one of the robot's joints: " +
+                   movableJointList(robot) + ">\"");
+      info.joints.push_back(std::move(joint));
+      continue;
+    }
+    const std::string owner = "joint '" + joint.name + "'";
+
+    joint.hardware_interfaces = readHardwareInterfaces(element, owner, true, problems);
+    if (element->FirstChildElement("hardwareInterface") == nullptr) {
+      problems.add(owner +
+                   " has no <hardwareInterface>; add e.g. "
+                   "<hardwareInterface>hardware_interface/EffortJointInterface"
+                   "</hardwareInterface>");
+    }
+    joint.role = elementText(element->FirstChildElement("role"));
+    readNumber(element, "mechanicalReduction", owner, true, joint.mechanical_reduction, problems);
+    readNumber(element, "offset", owner, false, joint.offset, problems);
+
+    const urdf::JointConstSharedPtr urdf_joint = robot.getJoint(joint.name);
+    if (!urdf_joint) {
+      problems.add(owner + " is not a joint of robot '" + robot.getName() +
+                   "'; fix the name (the robot's movable joints: " + movableJointList(robot) + ")");
+    } else if (!isSingleDofMovable(*urdf_joint)) {
+      problems.add(owner +
+                   " is not a revolute, continuous or prismatic joint; a transmission drives "
+                   "one movable degree of freedom, so remove the <joint> or change the joint type");
+    }
+    const auto [it, inserted] = used.joint_owner.emplace(joint.name, label);
+    if (!inserted && it->second != label) {
+      problems.add(owner + " is already driven by transmission " + it->second +
+                   "; each joint may appear in one transmission only");
+    } else if (!inserted) {
+      problems.add(owner + " is listed twice; list each joint once");
+    }
+    info.joints.push_back(std::move(joint));
+  }
+}
+
+void readActuators(const tinyxml2::XMLElement* transmission, const std::string& label,
+                   UsedNames& used, TransmissionInfo& info, Problems& problems) {
+  for (auto* element = transmission->FirstChildElement("actuator"); element != nullptr;
+       element = element->NextSiblingElement("actuator")) {
+    TransmissionActuatorInfo actuator;
+    const char* name = element->Attribute("name");
+    actuator.name = name != nullptr ? trim(name) : "";
+    if (actuator.name.empty()) {
+      problems.add("an <actuator> has no name attribute; add name=\"<motor name>\"");
+      info.actuators.push_back(std::move(actuator));
+      continue;
+    }
+    const std::string owner = "actuator '" + actuator.name + "'";
+
+    actuator.hardware_interfaces = readHardwareInterfaces(element, owner, false, problems);
+    actuator.role = elementText(element->FirstChildElement("role"));
+    if (element->FirstChildElement("mechanicalReduction") == nullptr) {
+      problems.add(owner +
+                   " has no <mechanicalReduction>; add e.g. "
+                   "<mechanicalReduction>1</mechanicalReduction> (motor turns per "
+                   "joint turn)");
+    } else {
+      readNumber(element, "mechanicalReduction", owner, true, actuator.mechanical_reduction,
+                 problems);
+    }
+    const auto [it, inserted] = used.actuator_owner.emplace(actuator.name, label);
+    if (!inserted && it->second != label) {
+      problems.add(owner + " is already used by transmission " + it->second +
+                   "; give each actuator a unique name");
+    } else if (!inserted) {
+      problems.add(owner + " is listed twice; list each actuator once");
+    }
+    info.actuators.push_back(std::move(actuator));
+  }
+}
+
+// Checks roles are exactly {prefix1, prefix2}; on success orders items by role.
+template <class Item>
+void orderByRole(std::vector<Item>& items, const char* kind, const TypeRule& rule,
+                 Problems& problems) {
+  const std::string role1 = std::string(kind) + "1";
+  const std::string role2 = std::string(kind) + "2";
+  bool roles_ok = true;
+  for (const Item& item : items) {
+    const std::string owner = std::string(kind) + " '" + item.name + "'";
+    if (item.role.empty()) {
+      problems.add(owner + " has no <role>; a " + rule.short_name + " needs <role>" + role1 +
+                   "</role> on one " + kind + " and <role>" + role2 + "</role> on the other");
+      roles_ok = false;
+    } else if (item.role != role1 && item.role != role2) {
+      problems.add(owner + " has role '" + item.role + "'; use " + role1 + " or " + role2);
+      roles_ok = false;
+    }
+  }
+  if (!roles_ok || items.size() != 2) return;
+  if (items[0].role == items[1].role) {
+    problems.add(std::string("both ") + kind + "s have role '" + items[0].role + "'; give one " +
+                 role1 + " and the other " + role2);
+    return;
+  }
+  if (items[0].role == role2) std::swap(items[0], items[1]);
+}
+
+void validateForType(TransmissionInfo& info, const TypeRule& rule, Problems& problems) {
+  if (info.joints.size() != rule.num_joints) {
+    problems.add(std::string(rule.short_name) + " needs exactly " +
+                 std::to_string(rule.num_joints) + " <joint>, found " +
+                 std::to_string(info.joints.size()) +
+                 (rule.num_joints == 1 ? "; use one <transmission> per joint"
+                                       : "; list both joints, with roles joint1 and joint2"));
+  }
+  if (info.actuators.size() != rule.num_actuators) {
+    problems.add(
+        std::string(rule.short_name) + " needs exactly " + std::to_string(rule.num_actuators) +
+        " <actuator>, found " + std::to_string(info.actuators.size()) +
+        (rule.num_actuators == 1 ? "; give it one <actuator> with a <mechanicalReduction>"
+                                 : "; list both actuators, with roles actuator1 and actuator2"));
+  }
+  if (!rule.needs_roles) return;
+  orderByRole(info.joints, "joint", rule, problems);
+  orderByRole(info.actuators, "actuator", rule, problems);
+
+  // A coupled mechanism cannot take an effort on one joint and a position on the other.
+  if (info.joints.size() == 2 &&
+      commandInterfacesOf(info.joints[0]) != commandInterfacesOf(info.joints[1])) {
+    problems.add("joints '" + info.joints[0].name + "' (" +
+                 join(commandInterfacesOf(info.joints[0])) + ") and '" + info.joints[1].name +
+                 "' (" + join(commandInterfacesOf(info.joints[1])) +
+                 ") name different command interfaces; a " + rule.short_name +
+                 " couples its joints, so give both the same <hardwareInterface> list");
+  }
+}
+
+// The type as written: the <type> child, else the legacy type="..." attribute.
+std::string readType(const tinyxml2::XMLElement* transmission) {
+  std::string type = elementText(transmission->FirstChildElement("type"));
+  if (type.empty() && transmission->Attribute("type") != nullptr) {
+    type = trim(transmission->Attribute("type"));
+  }
+  return type;
+}
+
+// "SimpleTransmission" and "transmission_interface/SimpleTransmission" name the same type.
+std::string withTransmissionPrefix(const std::string& type) {
+  if (type.empty() || type.find('/') != std::string::npos) return type;
+  return std::string(kTransmissionPrefix) + type;
+}
+
+}  // namespace
+
+std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
+                                                 const std::string& source_name) {
+  tinyxml2::XMLDocument document;
+  if (document.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw ConfigError(source_name + ": not well-formed XML (" + document.ErrorStr() +
+                      "); fix the XML before the transmissions can be read");
+  }
+  const tinyxml2::XMLElement* root = document.RootElement();
+  if (root == nullptr || std::string_view(root->Name()) != "robot") {
+    throw ConfigError(source_name +
+                      ": the root element is not <robot>; a URDF robot description "
+                      "starts with <robot name=\"...\">");
+  }
+  urdf::ModelInterfaceSharedPtr robot;
+  try {
+    robot = urdf::parseURDF(urdf_xml);
+  } catch (const std::exception& e) {
+    throw ConfigError(source_name + ": the URDF robot could not be read (" + e.what() +
+                      "); fix the robot description");
+  }
+  if (!robot) {
+    throw ConfigError(source_name +
+                      ": the URDF robot could not be read (see the urdfdom messages above); "
+                      "fix the links and joints of the robot description");
+  }
+
+  Problems problems(source_name);
+  UsedNames used;
+  std::vector<TransmissionInfo> infos;
+  int index = 0;
+  for (auto* element = root->FirstChildElement("transmission"); element != nullptr;
+       element = element->NextSiblingElement("transmission")) {
+    ++index;
+    TransmissionInfo info;
+    const char* name = element->Attribute("name");
+    info.name = name != nullptr ? trim(name) : "";
+    const std::string label =
+        info.name.empty() ? "#" + std::to_string(index) : "'" + info.name + "'";
+    problems.setTransmission(label);
+    if (info.name.empty()) {
+      problems.add("has no name attribute; add name=\"<unique transmission name>\"");
+    } else if (++used.transmission_count[info.name] == 2) {
+      problems.add("the name is used by more than one <transmission>; give each a unique name");
+    }
+
+    const std::string written_type = readType(element);
+    const TypeRule* rule = findTypeRule(withTransmissionPrefix(written_type));
+    info.type = rule != nullptr ? rule->type : written_type;
+    if (written_type.empty()) {
+      problems.add(
+          "has no <type>; add e.g. "
+          "<type>transmission_interface/SimpleTransmission</type>");
+    } else if (rule == nullptr) {
+      problems.add("unknown type '" + written_type +
+                   "'; use transmission_interface/SimpleTransmission, "
+                   "transmission_interface/DifferentialTransmission or "
+                   "transmission_interface/FourBarLinkageTransmission");
+    }
+
+    readJoints(element, *robot, label, used, info, problems);
+    readActuators(element, label, used, info, problems);
+    if (rule != nullptr) validateForType(info, *rule, problems);
+    infos.push_back(std::move(info));
+  }
+  if (!problems.empty()) problems.raise();
+  return infos;
+}
+
+std::unique_ptr<Transmission> makeTransmission(const TransmissionInfo& info) {
+  const TypeRule* rule = findTypeRule(info.type);
+  const std::string label = "transmission '" + info.name + "'";
+  if (rule == nullptr) {
+    throw ConfigError(label + ": unknown type '" + info.type +
+                      "'; use transmission_interface/SimpleTransmission, "
+                      "DifferentialTransmission or FourBarLinkageTransmission");
+  }
+  if (info.joints.size() != rule->num_joints || info.actuators.size() != rule->num_actuators) {
+    throw ConfigError(
+        label + ": " + rule->short_name + " needs " + std::to_string(rule->num_joints) +
+        " joint(s) and " + std::to_string(rule->num_actuators) + " actuator(s), got " +
+        std::to_string(info.joints.size()) + " and " + std::to_string(info.actuators.size()));
+  }
+  try {
+    if (info.type == kSimpleTransmissionType) {
+      return std::make_unique<SimpleTransmission>(info.actuators[0].mechanical_reduction,
+                                                  info.joints[0].offset);
+    }
+    const std::array<double, 2> actuator_reductions = {info.actuators[0].mechanical_reduction,
+                                                       info.actuators[1].mechanical_reduction};
+    const std::array<double, 2> joint_reductions = {info.joints[0].mechanical_reduction,
+                                                    info.joints[1].mechanical_reduction};
+    const std::array<double, 2> joint_offsets = {info.joints[0].offset, info.joints[1].offset};
+    if (info.type == kDifferentialTransmissionType) {
+      return std::make_unique<DifferentialTransmission>(actuator_reductions, joint_reductions,
+                                                        joint_offsets);
+    }
+    return std::make_unique<FourBarLinkageTransmission>(actuator_reductions, joint_reductions,
+                                                        joint_offsets);
+  } catch (const ConfigError& e) {
+    throw ConfigError(label + ": " + e.what());
+  }
+}
+
+}  // namespace servoloop::transmissions
