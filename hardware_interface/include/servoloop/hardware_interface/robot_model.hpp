@@ -1,0 +1,41 @@
+#pragma once
+// servoloop's one way to load a URDF: urdfdom parsing plus the checks urdfdom
+// does not make, so every backend sees a model it can simulate or drive.
+// Non-real-time only (reads files, allocates, throws).
+#include <memory>
+#include <string>
+
+#include <urdf_model/model.h>
+
+namespace servoloop {
+
+// Reads and validates the URDF file at `path`; see parseRobotModel for what is
+// checked. Throws ConfigError if the file is missing or unreadable.
+std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string& path);
+
+// Parses and validates URDF text. `source_name` names the input in every error
+// message (normally the file path); relative mesh paths resolve against its
+// folder, or against the current directory when it has none.
+//
+// Throws servoloop::ConfigError, with a message naming `source_name`, the
+// element at fault and the fix, when:
+//   - the text is not XML, its root is not <robot>, or urdfdom rejects it
+//     (urdfdom's own console messages are captured into the error);
+//   - there is no <link>, a joint names an unknown link or has an unknown or
+//     missing type, a link has two parents, there are several roots, or the
+//     joints form a kinematic cycle;
+//   - a number in a link or joint (origins, axes, limits, dynamics, mass,
+//     inertia, geometry sizes, mesh scale) is not finite;
+//   - a link moved by a non-fixed joint has no <inertial>, a mass <= 0 or an
+//     inertia tensor that is not positive definite; any link has mass < 0;
+//   - a mesh file (visual or collision) does not exist.
+//
+// Mesh filenames in the returned model are rewritten to absolute paths:
+// relative paths resolve against the URDF's folder; `file://` URIs are taken as
+// paths (relative ones against the URDF's folder); `package://<pkg>/<rest>` is
+// looked up as <dir>/<pkg>/<rest> for every <dir> in ROS_PACKAGE_PATH, then for
+// every ancestor folder of the URDF that is itself named <pkg> or contains <pkg>.
+std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& xml,
+                                                            const std::string& source_name);
+
+}  // namespace servoloop

@@ -1,0 +1,358 @@
+#include "servoloop/hardware_interface/robot_model.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <console_bridge/console.h>
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/hardware_interface/logging.hpp"
+
+namespace servoloop {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& source_name, const std::string& what) {
+  throw ConfigError(source_name + ": " + what);
+}
+
+// ---------------------------------------------------------------------------
+// XML-level checks, made before urdfdom so the messages can name the element.
+
+const std::set<std::string>& numericAttributes() {
+  static const std::set<std::string> names{
+      "xyz",   "rpy",        "size",     "radius",           "length",           "value",
+      "ixx",   "ixy",        "ixz",      "iyy",              "iyz",              "izz",
+      "lower", "upper",      "effort",   "velocity",         "damping",          "friction",
+      "scale", "multiplier", "offset",   "soft_lower_limit", "soft_upper_limit", "k_position",
+      "k_velocity", "rising", "falling"};
+  return names;
+}
+
+// "link 'link2' <inertial><origin>": the owning link/joint and the path below it.
+std::string describeElement(const tinyxml2::XMLElement* element) {
+  std::string path;
+  const tinyxml2::XMLElement* e = element;
+  while (e != nullptr) {
+    const std::string tag = e->Name();
+    const tinyxml2::XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
+    const bool top_level = parent != nullptr && std::string(parent->Name()) == "robot";
+    if (top_level) {
+      const char* name = e->Attribute("name");
+      return tag + " '" + (name ? name : "?") + "'" + (path.empty() ? "" : " " + path);
+    }
+    path = "<" + tag + ">" + path;
+    e = parent;
+  }
+  return path;
+}
+
+// Every numeric attribute under <link> and <joint> must hold finite numbers.
+void checkNumbers(const tinyxml2::XMLElement* element, const std::string& source_name) {
+  for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
+    if (numericAttributes().count(a->Name()) == 0) continue;
+    std::istringstream tokens(a->Value());
+    std::string token;
+    while (tokens >> token) {
+      errno = 0;
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      const bool parsed = end != nullptr && *end == '\0' && end != token.c_str();
+      if (!parsed || !std::isfinite(value)) {
+        fail(source_name, describeElement(element) + " attribute " + a->Name() + "=\"" + a->Value() +
+                              "\": '" + token + "' is not a finite number; write a finite decimal value");
+      }
+    }
+  }
+  for (const tinyxml2::XMLElement* c = element->FirstChildElement(); c != nullptr;
+       c = c->NextSiblingElement()) {
+    checkNumbers(c, source_name);
+  }
+}
+
+std::string joinQuoted(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "'" : ", '") + n + "'";
+  return out;
+}
+
+// Tree structure: links exist, joints have known types and name known links,
+// every link has at most one parent, exactly one root, no cycle.
+void checkStructure(const tinyxml2::XMLElement* robot, const std::string& source_name) {
+  static const std::set<std::string> known_types{"revolute", "continuous", "prismatic",
+                                                 "fixed",    "floating",   "planar"};
+  std::vector<std::string> links;
+  std::set<std::string> link_set;
+  for (auto* l = robot->FirstChildElement("link"); l != nullptr; l = l->NextSiblingElement("link")) {
+    const char* name = l->Attribute("name");
+    if (name == nullptr) fail(source_name, "a <link> has no name attribute; give every link a unique name");
+    if (!link_set.insert(name).second) {
+      fail(source_name, std::string("link '") + name + "' is defined twice; link names must be unique");
+    }
+    links.emplace_back(name);
+  }
+  if (links.empty()) fail(source_name, "no <link> elements; a URDF needs at least one link");
+
+  std::map<std::string, std::string> parent_joint_of;  // child link -> joint
+  std::multimap<std::string, std::string> children_of;  // parent link -> child link
+  for (auto* j = robot->FirstChildElement("joint"); j != nullptr; j = j->NextSiblingElement("joint")) {
+    const char* name_attr = j->Attribute("name");
+    const std::string name = name_attr ? name_attr : "?";
+    if (name_attr == nullptr) fail(source_name, "a <joint> has no name attribute; give every joint a unique name");
+    const char* type = j->Attribute("type");
+    if (type == nullptr || known_types.count(type) == 0) {
+      fail(source_name, "joint '" + name + "' has " +
+                            (type ? "unknown type '" + std::string(type) + "'" : std::string("no type")) +
+                            "; use one of revolute, continuous, prismatic, fixed, floating, planar");
+    }
+    const auto* parent = j->FirstChildElement("parent");
+    const auto* child = j->FirstChildElement("child");
+    const char* parent_link = parent ? parent->Attribute("link") : nullptr;
+    const char* child_link = child ? child->Attribute("link") : nullptr;
+    if (parent_link == nullptr || child_link == nullptr) {
+      fail(source_name, "joint '" + name + "' needs <parent link=\"...\"/> and <child link=\"...\"/>");
+    }
+    for (const char* l : {parent_link, child_link}) {
+      if (link_set.count(l) == 0) {
+        fail(source_name, "joint '" + name + "' refers to link '" + l + "', which is not defined; add the <link> or fix the name");
+      }
+    }
+    auto [it, inserted] = parent_joint_of.emplace(child_link, name);
+    if (!inserted) {
+      fail(source_name, std::string("link '") + child_link + "' is the child of two joints, '" + it->second +
+                            "' and '" + name + "' (a kinematic cycle); a URDF must be a tree: remove one joint");
+    }
+    children_of.emplace(parent_link, child_link);
+  }
+
+  std::vector<std::string> roots;
+  for (const auto& l : links) {
+    if (parent_joint_of.count(l) == 0) roots.push_back(l);
+  }
+  if (roots.empty()) {
+    fail(source_name, "every link has a parent joint, so the joints form a kinematic cycle and there is no root link; "
+                      "remove a joint to break the cycle");
+  }
+  if (roots.size() > 1) {
+    fail(source_name, "several root links (" + joinQuoted(roots) +
+                          "); connect them with joints so exactly one root remains");
+  }
+  std::set<std::string> reached{roots.front()};
+  std::vector<std::string> stack{roots.front()};
+  while (!stack.empty()) {
+    const std::string l = stack.back();
+    stack.pop_back();
+    auto range = children_of.equal_range(l);
+    for (auto it = range.first; it != range.second; ++it) {
+      if (reached.insert(it->second).second) stack.push_back(it->second);
+    }
+  }
+  std::vector<std::string> in_cycle;
+  for (const auto& l : links) {
+    if (reached.count(l) == 0) in_cycle.push_back(l);
+  }
+  if (!in_cycle.empty()) {
+    fail(source_name, "links " + joinQuoted(in_cycle) + " are not reachable from root link '" + roots.front() +
+                          "': their joints form a kinematic cycle; remove a joint to break it");
+  }
+}
+
+void checkXml(const std::string& xml, const std::string& source_name) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    fail(source_name, std::string("not valid XML (line ") + std::to_string(doc.ErrorLineNum()) + "): " +
+                          doc.ErrorStr() + "; fix the XML syntax");
+  }
+  const tinyxml2::XMLElement* robot = doc.RootElement();
+  if (robot == nullptr || std::string(robot->Name()) != "robot") {
+    fail(source_name, std::string("the root element is <") + (robot ? robot->Name() : "") +
+                          ">, expected <robot>; is this a URDF file?");
+  }
+  for (auto* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag == "link" || tag == "joint") checkNumbers(e, source_name);
+  }
+  checkStructure(robot, source_name);
+}
+
+// ---------------------------------------------------------------------------
+// urdfdom parsing with its console_bridge output captured.
+
+class CapturingOutputHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+      errors += (errors.empty() ? "" : "; ") + text;
+    } else if (level == console_bridge::CONSOLE_BRIDGE_LOG_WARN) {
+      warnings.push_back(text);
+    }
+  }
+  std::string errors;
+  std::vector<std::string> warnings;
+};
+
+urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std::string& source_name) {
+  // console_bridge's handler is process-global; serialise the swap.
+  static std::mutex handler_mutex;
+  CapturingOutputHandler handler;
+  urdf::ModelInterfaceSharedPtr model;
+  {
+    std::lock_guard<std::mutex> lock(handler_mutex);
+    console_bridge::useOutputHandler(&handler);
+    try {
+      model = urdf::parseURDF(xml);
+    } catch (const std::exception& e) {
+      handler.errors += (handler.errors.empty() ? "" : "; ") + std::string(e.what());
+    }
+    console_bridge::restorePreviousOutputHandler();
+  }
+  for (const auto& w : handler.warnings) logger().warn("{}: urdfdom: {}", source_name, w);
+  if (!model) {
+    fail(source_name, "urdfdom could not parse the URDF: " +
+                          (handler.errors.empty() ? std::string("no reason given") : handler.errors));
+  }
+  return model;
+}
+
+// ---------------------------------------------------------------------------
+// Model-level checks.
+
+void checkInertial(const urdf::Link& link, const std::string& source_name) {
+  const urdf::JointConstSharedPtr& joint = link.parent_joint;
+  const bool moving = joint && joint->type != urdf::Joint::FIXED;
+  const std::string moved_by = moving ? " (moved by joint '" + joint->name + "')" : "";
+  const std::string where = "link '" + link.name + "'" + moved_by;
+  if (!link.inertial) {
+    if (moving) {
+      fail(source_name, where + " has no <inertial>; add <inertial> with <mass> > 0 and <inertia>");
+    }
+    return;
+  }
+  const urdf::Inertial& in = *link.inertial;
+  if (in.mass < 0.0) {
+    fail(source_name, where + " <inertial><mass value=\"" + std::to_string(in.mass) +
+                          "\"> is negative; a mass must be > 0");
+  }
+  if (!moving) return;
+  if (in.mass == 0.0) {
+    fail(source_name, where + " <inertial><mass> is zero; a moving link needs a mass > 0");
+  }
+  Eigen::Matrix3d inertia;
+  inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+  if (!(moments.minCoeff() > 0.0)) {
+    std::ostringstream m;
+    m << where << " <inertial><inertia> is not positive definite (principal moments " << moments(0) << ", "
+      << moments(1) << ", " << moments(2) << "); give ixx, iyy, izz > 0 and small enough products of inertia";
+    fail(source_name, m.str());
+  }
+}
+
+std::vector<fs::path> packageSearchRoots(const fs::path& base_dir) {
+  std::vector<fs::path> roots;
+  if (const char* env = std::getenv("ROS_PACKAGE_PATH")) {
+    std::stringstream ss(env);
+    std::string dir;
+    while (std::getline(ss, dir, ':')) {
+      if (!dir.empty()) roots.emplace_back(dir);
+    }
+  }
+  for (fs::path p = fs::absolute(base_dir); !p.empty(); p = p.parent_path()) {
+    roots.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  return roots;
+}
+
+// Returns the absolute path of an existing mesh file; throws naming the link otherwise.
+std::string resolveMesh(const std::string& uri, const fs::path& base_dir, const std::string& what,
+                        const std::string& source_name) {
+  std::vector<fs::path> candidates;
+  const std::string package_prefix = "package://";
+  const std::string file_prefix = "file://";
+  if (uri.rfind(package_prefix, 0) == 0) {
+    const std::string rest = uri.substr(package_prefix.size());
+    const auto slash = rest.find('/');
+    const std::string package = rest.substr(0, slash);
+    const std::string relative = slash == std::string::npos ? "" : rest.substr(slash + 1);
+    for (const auto& root : packageSearchRoots(base_dir)) {
+      if (root.filename() == package) candidates.push_back(root / relative);
+      candidates.push_back(root / package / relative);
+    }
+  } else {
+    fs::path path = uri.rfind(file_prefix, 0) == 0 ? fs::path(uri.substr(file_prefix.size())) : fs::path(uri);
+    candidates.push_back(path.is_absolute() ? path : base_dir / path);
+  }
+  for (const auto& c : candidates) {
+    std::error_code ec;
+    if (fs::is_regular_file(c, ec)) return fs::absolute(c).lexically_normal().string();
+  }
+  std::string tried;
+  for (std::size_t i = 0; i < candidates.size() && i < 4; ++i) {
+    tried += (tried.empty() ? "" : ", ") + candidates[i].lexically_normal().string();
+  }
+  if (candidates.size() > 4) tried += ", ...";
+  fail(source_name, what + " mesh '" + uri + "' not found (looked for " + tried +
+                        "); fix the filename or add the file (package:// URIs search ROS_PACKAGE_PATH and the "
+                        "URDF's parent folders)");
+}
+
+void resolveMeshes(urdf::Link& link, const fs::path& base_dir, const std::string& source_name) {
+  auto resolve = [&](const urdf::GeometrySharedPtr& geometry, const std::string& element) {
+    if (!geometry || geometry->type != urdf::Geometry::MESH) return;
+    auto* mesh = static_cast<urdf::Mesh*>(geometry.get());
+    mesh->filename = resolveMesh(mesh->filename, base_dir, "link '" + link.name + "' " + element, source_name);
+  };
+  for (const auto& c : link.collision_array) {
+    if (c) resolve(c->geometry, "<collision>");
+  }
+  for (const auto& v : link.visual_array) {
+    if (v) resolve(v->geometry, "<visual>");
+  }
+  // urdfdom also keeps the first element as link.collision/link.visual; they
+  // share the geometry objects with the arrays, so they are resolved already.
+}
+
+}  // namespace
+
+std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& xml,
+                                                            const std::string& source_name) {
+  checkXml(xml, source_name);
+  urdf::ModelInterfaceSharedPtr model = parseWithUrdfdom(xml, source_name);
+  const fs::path base_dir = fs::path(source_name).has_parent_path() ? fs::path(source_name).parent_path()
+                                                                     : fs::current_path();
+  for (auto& [name, link] : model->links_) {
+    checkInertial(*link, source_name);
+    resolveMeshes(*link, base_dir, source_name);
+  }
+  return model;
+}
+
+std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    throw ConfigError(path + ": URDF file not found; check the path (relative paths start at " +
+                      fs::current_path().string() + ")");
+  }
+  if (fs::is_directory(path, ec)) throw ConfigError(path + ": is a folder, not a URDF file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": URDF file cannot be read; check its permissions");
+  std::stringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ConfigError(path + ": reading the URDF file failed");
+  return parseRobotModel(text.str(), path);
+}
+
+}  // namespace servoloop

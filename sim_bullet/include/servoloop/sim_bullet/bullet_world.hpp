@@ -1,0 +1,136 @@
+#pragma once
+// A Bullet (double precision, Featherstone btMultiBody) world built from a URDF
+// model, driven in joint space. The Bullet RobotHW backend wraps it; tests use
+// it directly. No Bullet type appears here (pimpl).
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <urdf_model/model.h>
+
+namespace servoloop::sim_bullet {
+
+enum class FixedBase {
+  automatic,  // fixed when the URDF's root link is named "world", floating otherwise
+  fixed,
+  floating,
+};
+
+struct WorldSettings {
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};  // m/s^2, world frame
+  double time_step_s{0.001};                 // one solver step per step() call
+  bool ground_plane{false};                  // static plane z = 0 (normal +z)
+  FixedBase fixed_base{FixedBase::automatic};
+  // setJointPositionTarget: the motor drives the position error down with this
+  // time constant (first order), as fast as the effort limit allows. >= time_step_s.
+  double position_motor_time_constant_s{0.02};
+  // Pose of the root link frame in the world at construction and reset().
+  // Ignored when the root link is "world" (the root then is the world frame).
+  Eigen::Vector3d initial_base_position{Eigen::Vector3d::Zero()};
+  Eigen::Quaterniond initial_base_orientation{Eigen::Quaterniond::Identity()};
+};
+
+enum class JointType { revolute, continuous, prismatic };
+
+// Pose and twist of the root link frame (not its centre of mass), world frame.
+struct BaseState {
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};             // m
+  Eigen::Quaterniond orientation{Eigen::Quaterniond::Identity()};  // root link -> world
+  Eigen::Vector3d linear_velocity{Eigen::Vector3d::Zero()};       // of the root link origin, m/s
+  Eigen::Vector3d angular_velocity{Eigen::Vector3d::Zero()};      // rad/s
+};
+
+// Mass properties of one simulated body (a moving link with the links fixed to
+// it merged in), in that link's frame. For tests and diagnostics.
+struct BodyMassProperties {
+  double mass_kg{0.0};
+  Eigen::Vector3d com{Eigen::Vector3d::Zero()};        // centre of mass, link frame, m
+  Eigen::Matrix3d inertia{Eigen::Matrix3d::Zero()};    // about the COM, link frame axes, kg m^2
+};
+
+// Joint-space simulation of one URDF robot.
+//
+// Model: revolute, continuous and prismatic joints become Featherstone joints;
+// links attached by fixed joints are merged into their parent (mass, centre of
+// mass and inertia combined with the parallel-axis theorem). Floating and
+// planar joints are rejected. Collision shapes: box, cylinder (URDF axis z),
+// sphere, and STL meshes (binary or ASCII) as their convex hull. A link never
+// collides with its parent; other links of the robot collide with each other.
+//
+// Physics is what the URDF says and nothing more: Bullet's default link
+// damping is off, its velocity clamp is raised out of reach, <dynamics damping>
+// is a viscous joint torque -b*qdot and <dynamics friction> a Coulomb friction
+// bounded by `friction` (a velocity motor with target 0), finite revolute and
+// prismatic limits are physical stops, and <limit effort> saturates every
+// commanded effort (and bounds the velocity/position motors).
+//
+// Joint order (indices 0..numJoints()-1): the non-fixed joints depth-first from
+// the root link, children of a link in urdfdom's order (sorted by joint name).
+//
+// Threading: construction throws ConfigError and allocates; after that
+// step(), the setters and the getters taking an index do not allocate and are
+// real-time safe. Index arguments are not range-checked in release builds.
+class BulletWorld {
+ public:
+  BulletWorld(const urdf::ModelInterface& model, const WorldSettings& settings = {});
+  ~BulletWorld();
+  BulletWorld(const BulletWorld&) = delete;
+  BulletWorld& operator=(const BulletWorld&) = delete;
+
+  std::size_t numJoints() const;
+  const std::vector<std::string>& jointNames() const;
+  // Index of a non-fixed joint; throws servoloop::Error naming the joint if unknown.
+  std::size_t jointIndex(const std::string& name) const;
+  JointType jointType(std::size_t joint) const;
+  // <limit effort> of the joint, or +infinity when the URDF gives none (or 0).
+  double jointEffortLimit(std::size_t joint) const;
+
+  double jointPosition(std::size_t joint) const;  // rad or m
+  double jointVelocity(std::size_t joint) const;  // rad/s or m/s
+
+  // Effort mode: `effort` (N m or N), clamped to +-effort limit, acts during the
+  // next step() only. Turns off the joint's velocity/position motor.
+  void setJointEffort(std::size_t joint, double effort);
+  // Motor modes (stay in force until another command): a Bullet joint motor
+  // reaching the target as fast as the effort limit allows.
+  void setJointVelocityTarget(std::size_t joint, double velocity);
+  void setJointPositionTarget(std::size_t joint, double position);
+  // Teleports the joint (no dynamics); link poses are updated at once.
+  void setJointState(std::size_t joint, double position, double velocity);
+
+  // Advances exactly one time step of settings.time_step_s.
+  void step();
+  double time() const;  // s since construction or reset()
+  double timeStep() const;
+  // Back to the initial state: joints at 0 at rest, base at its initial pose at
+  // rest, time 0, all commands cleared (effort mode, zero effort).
+  void reset();
+
+  bool isFixedBase() const;
+  BaseState baseState() const;
+  // Teleports a floating base (root link frame); ignored for a fixed base.
+  void setBaseState(const BaseState& state);
+
+  // World position of a URDF link frame's origin (any link, merged or not);
+  // throws servoloop::Error for an unknown link. Not for the real-time path.
+  Eigen::Vector3d linkWorldPosition(const std::string& link_name) const;
+  // Mass properties of the body that `link_name` moves with, expressed in the
+  // frame of that body's first link (the one its joint moves).
+  BodyMassProperties bodyMassProperties(const std::string& link_name) const;
+
+  // Checks on Bullet's settings, for tests: true when btScalar is double.
+  static bool usesDoublePrecision();
+  // Bullet's per-link damping and velocity clamp as configured (0 and a large value).
+  double linkLinearDamping() const;
+  double linkAngularDamping() const;
+  double maxCoordinateVelocity() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace servoloop::sim_bullet

@@ -1,0 +1,530 @@
+#include "servoloop/sim_bullet/bullet_world.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btEmptyShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <btBulletCollisionCommon.h>
+
+#include "body_tree.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+#include "stl_mesh.hpp"
+
+static_assert(std::is_same_v<btScalar, double>,
+              "sim_bullet needs Bullet in double precision (the -float64 libraries and BT_USE_DOUBLE_PRECISION)");
+
+namespace servoloop::sim_bullet {
+namespace {
+
+// Bullet clamps joint velocities to 100 by default; this is far above any
+// physical robot while still finite for the solver.
+constexpr double kMaxCoordinateVelocity = 1e6;
+// Impulse bounds (N s or N m s per step) for the stops and for contacts: large
+// enough never to be the active limit, so stops and contacts behave as rigid.
+constexpr double kRigidConstraintImpulse = 1e8;
+// Effort bound of a motor on a joint with no <limit effort>.
+constexpr double kUnlimitedMotorEffort = 1e9;
+constexpr int kSolverIterations = 50;
+// Convex hulls get Bullet's margin outside the hull; keep it at 1 mm.
+constexpr double kMeshCollisionMargin = 0.001;
+
+btVector3 toBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+Eigen::Vector3d toEigen(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+btQuaternion toBt(const Eigen::Quaterniond& q) { return btQuaternion(q.x(), q.y(), q.z(), q.w()); }
+Eigen::Quaterniond toEigen(const btQuaternion& q) { return Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()); }
+btTransform toBt(const Eigen::Isometry3d& t) {
+  return btTransform(toBt(Eigen::Quaterniond(t.linear()).normalized()), toBt(Eigen::Vector3d(t.translation())));
+}
+Eigen::Isometry3d toEigen(const btTransform& t) {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = toEigen(t.getRotation()).toRotationMatrix();
+  out.translation() = toEigen(t.getOrigin());
+  return out;
+}
+
+enum class CommandMode { effort, velocity, position };
+
+struct JointData {
+  std::string name;
+  JointType type{JointType::revolute};
+  double effort_limit{std::numeric_limits<double>::infinity()};
+  double damping{0.0};   // N m s/rad or N s/m
+  double pending_effort{0.0};
+  CommandMode mode{CommandMode::effort};
+  btMultiBodyJointMotor* command_motor{nullptr};   // owned by Impl::constraints
+  btMultiBodyJointMotor* friction_motor{nullptr};  // null without <dynamics friction>
+};
+
+}  // namespace
+
+struct BulletWorld::Impl {
+  WorldSettings settings;
+  detail::BodyTree tree;
+  bool fixed_base{false};
+  Eigen::Isometry3d initial_root_pose{Eigen::Isometry3d::Identity()};
+  std::uint64_t steps{0};
+
+  std::vector<JointData> joints;
+  std::vector<std::string> joint_names;
+
+  // Bullet objects, destroyed in reverse order of creation (see ~Impl).
+  std::unique_ptr<btDefaultCollisionConfiguration> collision_config;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  std::unique_ptr<btDbvtBroadphase> broadphase;
+  std::unique_ptr<btMultiBodyConstraintSolver> solver;
+  std::unique_ptr<btMultiBodyDynamicsWorld> world;
+  std::unique_ptr<btMultiBody> body;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+  std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints;
+  std::unique_ptr<btCollisionObject> ground;
+
+  // Scratch for forward kinematics after a teleport, sized once.
+  btAlignedObjectArray<btQuaternion> scratch_rotations;
+  btAlignedObjectArray<btVector3> scratch_origins;
+
+  ~Impl() {
+    if (world) {
+      for (auto& c : constraints) world->removeMultiBodyConstraint(c.get());
+      if (ground) world->removeCollisionObject(ground.get());
+      for (auto& c : colliders) world->removeCollisionObject(c.get());
+      if (body) world->removeMultiBody(body.get());
+    }
+  }
+
+  // --- construction -------------------------------------------------------
+
+  void createWorld() {
+    collision_config = std::make_unique<btDefaultCollisionConfiguration>();
+    dispatcher = std::make_unique<btCollisionDispatcher>(collision_config.get());
+    broadphase = std::make_unique<btDbvtBroadphase>();
+    solver = std::make_unique<btMultiBodyConstraintSolver>();
+    world = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher.get(), broadphase.get(), solver.get(),
+                                                       collision_config.get());
+    world->setGravity(toBt(settings.gravity));
+    world->getSolverInfo().m_numIterations = kSolverIterations;
+  }
+
+  void decideBase(const urdf::ModelInterface& model) {
+    const bool root_is_world = model.getRoot()->name == "world";
+    switch (settings.fixed_base) {
+      case FixedBase::automatic: fixed_base = root_is_world; break;
+      case FixedBase::fixed: fixed_base = true; break;
+      case FixedBase::floating: fixed_base = false; break;
+    }
+    if (!root_is_world) {
+      initial_root_pose.linear() = settings.initial_base_orientation.normalized().toRotationMatrix();
+      initial_root_pose.translation() = settings.initial_base_position;
+    }
+    const detail::Body& root = tree.bodies.front();
+    if (!fixed_base && !(root.mass_kg > 0.0)) {
+      throw ConfigError("robot '" + model.getName() + "': root link '" + root.link_name +
+                        "' has no mass but the base is floating; give it an <inertial> or attach it to a "
+                        "'world' link with a fixed joint");
+    }
+  }
+
+  void createMultiBody() {
+    const int num_links = static_cast<int>(tree.bodies.size()) - 1;
+    const detail::Body& root = tree.bodies.front();
+    // A fixed base never moves, so its mass only has to be a valid number.
+    const bool massless_fixed_root = fixed_base && !(root.mass_kg > 0.0);
+    const double base_mass = massless_fixed_root ? 1.0 : root.mass_kg;
+    const btVector3 base_inertia = massless_fixed_root ? btVector3(1, 1, 1) : toBt(root.principal_moments);
+    body = std::make_unique<btMultiBody>(num_links, base_mass, base_inertia, fixed_base, /*canSleep=*/false);
+    body->setBaseWorldTransform(toBt(initial_root_pose * root.principal_in_link));
+
+    for (int link = 0; link < num_links; ++link) setupLink(link);
+
+    // Bullet's hidden defaults off: no artificial damping, no velocity clamp.
+    body->setLinearDamping(0.0);
+    body->setAngularDamping(0.0);
+    body->setMaxCoordinateVelocity(kMaxCoordinateVelocity);
+    body->setMaxAppliedImpulse(kRigidConstraintImpulse);
+    body->setUseGyroTerm(true);
+    body->setHasSelfCollision(true);  // parent/child pairs are still excluded (setup flags)
+    body->finalizeMultiDof();
+    world->addMultiBody(body.get());
+  }
+
+  void setupLink(int link) {
+    const detail::Body& child = tree.bodies[link + 1];
+    const detail::Body& parent = tree.bodies[child.parent_body];
+    const urdf::Joint& joint = *child.joint;
+
+    // Frames as Bullet wants them: everything relative to the principal
+    // (centre of mass) frames of parent and child.
+    const Eigen::Isometry3d joint_in_parent_com = parent.principal_in_link.inverse() * child.joint_in_parent_link;
+    const Eigen::Isometry3d link_in_child_com = child.principal_in_link.inverse();
+    // Rotates parent-frame vectors into the child frame at q = 0 (joint frame = child link frame).
+    const Eigen::Matrix3d parent_to_child = link_in_child_com.linear() * joint_in_parent_com.linear().transpose();
+    const Eigen::Vector3d axis_in_joint(joint.axis.x, joint.axis.y, joint.axis.z);
+    const Eigen::Vector3d axis_in_child_com = (link_in_child_com.linear() * axis_in_joint).normalized();
+    const btVector3 parent_com_to_pivot = toBt(Eigen::Vector3d(joint_in_parent_com.translation()));  // parent frame
+    const btVector3 pivot_to_child_com = toBt(Eigen::Vector3d(-link_in_child_com.translation()));  // child frame
+    const btQuaternion rot_parent_to_child = toBt(Eigen::Quaterniond(parent_to_child).normalized());
+    const int parent_link = child.parent_body - 1;
+
+    JointData data;
+    data.name = joint.name;
+    if (joint.type == urdf::Joint::PRISMATIC) {
+      data.type = JointType::prismatic;
+      body->setupPrismatic(link, child.mass_kg, toBt(child.principal_moments), parent_link, rot_parent_to_child,
+                           toBt(axis_in_child_com), parent_com_to_pivot, pivot_to_child_com,
+                           /*disableParentCollision=*/true);
+    } else {
+      data.type = joint.type == urdf::Joint::CONTINUOUS ? JointType::continuous : JointType::revolute;
+      body->setupRevolute(link, child.mass_kg, toBt(child.principal_moments), parent_link, rot_parent_to_child,
+                          toBt(axis_in_child_com), parent_com_to_pivot, pivot_to_child_com,
+                          /*disableParentCollision=*/true);
+    }
+    if (joint.limits && joint.limits->effort > 0.0) data.effort_limit = joint.limits->effort;
+    if (joint.dynamics) data.damping = joint.dynamics->damping;
+    joints.push_back(std::move(data));
+    joint_names.push_back(joint.name);
+  }
+
+  // Limits, command motors and friction motors: all created now so that
+  // switching modes later only changes numbers.
+  void createJointConstraints() {
+    const double dt = settings.time_step_s;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      const int link = static_cast<int>(j);
+      JointData& data = joints[j];
+      const urdf::Joint& joint = *tree.bodies[j + 1].joint;
+      if (data.type != JointType::continuous && joint.limits && joint.limits->lower < joint.limits->upper) {
+        auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(body.get(), link, joint.limits->lower,
+                                                                        joint.limits->upper);
+        limit->setMaxAppliedImpulse(kRigidConstraintImpulse);
+        world->addMultiBodyConstraint(limit.get());
+        constraints.push_back(std::move(limit));
+      }
+      auto motor = std::make_unique<btMultiBodyJointMotor>(body.get(), link, 0.0, 0.0);
+      motor->setErp(1.0);  // the position gain is set through kp alone
+      data.command_motor = motor.get();
+      world->addMultiBodyConstraint(motor.get());
+      constraints.push_back(std::move(motor));
+      if (joint.dynamics && joint.dynamics->friction > 0.0) {
+        // Coulomb friction: a motor holding velocity 0 with at most `friction` effort.
+        auto friction = std::make_unique<btMultiBodyJointMotor>(body.get(), link, 0.0, joint.dynamics->friction * dt);
+        data.friction_motor = friction.get();
+        world->addMultiBodyConstraint(friction.get());
+        constraints.push_back(std::move(friction));
+      }
+    }
+  }
+
+  btCollisionShape* makeShape(const detail::CollisionShapeSpec& spec) {
+    const urdf::Geometry& g = *spec.geometry;
+    std::unique_ptr<btCollisionShape> shape;
+    switch (g.type) {
+      case urdf::Geometry::BOX: {
+        const auto& box = static_cast<const urdf::Box&>(g);
+        shape = std::make_unique<btBoxShape>(btVector3(box.dim.x, box.dim.y, box.dim.z) * 0.5);
+        break;
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& cylinder = static_cast<const urdf::Cylinder&>(g);
+        shape = std::make_unique<btCylinderShapeZ>(
+            btVector3(cylinder.radius, cylinder.radius, cylinder.length * 0.5));
+        break;
+      }
+      case urdf::Geometry::SPHERE:
+        shape = std::make_unique<btSphereShape>(static_cast<const urdf::Sphere&>(g).radius);
+        break;
+      case urdf::Geometry::MESH: {
+        const auto& mesh = static_cast<const urdf::Mesh&>(g);
+        std::string extension = mesh.filename.size() >= 4 ? mesh.filename.substr(mesh.filename.size() - 4) : "";
+        std::transform(extension.begin(), extension.end(), extension.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (extension != ".stl") {
+          throw ConfigError("link '" + spec.link_name + "' <collision> mesh '" + mesh.filename +
+                            "': only STL meshes are supported for collision; convert it to STL");
+        }
+        auto hull = std::make_unique<btConvexHullShape>();
+        const Eigen::Vector3d scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+        for (const auto& v : detail::loadStlVertices(mesh.filename)) {
+          hull->addPoint(toBt(Eigen::Vector3d(v.cwiseProduct(scale))), /*recalculateLocalAabb=*/false);
+        }
+        hull->recalcLocalAabb();
+        hull->setMargin(kMeshCollisionMargin);
+        shape = std::move(hull);
+        break;
+      }
+      default:
+        return nullptr;
+    }
+    shapes.push_back(std::move(shape));
+    return shapes.back().get();
+  }
+
+  // Every body gets a collider, even without collision geometry: Bullet solves
+  // a multibody's limits and motors only in the simulation island its link
+  // colliders belong to, so a link without one would ignore its stops.
+  void createColliders() {
+    for (std::size_t k = 0; k < tree.bodies.size(); ++k) {
+      const detail::Body& b = tree.bodies[k];
+      auto compound = std::make_unique<btCompoundShape>();
+      const Eigen::Isometry3d link_in_com = b.principal_in_link.inverse();
+      for (const auto& spec : b.shapes) {
+        if (btCollisionShape* shape = makeShape(spec)) {
+          compound->addChildShape(toBt(link_in_com * spec.pose_in_body_link), shape);
+        }
+      }
+      const bool has_geometry = compound->getNumChildShapes() > 0;
+      const int link = static_cast<int>(k) - 1;
+      auto collider = std::make_unique<btMultiBodyLinkCollider>(body.get(), link);
+      if (has_geometry) {
+        collider->setCollisionShape(compound.get());
+        shapes.push_back(std::move(compound));
+      } else {
+        auto empty = std::make_unique<btEmptyShape>();
+        collider->setCollisionShape(empty.get());
+        shapes.push_back(std::move(empty));
+      }
+      const bool is_static = link == -1 && fixed_base;
+      // A collider without geometry is in no collision group and tests no group.
+      int group = has_geometry ? int(btBroadphaseProxy::DefaultFilter) : 0;
+      int mask = has_geometry ? int(btBroadphaseProxy::AllFilter) : 0;
+      if (is_static) {
+        collider->setCollisionFlags(collider->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+      }
+      if (is_static && has_geometry) {
+        group = int(btBroadphaseProxy::StaticFilter);
+        mask = int(btBroadphaseProxy::AllFilter) ^ int(btBroadphaseProxy::StaticFilter);
+      }
+      if (link == -1) {
+        body->setBaseCollider(collider.get());
+      } else {
+        body->getLink(link).m_collider = collider.get();
+      }
+      world->addCollisionObject(collider.get(), group, mask);
+      colliders.push_back(std::move(collider));
+    }
+    if (settings.ground_plane) {
+      auto plane = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0);
+      ground = std::make_unique<btCollisionObject>();
+      ground->setCollisionShape(plane.get());
+      shapes.push_back(std::move(plane));
+      world->addCollisionObject(ground.get(), int(btBroadphaseProxy::StaticFilter),
+                                int(btBroadphaseProxy::AllFilter) ^ int(btBroadphaseProxy::StaticFilter));
+    }
+  }
+
+  // --- state --------------------------------------------------------------
+
+  // After a teleport: link transforms and collider poses follow at once.
+  void updateKinematics() {
+    body->forwardKinematics(scratch_rotations, scratch_origins);
+    body->updateCollisionObjectWorldTransforms(scratch_rotations, scratch_origins);
+  }
+
+  double motorImpulse(const JointData& joint) const {
+    const double effort = std::isfinite(joint.effort_limit) ? joint.effort_limit : kUnlimitedMotorEffort;
+    return effort * settings.time_step_s;
+  }
+
+  void setMode(JointData& joint, CommandMode mode) {
+    joint.mode = mode;
+    joint.command_motor->setMaxAppliedImpulse(mode == CommandMode::effort ? 0.0 : motorImpulse(joint));
+  }
+
+  Eigen::Isometry3d rootPose() const {
+    return toEigen(body->getBaseWorldTransform()) * tree.bodies.front().principal_in_link.inverse();
+  }
+};
+
+BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings& settings)
+    : impl_(std::make_unique<Impl>()) {
+  if (!(settings.time_step_s > 0.0) || !std::isfinite(settings.time_step_s)) {
+    throw ConfigError("Bullet world: time step " + std::to_string(settings.time_step_s) + " s must be > 0");
+  }
+  if (!(settings.position_motor_time_constant_s >= settings.time_step_s)) {
+    throw ConfigError("Bullet world: position motor time constant " +
+                      std::to_string(settings.position_motor_time_constant_s) + " s must be >= the time step");
+  }
+  if (!model.getRoot()) throw ConfigError("robot '" + model.getName() + "': no root link");
+  Impl& w = *impl_;
+  w.settings = settings;
+  w.tree = detail::buildBodyTree(model);
+  for (std::size_t k = 1; k < w.tree.bodies.size(); ++k) {
+    if (!(w.tree.bodies[k].mass_kg > 0.0)) {
+      throw ConfigError("robot '" + model.getName() + "': link '" + w.tree.bodies[k].link_name +
+                        "' has no mass; give it an <inertial> with <mass> > 0");
+    }
+  }
+  w.decideBase(model);
+  w.createWorld();
+  w.createMultiBody();
+  w.createJointConstraints();
+  w.createColliders();
+  const int frames = static_cast<int>(w.tree.bodies.size());
+  w.scratch_rotations.resize(frames);
+  w.scratch_origins.resize(frames);
+  reset();
+}
+
+BulletWorld::~BulletWorld() = default;
+
+std::size_t BulletWorld::numJoints() const { return impl_->joints.size(); }
+const std::vector<std::string>& BulletWorld::jointNames() const { return impl_->joint_names; }
+
+std::size_t BulletWorld::jointIndex(const std::string& name) const {
+  const auto& names = impl_->joint_names;
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) {
+    std::string known;
+    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+    throw Error("Bullet world: no movable joint '" + name + "' (movable joints: " + known + ")");
+  }
+  return static_cast<std::size_t>(it - names.begin());
+}
+
+JointType BulletWorld::jointType(std::size_t joint) const { return impl_->joints[joint].type; }
+double BulletWorld::jointEffortLimit(std::size_t joint) const { return impl_->joints[joint].effort_limit; }
+double BulletWorld::jointPosition(std::size_t joint) const { return impl_->body->getJointPos(int(joint)); }
+double BulletWorld::jointVelocity(std::size_t joint) const { return impl_->body->getJointVel(int(joint)); }
+
+void BulletWorld::setJointEffort(std::size_t joint, double effort) {
+  assert(joint < impl_->joints.size());
+  JointData& data = impl_->joints[joint];
+  if (data.mode != CommandMode::effort) impl_->setMode(data, CommandMode::effort);
+  data.pending_effort = std::clamp(effort, -data.effort_limit, data.effort_limit);
+}
+
+void BulletWorld::setJointVelocityTarget(std::size_t joint, double velocity) {
+  assert(joint < impl_->joints.size());
+  JointData& data = impl_->joints[joint];
+  impl_->setMode(data, CommandMode::velocity);
+  data.pending_effort = 0.0;
+  data.command_motor->setPositionTarget(0.0, /*kp=*/0.0);
+  data.command_motor->setVelocityTarget(velocity, /*kd=*/1.0);
+}
+
+void BulletWorld::setJointPositionTarget(std::size_t joint, double position) {
+  assert(joint < impl_->joints.size());
+  JointData& data = impl_->joints[joint];
+  impl_->setMode(data, CommandMode::position);
+  data.pending_effort = 0.0;
+  // Bullet's motor asks for the joint velocity kp*erp*(q_target - q)/dt + v + kd*(0 - v).
+  // With erp = 1, kd = 1 and kp = dt/tau that is (q_target - q)/tau: a first-order
+  // approach with time constant tau, bounded by the effort limit. (kp = 1 would
+  // ask to close the error in one step, which under effort saturation overshoots
+  // into an undamped bang-bang cycle.)
+  const double kp = impl_->settings.time_step_s / impl_->settings.position_motor_time_constant_s;
+  data.command_motor->setVelocityTarget(0.0, /*kd=*/1.0);
+  data.command_motor->setPositionTarget(position, kp);
+}
+
+void BulletWorld::setJointState(std::size_t joint, double position, double velocity) {
+  impl_->body->setJointPos(int(joint), position);
+  impl_->body->setJointVel(int(joint), velocity);
+  impl_->updateKinematics();
+}
+
+void BulletWorld::step() {
+  Impl& w = *impl_;
+  btMultiBody& mb = *w.body;
+  // Viscous damping -b*qdot from the velocity at the start of the step. With
+  // Bullet's semi-implicit Euler the velocity decays by (1 - b*dt/I) per step:
+  // stable for b*dt/I < 2 (the seed joint: 1 * 0.001 / 0.35 = 0.003).
+  for (std::size_t j = 0; j < w.joints.size(); ++j) {
+    JointData& joint = w.joints[j];
+    const double damping_effort = -joint.damping * mb.getJointVel(int(j));
+    mb.addJointTorque(int(j), joint.pending_effort + damping_effort);
+    joint.pending_effort = 0.0;
+  }
+  // maxSubSteps = 0: exactly one step of time_step_s, no interpolation.
+  w.world->stepSimulation(w.settings.time_step_s, 0, w.settings.time_step_s);
+  mb.clearForcesAndTorques();
+  ++w.steps;
+}
+
+double BulletWorld::time() const { return static_cast<double>(impl_->steps) * impl_->settings.time_step_s; }
+double BulletWorld::timeStep() const { return impl_->settings.time_step_s; }
+
+void BulletWorld::reset() {
+  Impl& w = *impl_;
+  btMultiBody& mb = *w.body;
+  for (std::size_t j = 0; j < w.joints.size(); ++j) {
+    mb.setJointPos(int(j), 0.0);
+    mb.setJointVel(int(j), 0.0);
+    w.setMode(w.joints[j], CommandMode::effort);
+    w.joints[j].pending_effort = 0.0;
+  }
+  mb.setBaseWorldTransform(toBt(w.initial_root_pose * w.tree.bodies.front().principal_in_link));
+  mb.setBaseVel(btVector3(0, 0, 0));
+  mb.setBaseOmega(btVector3(0, 0, 0));
+  mb.clearForcesAndTorques();
+  w.steps = 0;
+  w.updateKinematics();
+}
+
+bool BulletWorld::isFixedBase() const { return impl_->fixed_base; }
+
+BaseState BulletWorld::baseState() const {
+  const Impl& w = *impl_;
+  const Eigen::Isometry3d root = w.rootPose();
+  BaseState state;
+  state.position = root.translation();
+  state.orientation = Eigen::Quaterniond(root.linear());
+  state.angular_velocity = toEigen(w.body->getBaseOmega());
+  const Eigen::Vector3d com = toEigen(w.body->getBasePos());
+  state.linear_velocity = toEigen(w.body->getBaseVel()) + state.angular_velocity.cross(state.position - com);
+  return state;
+}
+
+void BulletWorld::setBaseState(const BaseState& state) {
+  Impl& w = *impl_;
+  if (w.fixed_base) return;
+  Eigen::Isometry3d root = Eigen::Isometry3d::Identity();
+  root.linear() = state.orientation.normalized().toRotationMatrix();
+  root.translation() = state.position;
+  const Eigen::Isometry3d com_pose = root * w.tree.bodies.front().principal_in_link;
+  w.body->setBaseWorldTransform(toBt(com_pose));
+  const Eigen::Vector3d com_velocity =
+      state.linear_velocity + state.angular_velocity.cross(Eigen::Vector3d(com_pose.translation()) - state.position);
+  w.body->setBaseVel(toBt(com_velocity));
+  w.body->setBaseOmega(toBt(state.angular_velocity));
+  w.updateKinematics();
+}
+
+Eigen::Vector3d BulletWorld::linkWorldPosition(const std::string& link_name) const {
+  const Impl& w = *impl_;
+  const auto it = w.tree.links.find(link_name);
+  if (it == w.tree.links.end()) throw Error("Bullet world: no link '" + link_name + "' in the robot");
+  const detail::Body& b = w.tree.bodies[it->second.body];
+  const Eigen::Vector3d in_com = b.principal_in_link.inverse() * it->second.link_in_body_link.translation();
+  return toEigen(w.body->localPosToWorld(it->second.body - 1, toBt(in_com)));
+}
+
+BodyMassProperties BulletWorld::bodyMassProperties(const std::string& link_name) const {
+  const Impl& w = *impl_;
+  const auto it = w.tree.links.find(link_name);
+  if (it == w.tree.links.end()) throw Error("Bullet world: no link '" + link_name + "' in the robot");
+  const detail::Body& b = w.tree.bodies[it->second.body];
+  return BodyMassProperties{b.mass_kg, b.com, b.inertia_about_com};
+}
+
+bool BulletWorld::usesDoublePrecision() { return std::is_same_v<btScalar, double> && sizeof(btScalar) == 8; }
+double BulletWorld::linkLinearDamping() const { return impl_->body->getLinearDamping(); }
+double BulletWorld::linkAngularDamping() const { return impl_->body->getAngularDamping(); }
+double BulletWorld::maxCoordinateVelocity() const { return impl_->body->getMaxCoordinateVelocity(); }
+
+}  // namespace servoloop::sim_bullet

@@ -1,0 +1,222 @@
+// loadRobotModelFile / parseRobotModel: the seed URDFs load, and every bad
+// input is rejected with a message naming the file and the element at fault.
+#include "servoloop/hardware_interface/robot_model.hpp"
+
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop {
+namespace {
+
+// gmock is not linked into this test: a plain substring check with the full
+// message in the failure output.
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
+
+const std::string kSeedDir = std::string(SERVOLOOP_SHARED_DIR) + "/seed/";
+const std::string kAssetsDir = std::string(SERVOLOOP_SOURCE_DIR) + "/tests/assets/";
+
+// A fixed-base one-link robot; `joint` and `link` are spliced in whole.
+std::string robot(const std::string& joint, const std::string& link) {
+  return R"(<?xml version="1.0"?><robot name="r"><link name="world"/>)" + joint + link + "</robot>";
+}
+
+const std::string kGoodJoint = R"(<joint name="j1" type="revolute"><parent link="world"/><child link="arm"/>
+  <origin xyz="0 0 1" rpy="0 0 0"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="5" velocity="1"/></joint>)";
+
+std::string armLink(const std::string& inertial) { return R"(<link name="arm">)" + inertial + "</link>"; }
+
+const std::string kGoodInertial = R"(<inertial><origin xyz="0 0 0.5"/><mass value="1"/>
+  <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.01"/></inertial>)";
+
+// Parses `xml` as "bad.urdf" and returns the ConfigError message ("" if none).
+std::string errorOf(const std::string& xml) {
+  try {
+    parseRobotModel(xml, "bad.urdf");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RobotModel, SeedUrdfsLoad) {
+  const auto seed = loadRobotModelFile(kSeedDir + "minimal_robot_description.urdf");
+  ASSERT_TRUE(seed);
+  EXPECT_EQ(seed->getName(), "one_DOF_robot");
+  EXPECT_EQ(seed->getRoot()->name, "world");
+  EXPECT_EQ(seed->getJoint("joint1")->type, urdf::Joint::CONTINUOUS);
+
+  const auto with_control = loadRobotModelFile(kSeedDir + "minimal_robot_description_w_jnt_ctl.urdf");
+  const auto joint1 = with_control->getJoint("joint1");
+  ASSERT_TRUE(joint1);
+  EXPECT_EQ(joint1->type, urdf::Joint::REVOLUTE);
+  EXPECT_DOUBLE_EQ(joint1->limits->upper, 2.0);
+  EXPECT_DOUBLE_EQ(joint1->limits->effort, 10.0);
+  EXPECT_DOUBLE_EQ(joint1->dynamics->damping, 1.0);
+}
+
+TEST(RobotModel, GoodInlineRobotParses) {
+  const auto model = parseRobotModel(robot(kGoodJoint, armLink(kGoodInertial)), "good.urdf");
+  EXPECT_EQ(model->links_.size(), 2u);
+}
+
+TEST(RobotModel, MissingFileNamesThePath) {
+  try {
+    loadRobotModelFile("/nonexistent/robot.urdf");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_CONTAINS(e.what(), "/nonexistent/robot.urdf");
+    EXPECT_CONTAINS(e.what(), "not found");
+  }
+}
+
+TEST(RobotModel, NotXml) {
+  const std::string message = errorOf("<robot name='r'><link name='a'></robot>");
+  EXPECT_CONTAINS(message, "bad.urdf");
+  EXPECT_CONTAINS(message, "not valid XML");
+}
+
+TEST(RobotModel, RootIsNotRobot) {
+  EXPECT_CONTAINS(errorOf("<sdf><model/></sdf>"), "bad.urdf: the root element is <sdf>");
+}
+
+TEST(RobotModel, NoLinks) {
+  const std::string message = errorOf(R"(<robot name="r"></robot>)");
+  EXPECT_CONTAINS(message, "bad.urdf");
+  EXPECT_CONTAINS(message, "no <link>");
+}
+
+TEST(RobotModel, CycleIsRejected) {
+  // a -> b -> c -> a: every link has a parent, there is no root.
+  const std::string xml = R"(<robot name="r"><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>
+    <joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint>
+    <joint name="ca" type="fixed"><parent link="c"/><child link="a"/></joint></robot>)";
+  const std::string message = errorOf(xml);
+  EXPECT_CONTAINS(message, "bad.urdf");
+  EXPECT_CONTAINS(message, "kinematic cycle");
+}
+
+TEST(RobotModel, CycleBesideARootIsRejected) {
+  // root r, and b <-> c loop on the side: one root, but b and c are unreachable.
+  const std::string xml = R"(<robot name="r"><link name="r"/><link name="b"/><link name="c"/>
+    <joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint>
+    <joint name="cb" type="fixed"><parent link="c"/><child link="b"/></joint></robot>)";
+  const std::string message = errorOf(xml);
+  EXPECT_CONTAINS(message, "kinematic cycle");
+  EXPECT_CONTAINS(message, "'b'");
+}
+
+TEST(RobotModel, LinkWithTwoParentsIsRejected) {
+  const std::string xml = R"(<robot name="r"><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="ac" type="fixed"><parent link="a"/><child link="c"/></joint>
+    <joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint></robot>)";
+  const std::string message = errorOf(xml);
+  EXPECT_CONTAINS(message, "link 'c' is the child of two joints, 'ac' and 'bc'");
+}
+
+TEST(RobotModel, SeveralRootsAreRejected) {
+  const std::string message = errorOf(R"(<robot name="r"><link name="a"/><link name="b"/></robot>)");
+  EXPECT_CONTAINS(message, "bad.urdf: several root links ('a', 'b')");
+}
+
+TEST(RobotModel, UnknownJointTypeNamesTheJoint) {
+  std::string joint = kGoodJoint;
+  joint.replace(joint.find("revolute"), 8, "hinge");
+  const std::string message = errorOf(robot(joint, armLink(kGoodInertial)));
+  EXPECT_CONTAINS(message, "bad.urdf: joint 'j1' has unknown type 'hinge'");
+}
+
+TEST(RobotModel, JointToUnknownLink) {
+  const std::string message = errorOf(robot(kGoodJoint, ""));
+  EXPECT_CONTAINS(message, "joint 'j1' refers to link 'arm', which is not defined");
+}
+
+TEST(RobotModel, MovingLinkWithoutInertialIsRejected) {
+  const std::string message = errorOf(robot(kGoodJoint, armLink("")));
+  EXPECT_CONTAINS(message, "bad.urdf: link 'arm' (moved by joint 'j1') has no <inertial>");
+}
+
+TEST(RobotModel, FixedLinkWithoutInertialIsAccepted) {
+  std::string joint = kGoodJoint;
+  joint.replace(joint.find("revolute"), 8, "fixed");
+  EXPECT_NO_THROW(parseRobotModel(robot(joint, armLink("")), "fixed.urdf"));
+}
+
+TEST(RobotModel, ZeroMassIsRejected) {
+  std::string inertial = kGoodInertial;
+  inertial.replace(inertial.find("value=\"1\""), 9, "value=\"0\"");
+  const std::string message = errorOf(robot(kGoodJoint, armLink(inertial)));
+  EXPECT_CONTAINS(message, "bad.urdf: link 'arm' (moved by joint 'j1') <inertial><mass> is zero");
+}
+
+TEST(RobotModel, NegativeMassIsRejected) {
+  std::string inertial = kGoodInertial;
+  inertial.replace(inertial.find("value=\"1\""), 9, "value=\"-2\"");
+  const std::string message = errorOf(robot(kGoodJoint, armLink(inertial)));
+  EXPECT_CONTAINS(message, "bad.urdf: link 'arm'");
+  EXPECT_CONTAINS(message, "is negative");
+}
+
+TEST(RobotModel, NonPositiveDefiniteInertiaIsRejected) {
+  // Products of inertia larger than the moments: eigenvalues 0.1 - 0.5 < 0.
+  std::string inertial = kGoodInertial;
+  inertial.replace(inertial.find("ixy=\"0\""), 7, "ixy=\"0.5\"");
+  const std::string message = errorOf(robot(kGoodJoint, armLink(inertial)));
+  EXPECT_CONTAINS(message, "bad.urdf: link 'arm' (moved by joint 'j1') <inertial><inertia> is not positive definite");
+}
+
+TEST(RobotModel, NanOriginIsRejected) {
+  std::string joint = kGoodJoint;
+  joint.replace(joint.find("xyz=\"0 0 1\""), 11, "xyz=\"0 nan 1\"");
+  const std::string message = errorOf(robot(joint, armLink(kGoodInertial)));
+  EXPECT_CONTAINS(message, "bad.urdf: joint 'j1' <origin> attribute xyz=\"0 nan 1\"");
+  EXPECT_CONTAINS(message, "not a finite number");
+}
+
+TEST(RobotModel, InfiniteInertiaIsRejected) {
+  std::string inertial = kGoodInertial;
+  inertial.replace(inertial.find("iyy=\"0.1\""), 9, "iyy=\"inf\"");
+  const std::string message = errorOf(robot(kGoodJoint, armLink(inertial)));
+  EXPECT_CONTAINS(message, "bad.urdf: link 'arm' <inertial><inertia> attribute iyy=\"inf\"");
+}
+
+TEST(RobotModel, NanDampingIsRejected) {
+  std::string joint = kGoodJoint;
+  joint.replace(joint.find("</joint>"), 8, R"(<dynamics damping="NaN"/></joint>)");
+  EXPECT_CONTAINS(errorOf(robot(joint, armLink(kGoodInertial))), "bad.urdf: joint 'j1' <dynamics> attribute damping=\"NaN\"");
+}
+
+TEST(RobotModel, MissingMeshFileIsNamed) {
+  const std::string link = R"(<link name="arm">)" + kGoodInertial +
+                           R"(<collision><geometry><mesh filename="meshes/nothere.stl"/></geometry></collision></link>)";
+  const std::string message = errorOf(robot(kGoodJoint, link));
+  EXPECT_CONTAINS(message, "bad.urdf: link 'arm' <collision> mesh 'meshes/nothere.stl' not found");
+}
+
+TEST(RobotModel, MissingPackageMeshIsNamed) {
+  const std::string link = R"(<link name="arm">)" + kGoodInertial +
+                           R"(<visual><geometry><mesh filename="package://nopkg/arm.stl"/></geometry></visual></link>)";
+  EXPECT_CONTAINS(errorOf(robot(kGoodJoint, link)), "link 'arm' <visual> mesh 'package://nopkg/arm.stl' not found");
+}
+
+TEST(RobotModel, MeshesResolveRelativeAndPackageUris) {
+  const auto model = loadRobotModelFile(kAssetsDir + "mesh_pendulum.urdf");
+  const auto bob = model->getLink("bob");
+  ASSERT_TRUE(bob);
+  const auto* collision_mesh = dynamic_cast<const urdf::Mesh*>(bob->collision_array.at(0)->geometry.get());
+  const auto* visual_mesh = dynamic_cast<const urdf::Mesh*>(bob->visual_array.at(0)->geometry.get());
+  ASSERT_NE(collision_mesh, nullptr);
+  ASSERT_NE(visual_mesh, nullptr);
+  namespace fs = std::filesystem;
+  EXPECT_TRUE(fs::path(collision_mesh->filename).is_absolute());
+  EXPECT_TRUE(fs::equivalent(collision_mesh->filename, kAssetsDir + "meshes/cube_binary.stl"));
+  EXPECT_TRUE(fs::equivalent(visual_mesh->filename, kAssetsDir + "meshes/cube_ascii.stl"));
+}
+
+}  // namespace
+}  // namespace servoloop
