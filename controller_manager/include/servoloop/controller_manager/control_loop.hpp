@@ -1,0 +1,142 @@
+#pragma once
+// The real-time control loop: what calls RobotHW::read, ControllerManager::update
+// and RobotHW::write, cycle after cycle. Two kinds share this base:
+//   - SimulationLoop (simulation_loop.hpp): lockstep with a SimulatedRobotHW's
+//     physics steps, in simulated time, free-running or paced to a real-time factor;
+//   - WallClockLoop (wall_clock_loop.hpp): real hardware, monotonic wall time,
+//     absolute deadlines at the manager's update rate.
+//
+// Threads. run()/runFor()/cycleOnce() run the loop on the calling thread, which
+// becomes the real-time thread; they allocate nothing once running, never log
+// and never throw from inside a cycle. requestStop(), statistics(),
+// takeHardwareErrorReport() and hardwareAskedToStop() are safe from any other
+// thread while the loop runs.
+//
+// Hardware failures. A read/write/step that returns ReturnType::error is
+// counted (LoopStatistics::hardware_errors) and reported once per episode
+// (loop_hardware_errors.hpp); the loop goes on, as gazebo_ros_control and
+// ros_control's hardware loops do, because a transient bus error should not
+// drop the robot. Options::stop_after_failed_cycles makes a persistent failure
+// stop the loop instead. A call that returns ReturnType::deactivate stops the
+// loop at the end of that cycle (the hardware asked to be stopped cleanly). A
+// hardware call that throws (it must not) counts as an error.
+#include <atomic>
+#include <cstdint>
+#include <optional>
+
+#include "servoloop/controller_manager/loop_hardware_errors.hpp"
+#include "servoloop/controller_manager/loop_statistics.hpp"
+#include "servoloop/hardware_interface/return_type.hpp"
+#include "servoloop/hardware_interface/robot_hw.hpp"
+#include "servoloop/hardware_interface/time.hpp"
+
+namespace servoloop::controller_manager {
+
+class ControllerManager;  // controller_manager.hpp
+class TopicBus;           // topic_bus.hpp
+
+// What a node plugs into the loop to do its own real-time work each control
+// cycle (e.g. publish the loop's clock, poll an emergency-stop input).
+class LoopCycleHook {
+ public:
+  virtual ~LoopCycleHook() = default;
+  // Real-time. Called right after every ControllerManager::update (in a
+  // simulation, not on the physics steps between control updates), before the
+  // commands are written. Must not allocate, lock, log or throw.
+  virtual void afterUpdate(const Time& time, const Duration& period) noexcept = 0;
+};
+
+// What every loop kind is configured with, besides its timing.
+struct LoopCommonOptions {
+  // Called on the real-time thread after each update; may be null. Must outlive the loop.
+  LoopCycleHook* cycle_hook = nullptr;
+  // When set, its clock is set to the control time at the start of every
+  // cycle, so messages published by controllers carry control (simulated) time.
+  // May be null. Must outlive the loop.
+  TopicBus* topic_bus = nullptr;
+  // Stop the loop after this many cycles in a row with a hardware error;
+  // 0 (default): never stop for errors, only count and report them.
+  std::uint64_t stop_after_failed_cycles = 0;
+};
+
+class ControlLoop {
+ public:
+  virtual ~ControlLoop() = default;
+  ControlLoop(const ControlLoop&) = delete;
+  ControlLoop& operator=(const ControlLoop&) = delete;
+
+  // Runs cycles on the calling thread until stop_requested becomes true,
+  // requestStop() is called, or the hardware asks to stop (see above).
+  virtual void run(const std::atomic<bool>& stop_requested) = 0;
+
+  // Runs for `duration` of control time (simulated time in a simulation, wall
+  // time on real hardware), or until requestStop(). Throws servoloop::Error
+  // for a negative or non-finite duration (before running anything).
+  virtual void runFor(Duration duration) = 0;
+
+  // Any thread. Ends the run in progress after its current cycle; if no run is
+  // in progress, the next run returns before its first cycle. Each request
+  // ends one run.
+  void requestStop() noexcept { stop_requested_.store(true, std::memory_order_release); }
+
+  // Any thread.
+  const LoopStatistics& statistics() const noexcept { return statistics_; }
+  // Any thread. True once a hardware call returned ReturnType::deactivate or
+  // stop_after_failed_cycles was reached; the loop then refuses to run on.
+  bool hardwareAskedToStop() const noexcept { return hardware_stop_.load(std::memory_order_acquire); }
+  // Non-real-time, while no run is in progress: lets the loop run again after
+  // the hardware stopped it (e.g. once the hardware was re-initialised).
+  void clearHardwareStop() noexcept { hardware_stop_.store(false, std::memory_order_release); }
+
+  // Non-real-time, one thread at a time. The waiting hardware error report, once.
+  std::optional<HardwareErrorReport> takeHardwareErrorReport() noexcept { return hardware_errors_.takeReport(); }
+  // Non-real-time. Logs the waiting hardware error report, if any, with
+  // servoloop::logger().error; true if there was one. A node's service thread
+  // calls this now and then, alongside ControllerManager::processFaults().
+  bool logHardwareErrorReport();
+
+  // The time between two ControllerManager::update calls.
+  Duration controlPeriod() const noexcept { return control_period_; }
+
+ protected:
+  ControlLoop(hardware_interface::RobotHW& robot_hw, ControllerManager& manager,
+              const LoopCommonOptions& options, Duration control_period);
+
+  // --- Real-time helpers for the cycle implementations ---
+
+  // Calls read()/write() (exceptions count as errors) and records the result.
+  ReturnType readHardware(Time time, Duration period, std::uint64_t cycle) noexcept;
+  ReturnType writeHardware(Time time, Duration period, std::uint64_t cycle) noexcept;
+  // Records the result of a hardware call made by the subclass (e.g. step()).
+  void recordHardwareResult(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept;
+  // Sets the topic bus clock (if any) to time.
+  void setBusTime(Time time) noexcept;
+  // ControllerManager::update, then the cycle hook.
+  void updateControllers(Time time, Duration period) noexcept;
+  // Closes the cycle's error episode bookkeeping; sets hardwareAskedToStop()
+  // when the hardware said deactivate or failed too often in a row.
+  void finishCycle() noexcept;
+  // True when the run should end before the next cycle.
+  bool shouldStop(const std::atomic<bool>* external_stop) const noexcept;
+  // Clears a consumed stop request at the end of a run.
+  void consumeStopRequest() noexcept { stop_requested_.store(false, std::memory_order_release); }
+
+  hardware_interface::RobotHW& robotHW() noexcept { return robot_hw_; }
+  LoopStatistics& mutableStatistics() noexcept { return statistics_; }
+
+ private:
+  void recordResult(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept;
+
+  hardware_interface::RobotHW& robot_hw_;
+  ControllerManager& manager_;
+  LoopCommonOptions options_;
+  Duration control_period_;
+
+  LoopStatistics statistics_;
+  LoopHardwareErrors hardware_errors_;
+  std::atomic<bool> stop_requested_{false};
+  std::atomic<bool> hardware_stop_{false};
+  bool deactivate_this_cycle_ = false;  // real-time thread only
+};
+
+}  // namespace servoloop::controller_manager

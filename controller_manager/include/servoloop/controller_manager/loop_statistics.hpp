@@ -1,0 +1,109 @@
+#pragma once
+// What a control loop measured about itself: cycles, simulated and wall time,
+// the achieved real-time factor, the per-cycle compute cost and deadline
+// overruns.
+//
+// Threads. The loop's real-time thread is the only writer (the record*/set*
+// calls: lock-free, allocation-free). Any thread may call snapshot() at any
+// time: every field is an atomic, so each value read is one the writer stored;
+// fields of one snapshot may be a cycle apart. The compute-cost percentiles
+// come from a histogram preallocated inside the object (log-linear buckets,
+// at most 1/32 ≈ 3 % relative error), so recording never allocates.
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace servoloop::controller_manager {
+
+struct LoopStatisticsSnapshot {
+  std::uint64_t cycles = 0;           // loop cycles (physics steps in simulation)
+  std::uint64_t control_updates = 0;  // ControllerManager::update calls
+  double sim_time_s = 0.0;            // control time the loop advanced
+  double wall_time_s = 0.0;           // wall time spent running, pacing sleeps included
+  double real_time_factor = 0.0;      // sim_time_s / wall_time_s; 0 before any wall time passed
+
+  // Per-cycle compute cost: wall time from the start of read() to the end of
+  // the cycle's last hardware call, sleeps excluded. All 0 before the first cycle.
+  double compute_min_s = 0.0;
+  double compute_mean_s = 0.0;
+  double compute_max_s = 0.0;
+  double compute_p50_s = 0.0;  // from the histogram
+  double compute_p99_s = 0.0;  // from the histogram
+
+  std::uint64_t overruns = 0;         // cycles that ended after their deadline
+  std::uint64_t schedule_resets = 0;  // times a loop gave up catching up on a backlog
+  std::uint64_t hardware_errors = 0;  // read/write/step calls that returned ReturnType::error
+};
+
+class LoopStatistics {
+ public:
+  // Histogram layout: values below kLinearBuckets ns have a bucket each; above,
+  // every power of two is split into kSubBuckets equal buckets, up to 2^kMaxExponent ns
+  // (about 18 minutes; larger values land in the last bucket).
+  static constexpr int kSubBucketBits = 5;
+  static constexpr std::int64_t kSubBuckets = std::int64_t{1} << kSubBucketBits;
+  static constexpr std::int64_t kLinearBuckets = kSubBuckets;
+  static constexpr int kMaxExponent = 40;
+  static constexpr std::size_t kBucketCount =
+      static_cast<std::size_t>(kLinearBuckets + (kMaxExponent - kSubBucketBits) * kSubBuckets);
+
+  LoopStatistics() { reset(); }
+  LoopStatistics(const LoopStatistics&) = delete;
+  LoopStatistics& operator=(const LoopStatistics&) = delete;
+
+  // --- Writer side (real-time thread only) ---
+
+  // One finished cycle that took compute_ns of work; control_update: the
+  // manager was updated in it.
+  void recordCycle(std::int64_t compute_ns, bool control_update) noexcept;
+  // The loop's cumulative simulated (control) and wall time.
+  void setElapsed(double sim_time_s, std::int64_t wall_time_ns) noexcept;
+  void recordOverrun() noexcept { bump(overruns_); }
+  void recordScheduleReset() noexcept { bump(schedule_resets_); }
+  void recordHardwareError() noexcept { bump(hardware_errors_); }
+
+  // Non-real-time: back to zero. Only while no loop thread records.
+  void reset() noexcept;
+
+  // --- Reader side (any thread) ---
+
+  LoopStatisticsSnapshot snapshot() const noexcept;
+
+  // Non-real-time. The end-of-run summary, e.g.
+  //   "loop: 1000 cycles (1000 control updates), 1.000 s simulated in 1.002 s wall
+  //    (real-time factor 0.998); compute per cycle min 3.1 us, mean 4.0 us, p50 3.9 us,
+  //    p99 9.8 us, max 41.0 us; 0 overruns, 0 schedule resets, 0 hardware errors"
+  std::string summary() const;
+  static std::string summary(const LoopStatisticsSnapshot& stats);
+
+  // The histogram bucket a value (ns) falls in, and the range [lower, upper)
+  // of values a bucket holds. Public for the tests of the bucket layout.
+  static std::size_t bucketIndex(std::int64_t value_ns) noexcept;
+  static std::int64_t bucketLower(std::size_t index) noexcept;
+  static std::int64_t bucketUpper(std::size_t index) noexcept;
+
+ private:
+  // Single writer: a relaxed load and store is an atomic increment here.
+  static void bump(std::atomic<std::uint64_t>& counter) noexcept {
+    counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+  }
+  // The value below which a fraction q of the recorded cycles lie (bucket midpoint).
+  double percentileSeconds(double q, std::uint64_t total, std::int64_t min_ns,
+                           std::int64_t max_ns) const noexcept;
+
+  std::atomic<std::uint64_t> cycles_{0};
+  std::atomic<std::uint64_t> control_updates_{0};
+  std::atomic<double> sim_time_s_{0.0};
+  std::atomic<std::int64_t> wall_time_ns_{0};
+  std::atomic<std::int64_t> compute_min_ns_{0};
+  std::atomic<std::int64_t> compute_max_ns_{0};
+  std::atomic<std::int64_t> compute_sum_ns_{0};
+  std::atomic<std::uint64_t> overruns_{0};
+  std::atomic<std::uint64_t> schedule_resets_{0};
+  std::atomic<std::uint64_t> hardware_errors_{0};
+  std::array<std::atomic<std::uint64_t>, kBucketCount> histogram_{};
+};
+
+}  // namespace servoloop::controller_manager

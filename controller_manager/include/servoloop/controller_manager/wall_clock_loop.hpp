@@ -1,0 +1,58 @@
+#pragma once
+// The control loop for real hardware: cycles at a fixed period on the
+// monotonic clock, each one
+//
+//   t = monotonic time since the loop was built
+//   hw.read(t, period)  →  manager.update(t, period), cycle hook  →  hw.write(t, period)
+//
+// where period is the wall time since the previous cycle started (the nominal
+// period for a run's first cycle). Cycles start at absolute deadlines
+// (clock_nanosleep, TIMER_ABSTIME) start + n · period, so the rate does not
+// drift. A cycle whose work ends after the next cycle's deadline is an
+// overrun; the loop then skips the deadlines it missed (the next cycle starts
+// at the first deadline still ahead, on the original grid) rather than running
+// a burst of late cycles back to back. (schedule_resets stays 0 here: every
+// overrun skips.)
+//
+// The thread's scheduling (SCHED_FIFO, CPU affinity, mlockall) is the
+// caller's business: set it on the thread before calling run().
+#include <atomic>
+#include <cstdint>
+
+#include "servoloop/controller_manager/control_loop.hpp"
+
+namespace servoloop::controller_manager {
+
+struct WallClockLoopOptions : LoopCommonOptions {
+  // The cycle period. 0 (default): 1 / the manager's update rate.
+  Duration period{0.0};
+};
+
+class WallClockLoop final : public ControlLoop {
+ public:
+  using Options = WallClockLoopOptions;
+
+  // Non-real-time. hw and manager must outlive the loop; the manager must be
+  // built on hw. Throws servoloop::ConfigError when neither a period nor a
+  // manager update rate is given, the period is not positive and finite, or it
+  // disagrees with the manager's update rate.
+  WallClockLoop(hardware_interface::RobotHW& hw, ControllerManager& manager, Options options = {});
+
+  // Runs until stop_requested, requestStop(), or a hardware stop.
+  void run(const std::atomic<bool>& stop_requested) override;
+  // Runs the cycles that start within `wall_time` from now, or fewer if stopped.
+  void runFor(Duration wall_time) override;
+
+ private:
+  void runCycles(std::int64_t run_length_ns, const std::atomic<bool>* external_stop);
+
+  std::int64_t period_ns_ = 0;
+  std::int64_t origin_ns_ = 0;  // monotonic time of construction: control time 0
+
+  // Real-time thread only.
+  std::uint64_t cycles_ = 0;
+  double control_time_s_ = 0.0;  // sum of the periods handed to update()
+  std::int64_t wall_time_ns_ = 0;
+};
+
+}  // namespace servoloop::controller_manager

@@ -1,0 +1,78 @@
+// ControlLoop: the pieces of a cycle both loop kinds share.
+#include "servoloop/controller_manager/control_loop.hpp"
+
+#include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/hardware_interface/logging.hpp"
+
+namespace servoloop::controller_manager {
+
+ControlLoop::ControlLoop(hardware_interface::RobotHW& robot_hw, ControllerManager& manager,
+                         const LoopCommonOptions& options, Duration control_period)
+    : robot_hw_(robot_hw), manager_(manager), options_(options), control_period_(control_period) {}
+
+bool ControlLoop::logHardwareErrorReport() {
+  const std::optional<HardwareErrorReport> report = takeHardwareErrorReport();
+  if (!report) return false;
+  logger().error("control loop: {} ({} hardware errors counted so far)", report->message(),
+                 statistics_.snapshot().hardware_errors);
+  return true;
+}
+
+void ControlLoop::recordResult(HardwareCall call, ReturnType result, Time time,
+                               std::uint64_t cycle) noexcept {
+  if (hardware_errors_.record(call, result, time, cycle)) statistics_.recordHardwareError();
+  if (result == ReturnType::deactivate) deactivate_this_cycle_ = true;
+}
+
+void ControlLoop::recordHardwareResult(HardwareCall call, ReturnType result, Time time,
+                                       std::uint64_t cycle) noexcept {
+  recordResult(call, result, time, cycle);
+}
+
+ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t cycle) noexcept {
+  ReturnType result = ReturnType::error;
+  try {
+    result = robot_hw_.read(time, period);
+  } catch (...) {
+    // read() must not throw; containing it keeps the loop (and the robot's
+    // other joints) under control. It is reported as an error of this call.
+  }
+  recordResult(HardwareCall::read, result, time, cycle);
+  return result;
+}
+
+ReturnType ControlLoop::writeHardware(Time time, Duration period, std::uint64_t cycle) noexcept {
+  ReturnType result = ReturnType::error;
+  try {
+    result = robot_hw_.write(time, period);
+  } catch (...) {
+    // As in readHardware: counted and reported as an error of write().
+  }
+  recordResult(HardwareCall::write, result, time, cycle);
+  return result;
+}
+
+void ControlLoop::setBusTime(Time time) noexcept {
+  if (options_.topic_bus != nullptr) options_.topic_bus->setTime(time);
+}
+
+void ControlLoop::updateControllers(Time time, Duration period) noexcept {
+  manager_.update(time, period);
+  if (options_.cycle_hook != nullptr) options_.cycle_hook->afterUpdate(time, period);
+}
+
+void ControlLoop::finishCycle() noexcept {
+  hardware_errors_.endCycle();
+  const bool too_many_failures = options_.stop_after_failed_cycles > 0 &&
+                                 hardware_errors_.consecutiveFailedCycles() >= options_.stop_after_failed_cycles;
+  if (deactivate_this_cycle_ || too_many_failures) hardware_stop_.store(true, std::memory_order_release);
+  deactivate_this_cycle_ = false;
+}
+
+bool ControlLoop::shouldStop(const std::atomic<bool>* external_stop) const noexcept {
+  return stop_requested_.load(std::memory_order_acquire) || hardware_stop_.load(std::memory_order_relaxed) ||
+         (external_stop != nullptr && external_stop->load(std::memory_order_acquire));
+}
+
+}  // namespace servoloop::controller_manager

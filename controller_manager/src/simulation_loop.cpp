@@ -1,0 +1,202 @@
+// SimulationLoop: lockstep with the physics, free-running or paced.
+#include "servoloop/controller_manager/simulation_loop.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/loop_clock.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop::controller_manager {
+
+namespace {
+
+constexpr double kRelativeTolerance = 1e-9;
+
+// Two periods that should be the same, up to floating-point rounding.
+bool samePeriod(double a_s, double b_s) {
+  return std::abs(a_s - b_s) <= kRelativeTolerance * std::max(std::abs(a_s), std::abs(b_s));
+}
+
+Duration checkedPhysicsStep(const hardware_interface::SimulatedRobotHW& hw) {
+  const double dt = hw.timeStep().seconds;
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    throw ConfigError(fmt::format(
+        "SimulationLoop: the simulated hardware's physics time step is {} s; it must be a positive, "
+        "finite time (check the world's time step setting)",
+        dt));
+  }
+  return Duration(dt);
+}
+
+// The control period the options ask for, checked against the manager.
+Duration chooseControlPeriod(const SimulationLoop::Options& options, const ControllerManager& manager,
+                             Duration physics_step) {
+  const double manager_rate_hz = manager.updateRate();
+  const double requested_s = options.control_period.seconds;
+  if (!std::isfinite(requested_s) || requested_s < 0.0) {
+    throw ConfigError(fmt::format(
+        "SimulationLoop: control_period {} s must be a positive time, or 0 to take the controller "
+        "manager's update rate",
+        requested_s));
+  }
+  if (requested_s == 0.0) {
+    return manager_rate_hz > 0.0 ? Duration(1.0 / manager_rate_hz) : physics_step;
+  }
+  if (manager_rate_hz > 0.0 && !samePeriod(requested_s, 1.0 / manager_rate_hz)) {
+    throw ConfigError(fmt::format(
+        "SimulationLoop: control_period {} s ({} Hz) differs from the controller manager's update rate "
+        "{} Hz, so per-controller rates would be wrong; give the manager update_rate {} Hz or leave "
+        "control_period at 0",
+        requested_s, 1.0 / requested_s, manager_rate_hz, 1.0 / requested_s));
+  }
+  return options.control_period;
+}
+
+// k with control_period = k * physics_step, or a ConfigError naming both.
+std::uint64_t stepsPerUpdate(Duration control_period, Duration physics_step) {
+  const double ratio = control_period.seconds / physics_step.seconds;
+  const double k = std::round(ratio);
+  if (k < 1.0 || !samePeriod(k * physics_step.seconds, control_period.seconds)) {
+    const double below = std::max(1.0, std::floor(ratio)) * physics_step.seconds;
+    const double above = std::max(1.0, std::ceil(ratio)) * physics_step.seconds;
+    throw ConfigError(fmt::format(
+        "SimulationLoop: control period {} s is not an integer multiple of the physics time step {} s "
+        "(ratio {:.6g}); use a control period of {} s or {} s (controller manager update rate {:.6g} Hz "
+        "or {:.6g} Hz), or change the physics time step",
+        control_period.seconds, physics_step.seconds, ratio, below, above, 1.0 / below, 1.0 / above));
+  }
+  return static_cast<std::uint64_t>(k);
+}
+
+}  // namespace
+
+SimulationLoop::SimulationLoop(hardware_interface::SimulatedRobotHW& hw, ControllerManager& manager,
+                               Options options)
+    : ControlLoop(hw, manager, options,
+                  chooseControlPeriod(options, manager, checkedPhysicsStep(hw))),
+      hw_(hw),
+      physics_step_(checkedPhysicsStep(hw)),
+      real_time_factor_(options.real_time_factor),
+      max_catch_up_steps_(options.max_catch_up_steps) {
+  steps_per_update_ = stepsPerUpdate(controlPeriod(), physics_step_);
+  if (!std::isfinite(real_time_factor_) || real_time_factor_ < 0.0) {
+    throw ConfigError(fmt::format(
+        "SimulationLoop: real_time_factor {} must be >= 0 (0 runs as fast as possible, 1 in real time)",
+        real_time_factor_));
+  }
+}
+
+ReturnType SimulationLoop::runCycle(bool* control_updated) noexcept {
+  const std::uint64_t step = steps_taken_.load(std::memory_order_relaxed);
+  const Time time = hw_.simTime();
+  setBusTime(time);
+
+  const ReturnType read_result = readHardware(time, physics_step_, step);
+
+  *control_updated = !updated_before_ || step - last_update_step_ >= steps_per_update_;
+  if (*control_updated) {
+    // The control time since the previous update (nominal for the first one).
+    const std::uint64_t steps_since = updated_before_ ? step - last_update_step_ : steps_per_update_;
+    updateControllers(time, Duration(static_cast<double>(steps_since) * physics_step_.seconds));
+    last_update_step_ = step;
+    updated_before_ = true;
+  }
+
+  const ReturnType write_result = writeHardware(time, physics_step_, step);
+
+  ReturnType step_result = ReturnType::error;
+  try {
+    step_result = hw_.step();
+  } catch (...) {
+    // step() must not throw; counted and reported as an error of step().
+  }
+  recordHardwareResult(HardwareCall::step, step_result, time, step);
+  steps_taken_.store(step + 1, std::memory_order_release);
+  finishCycle();
+
+  for (const ReturnType result : {read_result, write_result, step_result}) {
+    if (result == ReturnType::error) return ReturnType::error;
+  }
+  for (const ReturnType result : {read_result, write_result, step_result}) {
+    if (result == ReturnType::deactivate) return ReturnType::deactivate;
+  }
+  return ReturnType::ok;
+}
+
+void SimulationLoop::publishElapsed() noexcept {
+  const double sim_time_s =
+      static_cast<double>(steps_taken_.load(std::memory_order_relaxed)) * physics_step_.seconds;
+  mutableStatistics().setElapsed(sim_time_s, wall_time_ns_);
+}
+
+ReturnType SimulationLoop::cycleOnce() noexcept {
+  const std::int64_t start_ns = loop_clock::nowNs();
+  bool control_updated = false;
+  const ReturnType result = runCycle(&control_updated);
+  const std::int64_t compute_ns = loop_clock::nowNs() - start_ns;
+  mutableStatistics().recordCycle(compute_ns, control_updated);
+  wall_time_ns_ += compute_ns;
+  publishElapsed();
+  return result;
+}
+
+void SimulationLoop::runCycles(std::uint64_t max_cycles, const std::atomic<bool>* external_stop) {
+  const bool paced = real_time_factor_ > 0.0;
+  // Wall nanoseconds one physics step takes at the requested real-time factor.
+  const double wall_per_step_ns = paced ? physics_step_.seconds / real_time_factor_ * 1e9 : 0.0;
+  const auto max_lag_ns = static_cast<std::int64_t>(wall_per_step_ns * max_catch_up_steps_);
+
+  const std::int64_t run_start_ns = loop_clock::nowNs();
+  const std::int64_t wall_before_ns = wall_time_ns_;
+  // The schedule: cycle n of this run ends no earlier than
+  // anchor_ns + (n − anchor_cycle + 1) · wall_per_step_ns.
+  std::int64_t anchor_ns = run_start_ns;
+  std::uint64_t anchor_cycle = 0;
+
+  for (std::uint64_t n = 0; n < max_cycles && !shouldStop(external_stop); ++n) {
+    const std::int64_t start_ns = loop_clock::nowNs();
+    bool control_updated = false;
+    runCycle(&control_updated);
+    std::int64_t end_ns = loop_clock::nowNs();
+    mutableStatistics().recordCycle(end_ns - start_ns, control_updated);
+
+    if (paced) {
+      const std::int64_t deadline_ns =
+          anchor_ns + std::llround(static_cast<double>(n - anchor_cycle + 1) * wall_per_step_ns);
+      if (end_ns > deadline_ns) {
+        mutableStatistics().recordOverrun();
+        if (end_ns - deadline_ns > max_lag_ns) {
+          // Too far behind to catch up: forget the backlog, restart from now.
+          anchor_ns = end_ns;
+          anchor_cycle = n + 1;
+          mutableStatistics().recordScheduleReset();
+        }
+      } else {
+        loop_clock::sleepUntilNs(deadline_ns);
+        end_ns = loop_clock::nowNs();
+      }
+    }
+    wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
+    publishElapsed();
+  }
+  consumeStopRequest();
+}
+
+void SimulationLoop::run(const std::atomic<bool>& stop_requested) {
+  runCycles(std::numeric_limits<std::uint64_t>::max(), &stop_requested);
+}
+
+void SimulationLoop::runFor(Duration sim_time) {
+  const double steps = sim_time.seconds / physics_step_.seconds;
+  if (!std::isfinite(steps) || steps < 0.0) {
+    throw Error(fmt::format("SimulationLoop::runFor: simulated time {} s must be >= 0 and finite",
+                            sim_time.seconds));
+  }
+  runCycles(static_cast<std::uint64_t>(std::ceil(steps - 1e-9)), nullptr);
+}
+
+}  // namespace servoloop::controller_manager

@@ -1,0 +1,108 @@
+// WallClockLoop: fixed-rate cycles on absolute monotonic deadlines.
+#include "servoloop/controller_manager/wall_clock_loop.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/loop_clock.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop::controller_manager {
+
+namespace {
+
+constexpr double kNsPerSecond = 1e9;
+
+Duration chooseWallPeriod(const WallClockLoop::Options& options, const ControllerManager& manager) {
+  const double manager_rate_hz = manager.updateRate();
+  const double requested_s = options.period.seconds;
+  if (!std::isfinite(requested_s) || requested_s < 0.0) {
+    throw ConfigError(fmt::format(
+        "WallClockLoop: period {} s must be a positive time, or 0 to take the controller manager's "
+        "update rate",
+        requested_s));
+  }
+  if (requested_s == 0.0) {
+    if (!(manager_rate_hz > 0.0)) {
+      throw ConfigError(
+          "WallClockLoop: no cycle period: the controller manager has no update rate and "
+          "WallClockLoop::Options::period is 0; set the manager's update_rate (e.g. 1000 Hz)");
+    }
+    return Duration(1.0 / manager_rate_hz);
+  }
+  if (manager_rate_hz > 0.0 && std::abs(requested_s * manager_rate_hz - 1.0) > 1e-9) {
+    throw ConfigError(fmt::format(
+        "WallClockLoop: period {} s ({} Hz) differs from the controller manager's update rate {} Hz, "
+        "so per-controller rates would be wrong; give the manager update_rate {} Hz or leave period at 0",
+        requested_s, 1.0 / requested_s, manager_rate_hz, 1.0 / requested_s));
+  }
+  if (requested_s < 1e-6) {
+    throw ConfigError(fmt::format("WallClockLoop: period {} s is below the 1 us the loop can keep",
+                                  requested_s));
+  }
+  return options.period;
+}
+
+}  // namespace
+
+WallClockLoop::WallClockLoop(hardware_interface::RobotHW& hw, ControllerManager& manager, Options options)
+    : ControlLoop(hw, manager, options, chooseWallPeriod(options, manager)),
+      period_ns_(std::llround(controlPeriod().seconds * kNsPerSecond)),
+      origin_ns_(loop_clock::nowNs()) {}
+
+void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool>* external_stop) {
+  const std::int64_t run_start_ns = loop_clock::nowNs();
+  const std::int64_t wall_before_ns = wall_time_ns_;
+  const std::int64_t run_end_ns = run_length_ns == std::numeric_limits<std::int64_t>::max()
+                                      ? run_length_ns
+                                      : run_start_ns + run_length_ns;
+  std::int64_t deadline_ns = run_start_ns;  // start of the next cycle
+  std::int64_t previous_start_ns = -1;
+
+  while (deadline_ns < run_end_ns && !shouldStop(external_stop)) {
+    loop_clock::sleepUntilNs(deadline_ns);
+    const std::int64_t start_ns = loop_clock::nowNs();
+    const Time time(static_cast<double>(start_ns - origin_ns_) / kNsPerSecond);
+    const Duration period(previous_start_ns < 0 ? controlPeriod().seconds
+                                                : static_cast<double>(start_ns - previous_start_ns) / kNsPerSecond);
+    previous_start_ns = start_ns;
+
+    setBusTime(time);
+    readHardware(time, period, cycles_);
+    updateControllers(time, period);
+    writeHardware(time, period, cycles_);
+    finishCycle();
+    ++cycles_;
+    control_time_s_ += period.seconds;
+
+    const std::int64_t end_ns = loop_clock::nowNs();
+    mutableStatistics().recordCycle(end_ns - start_ns, true);
+    deadline_ns += period_ns_;
+    if (end_ns > deadline_ns) {
+      mutableStatistics().recordOverrun();
+      // Skip the deadlines already missed: the next cycle starts at the first
+      // one still ahead, on the original grid.
+      const std::int64_t missed = (end_ns - deadline_ns) / period_ns_ + 1;
+      deadline_ns += missed * period_ns_;
+    }
+    wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
+    mutableStatistics().setElapsed(control_time_s_, wall_time_ns_);
+  }
+  consumeStopRequest();
+}
+
+void WallClockLoop::run(const std::atomic<bool>& stop_requested) {
+  runCycles(std::numeric_limits<std::int64_t>::max(), &stop_requested);
+}
+
+void WallClockLoop::runFor(Duration wall_time) {
+  if (!std::isfinite(wall_time.seconds) || wall_time.seconds < 0.0) {
+    throw Error(fmt::format("WallClockLoop::runFor: wall time {} s must be >= 0 and finite", wall_time.seconds));
+  }
+  runCycles(std::llround(wall_time.seconds * kNsPerSecond), nullptr);
+}
+
+}  // namespace servoloop::controller_manager

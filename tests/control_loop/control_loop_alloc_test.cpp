@@ -1,0 +1,47 @@
+// The simulation loop's real-time thread allocates nothing: 100,000 cycles
+// with a running controller, a cycle hook and the topic bus clock, after
+// start-up.
+#include <gtest/gtest.h>
+
+#include "alloc_counter.hpp"
+#include "control_loop_test_support.hpp"
+#include "servoloop/controller_manager/simulation_loop.hpp"
+#include "servoloop/controller_manager/topic_bus.hpp"
+
+namespace servoloop::controller_manager {
+namespace {
+
+using servoloop::testing::AllocationCounter;
+
+TEST(ControlLoopAllocation, HundredThousandSimulationCyclesAllocateNothing) {
+  constexpr std::uint64_t kCycles = 100000;
+  testing::LoopFixture f(0.001, 500.0);  // k = 2: steps with and without an update
+  f.recorder->enabled = false;
+  TopicBus bus;
+  testing::RecordingHook hook(f.recorder);
+  SimulationLoop::Options options;
+  options.cycle_hook = &hook;
+  options.topic_bus = &bus;
+  SimulationLoop loop(f.hw, f.manager, options);
+  f.requestStart();
+  loop.cycleOnce();  // start-up: carries out the switch
+  ASSERT_TRUE(f.controller()->isRunning());
+  // Hardware errors take the reporting path too.
+  f.hw.read_script.from = 1000;
+  f.hw.read_script.until = 1010;
+
+  std::size_t allocations = 0;
+  {
+    AllocationCounter counter;  // this (the loop's) thread only
+    loop.runFor(Duration(static_cast<double>(kCycles) * 0.001));
+    allocations = counter.allocations();
+  }
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_EQ(loop.stepsTaken(), kCycles + 1);
+  EXPECT_EQ(f.controller()->updates, kCycles / 2);
+  EXPECT_EQ(loop.statistics().snapshot().hardware_errors, 10u);
+  EXPECT_TRUE(f.controller()->isRunning());
+}
+
+}  // namespace
+}  // namespace servoloop::controller_manager

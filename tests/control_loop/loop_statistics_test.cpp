@@ -1,0 +1,98 @@
+// LoopStatistics: the histogram's bucket layout, percentiles of a known
+// distribution, and reading while another thread records.
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "servoloop/controller_manager/loop_statistics.hpp"
+
+namespace servoloop::controller_manager {
+namespace {
+
+TEST(LoopStatistics, BucketsTileTheRangeWithAtMostOneThirtySecondRelativeWidth) {
+  std::int64_t expected_lower = 0;
+  for (std::size_t i = 0; i < LoopStatistics::kBucketCount; ++i) {
+    const std::int64_t lower = LoopStatistics::bucketLower(i);
+    const std::int64_t upper = LoopStatistics::bucketUpper(i);
+    ASSERT_EQ(lower, expected_lower) << "bucket " << i;  // no gaps, no overlaps
+    ASSERT_GT(upper, lower);
+    EXPECT_EQ(LoopStatistics::bucketIndex(lower), i);
+    EXPECT_EQ(LoopStatistics::bucketIndex(upper - 1), i);
+    if (lower >= LoopStatistics::kLinearBuckets) {
+      EXPECT_LE(static_cast<double>(upper - lower) / static_cast<double>(lower), 1.0 / 32.0);
+    }
+    expected_lower = upper;
+  }
+  // Beyond the range: the last bucket.
+  EXPECT_EQ(LoopStatistics::bucketIndex(std::int64_t{1} << 50), LoopStatistics::kBucketCount - 1);
+  EXPECT_EQ(LoopStatistics::bucketIndex(-5), 0u);
+}
+
+TEST(LoopStatistics, PercentilesOfAUniformDistribution) {
+  // Compute costs 1, 2, ..., 1000 us: min 1 us, max 1000 us, mean 500.5 us,
+  // p50 = 500 us and p99 = 990 us (nearest rank), within the bucket width.
+  LoopStatistics stats;
+  for (int k = 1000; k >= 1; --k) stats.recordCycle(std::int64_t{k} * 1000, k % 2 == 0);
+  const LoopStatisticsSnapshot s = stats.snapshot();
+  EXPECT_EQ(s.cycles, 1000u);
+  EXPECT_EQ(s.control_updates, 500u);
+  EXPECT_DOUBLE_EQ(s.compute_min_s, 1e-6);
+  EXPECT_DOUBLE_EQ(s.compute_max_s, 1e-3);
+  EXPECT_NEAR(s.compute_mean_s, 500.5e-6, 1e-15);
+  EXPECT_NEAR(s.compute_p50_s, 500e-6, 500e-6 / 32.0);
+  EXPECT_NEAR(s.compute_p99_s, 990e-6, 990e-6 / 32.0);
+}
+
+TEST(LoopStatistics, EmptyAndElapsed) {
+  LoopStatistics stats;
+  LoopStatisticsSnapshot s = stats.snapshot();
+  EXPECT_EQ(s.cycles, 0u);
+  EXPECT_EQ(s.compute_min_s, 0.0);
+  EXPECT_EQ(s.real_time_factor, 0.0);
+  stats.setElapsed(2.0, 4'000'000'000);
+  stats.recordOverrun();
+  stats.recordScheduleReset();
+  stats.recordHardwareError();
+  s = stats.snapshot();
+  EXPECT_DOUBLE_EQ(s.real_time_factor, 0.5);
+  EXPECT_EQ(s.overruns, 1u);
+  EXPECT_EQ(s.schedule_resets, 1u);
+  EXPECT_EQ(s.hardware_errors, 1u);
+  const std::string summary = stats.summary();
+  EXPECT_NE(summary.find("2.000 s simulated in 4.000 s wall (real-time factor 0.500)"), std::string::npos)
+      << summary;
+  stats.reset();
+  EXPECT_EQ(stats.snapshot().overruns, 0u);
+}
+
+TEST(LoopStatistics, SnapshotsFromAnotherThreadAreConsistentWhileRecording) {
+  LoopStatistics stats;
+  std::atomic<bool> done{false};
+  std::thread writer([&] {
+    for (int k = 0; k < 200000; ++k) stats.recordCycle(1000 + k % 5000, true);
+    done.store(true);
+  });
+  // Checked after the join, so a failure cannot leave the writer running.
+  std::uint64_t previous_cycles = 0;
+  int snapshots = 0;
+  int inconsistent = 0;
+  while (!done.load() || snapshots == 0) {
+    const LoopStatisticsSnapshot s = stats.snapshot();
+    if (s.cycles < previous_cycles) ++inconsistent;
+    previous_cycles = s.cycles;
+    // Recorded costs lie in [1000, 5999] ns.
+    if (s.cycles > 0 && (s.compute_min_s < 999.5e-9 || s.compute_max_s > 5999.5e-9 ||
+                         s.compute_p50_s > s.compute_p99_s)) {
+      ++inconsistent;
+    }
+    ++snapshots;
+  }
+  writer.join();
+  EXPECT_EQ(inconsistent, 0) << "of " << snapshots << " snapshots";
+  EXPECT_EQ(stats.snapshot().cycles, 200000u);
+}
+
+}  // namespace
+}  // namespace servoloop::controller_manager

@@ -1,0 +1,149 @@
+// WallClockLoop: call order, monotonic control time, deadline grid, overruns
+// and stopping. Timing assertions are lower bounds or follow from the
+// deadline grid alone (cycles start at start + n · period).
+#include <atomic>
+#include <chrono>
+#include <future>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "control_loop_test_support.hpp"
+#include "servoloop/controller_manager/wall_clock_loop.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop::controller_manager {
+namespace {
+
+using testing::EventKind;
+using testing::LoopFixture;
+using testing::RecordingHook;
+
+TEST(WallClockLoop, PeriodComesFromTheManagerRate) {
+  LoopFixture f(0.001, 500.0);
+  WallClockLoop loop(f.hw, f.manager);
+  EXPECT_DOUBLE_EQ(loop.controlPeriod().seconds, 0.002);
+}
+
+TEST(WallClockLoop, RejectsAMissingOrDisagreeingPeriod) {
+  LoopFixture no_rate(0.001, 0.0);
+  try {
+    WallClockLoop loop(no_rate.hw, no_rate.manager);
+    FAIL() << "a loop without any period was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("no cycle period"), std::string::npos) << e.what();
+  }
+  LoopFixture f(0.001, 1000.0);
+  WallClockLoop::Options options;
+  options.period = Duration(0.002);
+  EXPECT_THROW(WallClockLoop(f.hw, f.manager, options), ConfigError);
+  options.period = Duration(-1.0);
+  EXPECT_THROW(WallClockLoop(f.hw, f.manager, options), ConfigError);
+}
+
+TEST(WallClockLoop, EachCycleIsReadUpdateWriteWithIncreasingTime) {
+  LoopFixture f(0.001, 1000.0);
+  RecordingHook hook(f.recorder);
+  WallClockLoop::Options options;
+  options.cycle_hook = &hook;
+  WallClockLoop loop(f.hw, f.manager, options);
+  f.requestStart();
+  // Run until a dozen cycles are done, however loaded the machine is.
+  std::atomic<bool> stop{false};
+  auto running = std::async(std::launch::async, [&] { loop.run(stop); });
+  while (loop.statistics().snapshot().cycles < 12) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  stop.store(true);
+  running.get();
+
+  const LoopStatisticsSnapshot stats = loop.statistics().snapshot();
+  EXPECT_EQ(stats.control_updates, stats.cycles);
+  EXPECT_GT(stats.real_time_factor, 0.0);
+  EXPECT_EQ(f.hw.steps, 0u);  // real hardware is not stepped
+
+  // read, hook (the first cycle only starts the controller), write; then
+  // read, update, hook, write every cycle.
+  const auto& events = f.recorder->events();
+  ASSERT_GE(events.size(), 7u);
+  EXPECT_EQ(events[0].kind, EventKind::read);
+  EXPECT_EQ(events[1].kind, EventKind::hook);
+  EXPECT_EQ(events[2].kind, EventKind::write);
+  EXPECT_NEAR(events[1].period_s, 0.001, 1e-12);  // the first cycle gets the nominal period
+  double previous_time = events[0].time_s;
+  for (std::size_t i = 3; i + 3 < events.size(); i += 4) {
+    EXPECT_EQ(events[i].kind, EventKind::read);
+    EXPECT_EQ(events[i + 1].kind, EventKind::update);
+    EXPECT_EQ(events[i + 2].kind, EventKind::hook);
+    EXPECT_EQ(events[i + 3].kind, EventKind::write);
+    const double t = events[i].time_s;
+    EXPECT_GT(t, previous_time);
+    // The period handed to update is the time since the previous cycle started.
+    EXPECT_NEAR(events[i + 2].period_s, t - previous_time, 1e-9);
+    EXPECT_EQ(events[i + 1].time_s, t);
+    EXPECT_EQ(events[i + 3].time_s, t);
+    previous_time = t;
+  }
+}
+
+TEST(WallClockLoop, CyclesStartOnTheDeadlineGrid) {
+  LoopFixture f(0.001, 1000.0);
+  f.recorder->enabled = false;
+  WallClockLoop loop(f.hw, f.manager);
+  const auto start = std::chrono::steady_clock::now();
+  loop.runFor(Duration(0.05));
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const LoopStatisticsSnapshot stats = loop.statistics().snapshot();
+  // Cycles start on the grid start + n · 1 ms within the 50 ms run: at least
+  // the first, at most 50; the last one started (cycles − 1) ms in or later.
+  EXPECT_GE(stats.cycles, 1u);
+  EXPECT_LE(stats.cycles, 50u);
+  EXPECT_GE(wall_s, 0.001 * static_cast<double>(stats.cycles - 1));
+}
+
+TEST(WallClockLoop, SlowHardwareCountsOverrunsAndSkipsMissedDeadlines) {
+  // read() takes 3 ms in a 1 ms loop: every cycle overruns, and the skipped
+  // deadlines keep the cycle count at one per 3+ ms instead of a burst.
+  LoopFixture f(0.001, 1000.0);
+  f.recorder->enabled = false;
+  f.hw.read_sleep = std::chrono::microseconds(3000);
+  WallClockLoop loop(f.hw, f.manager);
+  loop.runFor(Duration(0.03));
+  const LoopStatisticsSnapshot stats = loop.statistics().snapshot();
+  EXPECT_GE(stats.cycles, 1u);
+  EXPECT_EQ(stats.overruns, stats.cycles);
+  EXPECT_LE(stats.cycles, 10u);  // cycles start >= 3 ms apart within 30 ms
+  EXPECT_GE(stats.compute_min_s, 0.0029999);  // read() alone sleeps 3 ms
+}
+
+TEST(WallClockLoop, RequestStopFromAnotherThreadEndsRun) {
+  LoopFixture f(0.001, 1000.0);
+  f.recorder->enabled = false;
+  WallClockLoop loop(f.hw, f.manager);
+  std::atomic<bool> never{false};
+  auto running = std::async(std::launch::async, [&] { loop.run(never); });
+  while (loop.statistics().snapshot().cycles < 5) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  loop.requestStop();
+  ASSERT_EQ(running.wait_for(std::chrono::seconds(10)), std::future_status::ready) << "run() did not stop";
+  running.get();
+  EXPECT_GE(loop.statistics().snapshot().cycles, 5u);
+}
+
+TEST(WallClockLoop, HardwareErrorIsCountedAndReportedOnce) {
+  LoopFixture f(0.001, 1000.0);
+  f.recorder->enabled = false;
+  f.hw.write_script.from = 2;  // every write from the third on fails
+  WallClockLoop loop(f.hw, f.manager);
+  std::atomic<bool> stop{false};
+  auto running = std::async(std::launch::async, [&] { loop.run(stop); });
+  while (loop.statistics().snapshot().hardware_errors < 3) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  stop.store(true);
+  running.get();
+  const auto report = loop.takeHardwareErrorReport();
+  ASSERT_TRUE(report.has_value());
+  EXPECT_EQ(report->call, HardwareCall::write);
+  EXPECT_EQ(report->cycle, 2u);
+  EXPECT_FALSE(loop.takeHardwareErrorReport().has_value());
+  EXPECT_FALSE(loop.hardwareAskedToStop());
+}
+
+}  // namespace
+}  // namespace servoloop::controller_manager
