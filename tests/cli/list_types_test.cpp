@@ -1,0 +1,150 @@
+// `servoloop control list-types` run as a child process, against the fixture
+// plugins of tests/controller_manager/fixtures.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+struct CliResult {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs `servoloop <args>` with SERVOLOOP_PLUGIN_PATH set to plugin_path
+// (unset when empty), capturing both streams.
+CliResult runServoloop(const std::string& args, const std::string& plugin_path = "") {
+  const fs::path out = fs::temp_directory_path() / "servoloop_list_types_test.out";
+  const fs::path err = fs::temp_directory_path() / "servoloop_list_types_test.err";
+  std::string command = plugin_path.empty() ? "env -u SERVOLOOP_PLUGIN_PATH "
+                                            : "env SERVOLOOP_PLUGIN_PATH='" + plugin_path + "' ";
+  command += std::string("'") + SERVOLOOP_CLI_EXE + "' " + args + " >'" + out.string() + "' 2>'" +
+             err.string() + "'";
+  const int wait_status = std::system(command.c_str());
+  CliResult result;
+  result.status = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
+  result.out = readFile(out);
+  result.err = readFile(err);
+  return result;
+}
+
+fs::path caseDir(const std::string& name) { return fs::path(SERVOLOOP_TEST_PLUGIN_DIR) / name; }
+std::string caseLibrary(const std::string& name) {
+  return fs::canonical(caseDir(name) / ("libfixture_" + name + ".so")).string();
+}
+int lineCount(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(ListTypes, PrintsATableOfTypeKindAndLibrary) {
+  const CliResult result = runServoloop("control list-types", caseDir("good").string());
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("TYPE"));
+  const std::string library = caseLibrary("good");
+  // Columns are padded to the longest type ("fixture/ThrowingController") and kind.
+  EXPECT_THAT(result.out, HasSubstr("fixture/Alpha               controller  " + library + "\n"));
+  EXPECT_THAT(result.out, HasSubstr("fixture/Robot               robot_hw    " + library + "\n"));
+  EXPECT_THAT(result.err, Not(HasSubstr(library)));
+}
+
+TEST(ListTypes, JsonIsAnArrayOfTypeKindLibrary) {
+  const CliResult result = runServoloop("control list-types --json", caseDir("good").string());
+  ASSERT_EQ(result.status, 0) << result.err;
+  const auto types = nlohmann::json::parse(result.out);
+  ASSERT_TRUE(types.is_array());
+  // Other plugins of this build may be listed too; look at the fixture's.
+  std::map<std::string, std::string> fixture_kinds;
+  for (const auto& type : types) {
+    ASSERT_TRUE(type.contains("type") && type.contains("kind") && type.contains("library"));
+    if (type["library"] == caseLibrary("good")) fixture_kinds[type["type"]] = type["kind"];
+  }
+  EXPECT_EQ(fixture_kinds, (std::map<std::string, std::string>{
+                               {"fixture/Alpha", "controller"},
+                               {"fixture/Beta", "controller"},
+                               {"fixture/Robot", "robot_hw"},
+                               {"fixture/ThrowingController", "controller"}}));
+}
+
+TEST(ListTypes, KindFilterAndPluginDirFlag) {
+  const CliResult result = runServoloop(
+      "control list-types --json --kind robot_hw --plugin-dir '" + caseDir("good").string() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const auto types = nlohmann::json::parse(result.out);
+  bool found_robot = false;
+  for (const auto& type : types) {
+    EXPECT_EQ(type["kind"], "robot_hw");
+    found_robot = found_robot || type["type"] == "fixture/Robot";
+  }
+  EXPECT_TRUE(found_robot);
+}
+
+TEST(ListTypes, BrokenLibrariesAreWarningsOnStderrAndTheListingStillSucceeds) {
+  const std::string path = caseDir("not_a_plugin").string() + ":" +
+                           caseDir("wrong_api_version").string() + ":" +
+                           caseDir("wrong_abi_size").string() + ":" +
+                           caseDir("undefined_symbol").string() + ":" + caseDir("good").string();
+  const CliResult result = runServoloop("control list-types", path);
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("fixture/Beta"));
+  EXPECT_THAT(result.out, Not(HasSubstr("fixture/NeedsMissingSymbol")));
+  EXPECT_THAT(result.err, HasSubstr(caseLibrary("not_a_plugin") + ": not a servoloop plugin"));
+  EXPECT_THAT(result.err, HasSubstr(caseLibrary("wrong_api_version") + ": wrong plugin API version"));
+  EXPECT_THAT(result.err, HasSubstr(caseLibrary("wrong_abi_size") + ": ABI mismatch"));
+  EXPECT_THAT(result.err, HasSubstr(caseLibrary("undefined_symbol") +
+                                    ": cannot be loaded (dlopen): undefined symbol"));
+  // Warnings never reach stdout, so --json output stays parseable.
+  const CliResult json = runServoloop("control list-types --json", path);
+  EXPECT_TRUE(nlohmann::json::accept(json.out)) << json.out;
+}
+
+TEST(ListTypes, HelpIsAvailableAtEveryLevel) {
+  for (const std::string args : {"--help", "control --help", "control list-types --help"}) {
+    const CliResult result = runServoloop(args);
+    EXPECT_EQ(result.status, 0) << args << ": " << result.err;
+    EXPECT_THAT(result.out, HasSubstr("Usage")) << args;
+  }
+  EXPECT_THAT(runServoloop("control list-types --help").out, HasSubstr("--json"));
+  EXPECT_THAT(runServoloop("--help").out, HasSubstr("control"));
+}
+
+TEST(ListTypes, UsageErrorsAreOneLineOnStderrWithNonZeroStatus) {
+  const CliResult bad_dir = runServoloop("control list-types --plugin-dir /no/such/servoloop/dir");
+  EXPECT_NE(bad_dir.status, 0);
+  EXPECT_EQ(lineCount(bad_dir.err), 1) << bad_dir.err;
+  EXPECT_THAT(bad_dir.err, HasSubstr("/no/such/servoloop/dir"));
+  EXPECT_EQ(bad_dir.out, "");
+
+  const CliResult no_subcommand = runServoloop("control");
+  EXPECT_NE(no_subcommand.status, 0);
+  EXPECT_EQ(lineCount(no_subcommand.err), 1) << no_subcommand.err;
+  EXPECT_THAT(no_subcommand.err, HasSubstr("servoloop control --help"));
+
+  const CliResult unknown_flag = runServoloop("control list-types --jsn");
+  EXPECT_NE(unknown_flag.status, 0);
+  EXPECT_EQ(lineCount(unknown_flag.err), 1) << unknown_flag.err;
+  EXPECT_THAT(unknown_flag.err, HasSubstr("--jsn"));
+}
+
+}  // namespace

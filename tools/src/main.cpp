@@ -1,0 +1,50 @@
+// `servoloop`: one executable, subcommands registered by the files next to
+// this one. Exit status 0 on success; on failure one line on stderr and non-zero.
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "command_registry.hpp"
+
+namespace {
+
+// "servoloop control list-types": the subcommands the parser got to, for
+// pointing the user at the right --help.
+std::string commandPath(const CLI::App& root) {
+  std::string path = root.get_name();
+  const CLI::App* current = &root;
+  while (true) {
+    const auto parsed = current->get_subcommands();
+    if (parsed.empty()) break;
+    current = parsed.front();
+    path += " " + current->get_name();
+  }
+  return path;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"servoloop: ros_control-style robot control from the command line", "servoloop"};
+  app.set_version_flag("--version", SERVOLOOP_VERSION);
+  app.require_subcommand(1);
+  servoloop::cli::addAllCommands(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    // --help and --version are "errors" with status 0 that print their text.
+    if (error.get_exit_code() == 0) return app.exit(error);
+    std::cerr << commandPath(app) << ": error: " << error.what() << " (see '" << commandPath(app)
+              << " --help')\n";
+    return error.get_exit_code();
+  } catch (const servoloop::cli::CliExit& exit) {
+    return exit.status;
+  } catch (const std::exception& error) {
+    std::cerr << commandPath(app) << ": error: " << error.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
