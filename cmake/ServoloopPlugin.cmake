@@ -1,13 +1,19 @@
-# servoloop_add_plugin(<target> SOURCES ... [LINK ...])
+# servoloop_add_plugin(<target> SOURCES ... [LINK ...] [NO_INSTALL])
 # Builds a servoloop plugin (controller or backend): a MODULE library that the
 # plugin loader opens with dlopen. Used in tree and by out-of-tree projects.
 function(servoloop_add_plugin target)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LINK" ${ARGN})
+  cmake_parse_arguments(ARG "NO_INSTALL" "" "SOURCES;LINK" ${ARGN})
   add_library(${target} MODULE ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE ${ARG_LINK})
   set_target_properties(${target} PROPERTIES PREFIX "lib")
   if(DEFINED SERVOLOOP_PLUGIN_OUTPUT_DIR)
+    # In the servoloop tree: build next to the other plugins and install with them.
+    # Out-of-tree projects install to ${SERVOLOOP_PLUGIN_DIR} (or any folder on
+    # SERVOLOOP_PLUGIN_PATH) themselves.
     set_target_properties(${target} PROPERTIES
       LIBRARY_OUTPUT_DIRECTORY ${SERVOLOOP_PLUGIN_OUTPUT_DIR})
+    if(NOT ARG_NO_INSTALL)
+      install(TARGETS ${target} LIBRARY DESTINATION ${SERVOLOOP_PLUGIN_SUBDIR})
+    endif()
   endif()
 endfunction()
