@@ -1,0 +1,206 @@
+#pragma once
+// The controller manager: loads controllers, switches them on the real-time
+// thread, runs each running controller at its own rate, and contains their
+// faults. ros_control's controller_manager::ControllerManager, without ROS.
+//
+// Threads. update() is the real-time side: it never allocates, locks a mutex,
+// logs or throws. Every other member function is non-real-time and may be
+// called from any thread (they serialise on an internal mutex the real-time
+// side never touches). The running-controller list is double-buffered:
+// load/unload publish a new list and wait (briefly) until the real-time thread
+// no longer reads the old one; a switch is handed over as a pending request
+// that the real-time thread carries out at the start of its next update().
+//
+// Errors. Every service returns a ServiceResult: ok, or false with a message
+// naming the controller, the parameter and the fix. The same message is logged
+// with servoloop::logger().error. Services do not throw for bad requests.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "servoloop/controller_manager/controller_base.hpp"
+#include "servoloop/controller_manager/controller_context.hpp"
+#include "servoloop/controller_manager/controller_factory.hpp"
+#include "servoloop/controller_manager/controller_spec.hpp"
+#include "servoloop/controller_manager/switch_request.hpp"
+#include "servoloop/hardware_interface/robot_hw.hpp"
+#include "servoloop/hardware_interface/time.hpp"
+
+namespace servoloop::controller_manager {
+
+namespace detail {
+struct ControllerEntry;
+struct FaultRecord;
+}  // namespace detail
+
+// Outcome of a manager service.
+struct ServiceResult {
+  bool ok = false;
+  std::string message;  // why it failed; empty on success
+  explicit operator bool() const { return ok; }
+  static ServiceResult success() { return {true, {}}; }
+  static ServiceResult failure(std::string why) { return {false, std::move(why)}; }
+};
+
+// How often a controller can run inside a manager of a given rate.
+struct UpdateRateChoice {
+  std::uint32_t divisor = 1;  // the controller updates every divisor-th manager cycle
+  double rate_hz = 0.0;       // manager rate / divisor (0 if the manager has no fixed rate)
+  bool exact = true;          // false when the requested rate was not achievable
+};
+
+// The manager-rate divisor nearest to a requested controller rate. A request
+// <= 0 means "every cycle". A request above the manager rate, or one that does
+// not divide it, gets the nearest achievable rate (exact = false).
+UpdateRateChoice chooseUpdateRate(double manager_rate_hz, double requested_rate_hz);
+
+class ControllerManager {
+ public:
+  // The controller's parameter subtree (<ns>/<name>) for a controller name; a
+  // null or undefined node when there is none.
+  using ParameterLookup = std::function<YAML::Node(const std::string& controller_name)>;
+
+  // A lookup into a YAML map of controller names to their parameters (the
+  // robot namespace's node of a ros_control controller YAML).
+  static ParameterLookup lookupIn(YAML::Node namespace_parameters);
+
+  // robot_hw: the hardware controllers are initialised on (must outlive the
+  //   manager). factory: where controller types come from (kept alive as long
+  //   as any controller it made). parameters: the controllers' parameters.
+  // context_template: robot namespace, topic bus, parameter store and robot
+  //   model handed to every controller (name/params are filled per controller).
+  // update_rate_hz: the rate update() is called at; 0 when unknown (every
+  //   controller then updates every cycle).
+  // Throws servoloop::Error if robot_hw or factory is null.
+  ControllerManager(hardware_interface::RobotHW* robot_hw, std::shared_ptr<ControllerFactory> factory,
+                    ParameterLookup parameters, ControllerContext context_template = {},
+                    double update_rate_hz = 0.0);
+  // Destroys every controller. The real-time loop must have stopped calling
+  // update() before.
+  ~ControllerManager();
+  ControllerManager(const ControllerManager&) = delete;
+  ControllerManager& operator=(const ControllerManager&) = delete;
+
+  // --- Services (non-real-time) ---
+
+  // Creates the controller named `name` with the type from its `type`
+  // parameter and initialises it. Fails if the name is loaded already, `type`
+  // is missing or unknown, `update_rate` is not a number, or init returned
+  // false or threw (the message carries what it threw).
+  ServiceResult loadController(const std::string& name);
+
+  // Destroys a loaded controller (on the calling thread). Fails if it is
+  // unknown, running, or part of a switch still waiting for the real-time thread.
+  ServiceResult unloadController(const std::string& name);
+
+  // Validates the request (ros_control's rules, see switch_request.hpp), checks
+  // resource conflicts and the hardware's prepareSwitch, then waits until the
+  // real-time thread has carried it out, up to request.timeout_s (0: forever).
+  // Fails if validation fails, it timed out (nothing was switched), or a
+  // started controller failed in starting().
+  ServiceResult switchController(const SwitchRequest& request);
+  ServiceResult switchController(const std::vector<std::string>& start_controllers,
+                                 const std::vector<std::string>& stop_controllers,
+                                 SwitchStrictness strictness, bool start_asap = false,
+                                 double timeout_s = 0.0);
+
+  // Validates like switchController and hands the switch to the real-time
+  // thread without waiting (timeout_s is ignored). For callers that run
+  // update() themselves: request, then call update(), then check
+  // switchPending(). Fails if another switch is still pending.
+  ServiceResult requestSwitch(const SwitchRequest& request);
+  // True while a requested switch waits for (or is being carried out by) the
+  // real-time thread.
+  bool switchPending() const;
+
+  // Every loaded controller, in load order.
+  std::vector<ControllerSpec> listControllers();
+  // Every type the factory can create.
+  std::vector<std::string> listControllerTypes();
+
+  // Asks the factory to reload its libraries. Refuses while controllers are
+  // loaded, unless force_kill: then running controllers are stopped (one
+  // STRICT switch, waiting up to stop_timeout_s) and all are unloaded first.
+  ServiceResult reloadControllerLibraries(bool force_kill, double stop_timeout_s = 5.0);
+
+  // Logs (servoloop::logger().error) and returns the faults the real-time
+  // thread contained since the last call. Each fault is reported once. The
+  // services call it too, so a control loop's service thread only needs to
+  // call it now and then to get faults logged promptly.
+  std::vector<ControllerFault> processFaults();
+
+  // The loaded controller of that name, or nullptr. Valid until it is unloaded.
+  ControllerBase* getController(const std::string& name);
+
+  double updateRate() const noexcept { return update_rate_hz_; }
+  hardware_interface::RobotHW* robotHW() const noexcept { return robot_hw_; }
+
+  // --- Control cycle (real-time) ---
+
+  // Carries out a pending switch (stopping(), RobotHW::doSwitch, starting()),
+  // then updates every running controller that is due this cycle with the
+  // control time since its previous update. Faults are contained: the
+  // controller is stopped with safe outputs and marked failed; the others go
+  // on. `period` is the manager's cycle period (each controller gets its own).
+  void update(const Time& time, const Duration& period) noexcept;
+
+ private:
+  enum class SwitchPhase : std::uint8_t { idle, pending, executing, done };
+
+  // What the real-time thread carries out for one switch; built beforehand so
+  // carrying it out allocates nothing.
+  struct SwitchPlan {
+    std::vector<detail::ControllerEntry*> stop;
+    std::vector<detail::ControllerEntry*> start;
+    std::vector<hardware_interface::ControllerInfo> start_infos;
+    std::vector<hardware_interface::ControllerInfo> stop_infos;
+    // Set by the real-time thread: start[i] failed in starting().
+    std::vector<std::uint8_t> start_failed;
+  };
+
+  // Non-real-time helpers; the caller holds services_mutex_.
+  detail::ControllerEntry* findEntry(const std::string& name) const;
+  ServiceResult prepareSwitchLocked(const SwitchRequest& request, bool* nothing_to_do);
+  ServiceResult waitForSwitchLocked(double timeout_s);
+  void finishDoneSwitchLocked();
+  ServiceResult unloadLocked(const std::string& name);
+  void publishRealtimeList(std::vector<detail::ControllerEntry*> list);
+  void waitUntilRealtimeLeaves(int list_index) const;
+  std::vector<ControllerFault> processFaultsLocked();
+  ServiceResult fail(std::string message) const;
+
+  // Real-time helpers.
+  int enterRealtimeList() noexcept;
+  void executeSwitch(const Time& time) noexcept;
+  void updateController(detail::ControllerEntry& entry, const Time& time) noexcept;
+  void contain(detail::ControllerEntry& entry, FaultKind kind, const char* what) noexcept;
+
+  hardware_interface::RobotHW* robot_hw_;
+  std::shared_ptr<ControllerFactory> factory_;  // declared before entries_: outlives them
+  ParameterLookup parameters_;
+  ControllerContext context_template_;
+  double update_rate_hz_;
+
+  mutable std::mutex services_mutex_;
+  // Every loaded controller, in load order (non-real-time side).
+  std::vector<std::unique_ptr<detail::ControllerEntry>> entries_;
+
+  // Double-buffered list the real-time thread iterates.
+  std::vector<detail::ControllerEntry*> realtime_lists_[2];
+  std::atomic<int> realtime_current_list_{0};
+  std::atomic<int> realtime_reading_list_{-1};  // -1 while outside update()
+
+  std::atomic<SwitchPhase> switch_phase_{SwitchPhase::idle};
+  SwitchPlan switch_plan_;
+
+  std::unique_ptr<detail::FaultRecord> hardware_fault_;
+  std::uint64_t cycle_ = 0;  // real-time thread only
+};
+
+}  // namespace servoloop::controller_manager

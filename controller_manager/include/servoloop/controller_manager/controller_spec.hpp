@@ -1,0 +1,48 @@
+#pragma once
+// What the manager reports about its controllers: listControllers entries and
+// the faults the real-time thread contained.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "servoloop/controller_manager/controller_base.hpp"
+#include "servoloop/hardware_interface/controller_info.hpp"
+
+namespace servoloop::controller_manager {
+
+// One loaded controller, as listControllers reports it.
+struct ControllerSpec {
+  std::string name;  // e.g. "joint1_position_controller"
+  std::string type;  // e.g. "effort_controllers/JointPositionController"
+  ControllerState state = ControllerState::initialized;
+  // What it claims, one entry per interface it uses.
+  std::vector<hardware_interface::InterfaceResources> claimed_resources;
+  // The rate it really runs at (a divisor of the manager's rate), in Hz; 0 when
+  // the manager runs at no fixed rate (the controller updates every cycle).
+  double update_rate_hz = 0.0;
+  // It updates every update_divisor-th manager cycle.
+  std::uint32_t update_divisor = 1;
+  // Why it was last stopped for a fault; empty if it never was.
+  std::string last_fault;
+};
+
+enum class FaultKind : std::uint8_t {
+  starting_threw,         // starting() threw
+  update_threw,           // update() threw
+  update_returned_error,  // update() returned ReturnType::error
+  non_finite_command,     // a claimed command was NaN or infinite after starting()/update()
+  stopping_threw,         // stopping() threw
+  hardware_switch_threw,  // RobotHW::doSwitch threw (controller is empty)
+};
+
+const char* toString(FaultKind kind) noexcept;
+
+// A fault the real-time thread contained: the controller was stopped, its
+// claimed commands put to safe values, and it was marked failed.
+struct ControllerFault {
+  std::string controller;  // empty for hardware_switch_threw
+  FaultKind kind = FaultKind::update_threw;
+  std::string message;  // the whole sentence, as logged
+};
+
+}  // namespace servoloop::controller_manager

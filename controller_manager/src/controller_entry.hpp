@@ -1,0 +1,49 @@
+#pragma once
+// The manager's record of one loaded controller (internal to the manager).
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "servoloop/controller_manager/controller_factory.hpp"
+#include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/controller_spec.hpp"
+#include "servoloop/hardware_interface/controller_info.hpp"
+#include "servoloop/hardware_interface/time.hpp"
+
+namespace servoloop::controller_manager::detail {
+
+// One contained fault, written by the real-time thread and published through
+// `pending`; the non-real-time side reads it once `pending` is seen set and
+// clears `pending` after. The real-time thread writes a record only while
+// `pending` is clear, so the two sides never touch the fields at once.
+struct FaultRecord {
+  FaultKind kind = FaultKind::update_threw;
+  std::array<char, 256> what{};  // exception message, truncated; "" if none
+  std::size_t command_index = ControllerBase::kAllCommandsFinite;
+  double command_value = 0.0;
+  std::atomic<bool> pending{false};
+
+  // Real-time. Allocation-free; a second fault before the first was drained is
+  // dropped (the first one is what stopped the controller).
+  void publish(FaultKind fault_kind, const char* message, std::size_t index = ControllerBase::kAllCommandsFinite,
+               double value = 0.0) noexcept;
+};
+
+struct ControllerEntry {
+  std::string name;
+  std::string type;
+  ControllerPtr controller;
+  hardware_interface::ControllerInfo info;  // name, type and claims, for the hardware
+  UpdateRateChoice rate;
+
+  // Real-time thread only.
+  std::uint64_t start_cycle = 0;  // manager cycle in which starting() ran
+  Time last_update_time;          // control time of starting() or the last update()
+
+  FaultRecord fault;
+  std::string last_fault;  // non-real-time: the last drained fault's message
+};
+
+}  // namespace servoloop::controller_manager::detail

@@ -1,0 +1,179 @@
+// ControllerManager: the real-time cycle. Everything here runs on the control
+// loop's thread: no allocation, no locks, no logging, nothing thrown out of it.
+// Faults are written to preallocated records that processFaults() reports.
+#include <cmath>
+#include <cstring>
+#include <exception>
+
+#include "controller_entry.hpp"
+#include "servoloop/controller_manager/controller_manager.hpp"
+
+namespace servoloop::controller_manager {
+
+UpdateRateChoice chooseUpdateRate(double manager_rate_hz, double requested_rate_hz) {
+  if (!(manager_rate_hz > 0.0)) {
+    // No fixed manager rate: every controller updates every cycle.
+    return UpdateRateChoice{1, 0.0, !(requested_rate_hz > 0.0)};
+  }
+  if (!(requested_rate_hz > 0.0)) return UpdateRateChoice{1, manager_rate_hz, true};
+  const double ratio = manager_rate_hz / requested_rate_hz;
+  if (ratio <= 1.0) {
+    return UpdateRateChoice{1, manager_rate_hz, std::abs(ratio - 1.0) < 1e-9};
+  }
+  const double nearest = std::round(ratio);
+  if (std::abs(ratio - nearest) < 1e-9 * ratio) {
+    const auto divisor = static_cast<std::uint32_t>(nearest);
+    return UpdateRateChoice{divisor, manager_rate_hz / divisor, true};
+  }
+  // The achievable rates are manager/k; the nearest one to the request is at
+  // k = floor(ratio) or k = ceil(ratio).
+  const double below = std::floor(ratio);
+  const double above = std::ceil(ratio);
+  const double error_below = std::abs(manager_rate_hz / below - requested_rate_hz);
+  const double error_above = std::abs(manager_rate_hz / above - requested_rate_hz);
+  const auto divisor = static_cast<std::uint32_t>(error_below <= error_above ? below : above);
+  return UpdateRateChoice{divisor, manager_rate_hz / divisor, false};
+}
+
+namespace detail {
+void FaultRecord::publish(FaultKind fault_kind, const char* message, std::size_t index,
+                          double value) noexcept {
+  if (pending.load(std::memory_order_acquire)) return;
+  kind = fault_kind;
+  what.fill('\0');
+  if (message != nullptr) std::strncpy(what.data(), message, what.size() - 1);
+  command_index = index;
+  command_value = value;
+  pending.store(true, std::memory_order_release);
+}
+}  // namespace detail
+
+void ControllerManager::contain(detail::ControllerEntry& entry, FaultKind kind,
+                                const char* what) noexcept {
+  entry.controller->abortRequest();
+  entry.fault.publish(kind, what);
+}
+
+int ControllerManager::enterRealtimeList() noexcept {
+  // Announce which list this cycle reads, then re-check it is still the
+  // current one: a publisher that swapped in between sees the announcement
+  // (all seq_cst) and waits, or we see its swap and announce the new list.
+  int index = realtime_current_list_.load();
+  for (;;) {
+    realtime_reading_list_.store(index);
+    const int again = realtime_current_list_.load();
+    if (again == index) return index;
+    index = again;
+  }
+}
+
+void ControllerManager::update(const Time& time, const Duration& /*period*/) noexcept {
+  ++cycle_;
+  SwitchPhase expected = SwitchPhase::pending;
+  if (switch_phase_.load(std::memory_order_acquire) == SwitchPhase::pending &&
+      switch_phase_.compare_exchange_strong(expected, SwitchPhase::executing,
+                                            std::memory_order_acq_rel)) {
+    executeSwitch(time);
+    switch_phase_.store(SwitchPhase::done, std::memory_order_release);
+  }
+
+  const int list_index = enterRealtimeList();
+  for (detail::ControllerEntry* entry : realtime_lists_[list_index]) {
+    updateController(*entry, time);
+  }
+  realtime_reading_list_.store(-1);
+}
+
+void ControllerManager::executeSwitch(const Time& time) noexcept {
+  // Stop list first.
+  for (detail::ControllerEntry* entry : switch_plan_.stop) {
+    try {
+      entry->controller->stopRequest(time);
+    } catch (const std::exception& e) {
+      contain(*entry, FaultKind::stopping_threw, e.what());
+    } catch (...) {
+      contain(*entry, FaultKind::stopping_threw, "an exception not derived from std::exception");
+    }
+  }
+  // Then the hardware's mode switch.
+  try {
+    robot_hw_->doSwitch(switch_plan_.start_infos, switch_plan_.stop_infos);
+  } catch (const std::exception& e) {
+    hardware_fault_->publish(FaultKind::hardware_switch_threw, e.what());
+  } catch (...) {
+    hardware_fault_->publish(FaultKind::hardware_switch_threw,
+                             "an exception not derived from std::exception");
+  }
+  // Then the start list. Their first update comes in the next cycle.
+  for (std::size_t i = 0; i < switch_plan_.start.size(); ++i) {
+    detail::ControllerEntry& entry = *switch_plan_.start[i];
+    entry.start_cycle = cycle_;
+    entry.last_update_time = time;
+    bool failed = false;
+    try {
+      entry.controller->startRequest(time);
+    } catch (const std::exception& e) {
+      contain(entry, FaultKind::starting_threw, e.what());
+      failed = true;
+    } catch (...) {
+      contain(entry, FaultKind::starting_threw, "an exception not derived from std::exception");
+      failed = true;
+    }
+    if (!failed) {
+      const std::size_t bad = entry.controller->firstNonFiniteCommand();
+      if (bad != ControllerBase::kAllCommandsFinite) {
+        const double value = *entry.controller->claimedCommands()[bad].command;
+        entry.controller->abortRequest();
+        entry.fault.publish(FaultKind::non_finite_command, "", bad, value);
+        failed = true;
+      }
+    }
+    switch_plan_.start_failed[i] = failed ? 1 : 0;
+  }
+}
+
+void ControllerManager::updateController(detail::ControllerEntry& entry, const Time& time) noexcept {
+  ControllerBase& controller = *entry.controller;
+  if (!controller.isRunning()) return;
+  const std::uint64_t cycles_since_start = cycle_ - entry.start_cycle;
+  if (cycles_since_start == 0 || cycles_since_start % entry.rate.divisor != 0) return;
+
+  const Duration period = time - entry.last_update_time;
+  entry.last_update_time = time;
+  ReturnType result = ReturnType::ok;
+  try {
+    result = controller.updateRequest(time, period);
+  } catch (const std::exception& e) {
+    contain(entry, FaultKind::update_threw, e.what());
+    return;
+  } catch (...) {
+    contain(entry, FaultKind::update_threw, "an exception not derived from std::exception");
+    return;
+  }
+
+  switch (result) {
+    case ReturnType::ok: {
+      const std::size_t bad = controller.firstNonFiniteCommand();
+      if (bad != ControllerBase::kAllCommandsFinite) {
+        const double value = *controller.claimedCommands()[bad].command;
+        controller.abortRequest();
+        entry.fault.publish(FaultKind::non_finite_command, "", bad, value);
+      }
+      return;
+    }
+    case ReturnType::error:
+      contain(entry, FaultKind::update_returned_error, "");
+      return;
+    case ReturnType::deactivate:
+      try {
+        controller.stopRequest(time);
+      } catch (const std::exception& e) {
+        contain(entry, FaultKind::stopping_threw, e.what());
+      } catch (...) {
+        contain(entry, FaultKind::stopping_threw, "an exception not derived from std::exception");
+      }
+      return;
+  }
+}
+
+}  // namespace servoloop::controller_manager
