@@ -1,0 +1,84 @@
+#pragma once
+// The physics a simulation backend brings: a joint-space engine that SimRobotHW
+// drives. Everything else a backend needs (URDF, transmissions, joint limits,
+// command modes, emergency stop, world settings) lives in SimRobotHW, so a new
+// backend is one PhysicsEngine plus a three-line RobotHW class.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <urdf_model/model.h>
+
+#include "servoloop/sim_common/sim_settings.hpp"
+
+namespace servoloop::sim_common {
+
+// What a joint's command currently means, set by the controller switch.
+//   none     — no running controller commands the joint: zero effort is applied
+//              (gazebo_ros_control's behaviour for a stopped controller);
+//   effort   — the command is an effort (N·m or N);
+//   velocity — a velocity target (rad/s or m/s) for the engine's motor;
+//   position — a position target (rad or m) for the engine's motor.
+enum class JointCommandMode : std::uint8_t { none, effort, velocity, position };
+
+// "none", "effort", "velocity" or "position".
+const char* toString(JointCommandMode mode) noexcept;
+
+// One joint the engine simulates for SimRobotHW, in joint space.
+struct EngineJointConfig {
+  std::string name;
+  // Bound on the effort the engine's velocity/position motor may use (N·m or
+  // N): the smaller of the joint's effort limit and what its actuators can
+  // deliver through the transmission; +infinity when neither is given.
+  double motor_effort_limit = 0.0;
+  // Rotor inertia of the joint's actuators reflected to the joint (n²·J for a
+  // reduction n), added to the joint's own inertia (kg·m² or kg). 0: none.
+  double reflected_rotor_inertia = 0.0;
+  // Position at init and reset (rad or m), at rest.
+  double initial_position = 0.0;
+};
+
+// Threading: init() and reset() are non-real-time (they may allocate and
+// throw). Every other method runs on the real-time thread: no allocation, no
+// locks, no logging, no exceptions. Joint indices are those of the `joints`
+// list given to init() (SimRobotHW's joint order); they are not range-checked.
+class PhysicsEngine {
+ public:
+  virtual ~PhysicsEngine() = default;
+
+  // Non-real-time. A short name for messages, e.g. "bullet".
+  virtual const char* name() const noexcept = 0;
+
+  // Non-real-time. Builds the world of `model` and places every joint of
+  // `joints` at its initial position, at rest. `source_name` names the robot
+  // description in errors. Throws servoloop::ConfigError when the model
+  // cannot be simulated or a joint of `joints` is not a movable joint of it.
+  virtual void init(const urdf::ModelInterface& model, const SimSettings& settings,
+                    const std::vector<EngineJointConfig>& joints,
+                    const std::string& source_name) = 0;
+
+  // Real-time. Joint state after the last step (rad or m, rad/s or m/s).
+  virtual double jointPosition(std::size_t joint) const noexcept = 0;
+  virtual double jointVelocity(std::size_t joint) const noexcept = 0;
+  // Real-time. The effort the joint's actuators applied during the last step
+  // (N·m or N); engine-specific for motor modes (see each backend).
+  virtual double jointEffort(std::size_t joint) const noexcept = 0;
+
+  // Real-time. Commands for the next step(). An effort acts for that step
+  // only; the motor targets stay in force until another command replaces them.
+  virtual void setJointEffort(std::size_t joint, double effort) noexcept = 0;
+  virtual void setJointVelocityTarget(std::size_t joint, double velocity) noexcept = 0;
+  virtual void setJointPositionTarget(std::size_t joint, double position) noexcept = 0;
+
+  // Real-time. Advances the world by one settings.time_step_s.
+  virtual void step() noexcept = 0;
+
+  // Non-real-time. Back to the state right after init(): initial positions,
+  // at rest, commands cleared.
+  virtual void reset() = 0;
+  // Non-real-time. Teleports a joint (no dynamics).
+  virtual void setJointState(std::size_t joint, double position, double velocity) = 0;
+};
+
+}  // namespace servoloop::sim_common

@@ -1,0 +1,149 @@
+#pragma once
+// SimRobotHW: everything simulation backends share. A backend is a
+// PhysicsEngine handed to this class; this class turns it into a RobotHW that
+// controllers cannot tell from real hardware ("hardware is actuators"):
+//
+//   read():  engine joint state ─▶ jointStateToActuatorState (what the motors
+//            measure) ─▶ actuatorStateToJointState (what controllers see)
+//   write(): joint limits on the active command interfaces ─▶ emergency stop
+//            ─▶ jointCommandToActuatorCommand ─▶ motor limits (actuators/<name>/
+//            max_effort) ─▶ actuatorCommandToJointCommand ─▶ applied commands
+//   step():  applied commands ─▶ engine, one physics step
+//
+// Joints without a <transmission> get an implicit SimpleTransmission
+// (reduction 1, EffortJointInterface, actuator "<joint>_motor").
+//
+// Threading: init(), prepareSwitch(), checkForConflict() and reset() are
+// non-real-time. read(), write(), step(), doSwitch() and setEmergencyStop()
+// run on the real-time thread: no allocation, no locks, no logging, no
+// exceptions. The inspection getters are for tests and tools (not real-time
+// unless marked).
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <urdf_model/model.h>
+
+#include "servoloop/hardware_interface/joint_limits_loader.hpp"
+#include "servoloop/hardware_interface/simulated_robot_hw.hpp"
+#include "servoloop/hardware_interface/strong_index.hpp"
+#include "servoloop/sim_common/joint_command_limiter.hpp"
+#include "servoloop/sim_common/physics_engine.hpp"
+#include "servoloop/sim_common/sim_settings.hpp"
+#include "servoloop/transmissions/robot_transmissions.hpp"
+
+namespace servoloop::sim_common {
+
+// What the engine gets for one joint on the next step.
+struct AppliedJointCommand {
+  JointCommandMode mode = JointCommandMode::none;
+  // Effort (N·m or N) for none/effort, velocity target for velocity, position
+  // target for position; joint space, after limits, motor limits and the
+  // emergency stop.
+  double value = 0.0;
+};
+
+class SimRobotHW : public hardware_interface::SimulatedRobotHW {
+ public:
+  // `engine` must not be null; SimRobotHW owns it.
+  explicit SimRobotHW(std::unique_ptr<PhysicsEngine> engine);
+  ~SimRobotHW() override;
+  SimRobotHW(const SimRobotHW&) = delete;
+  SimRobotHW& operator=(const SimRobotHW&) = delete;
+
+  // Non-real-time. Parses and validates the URDF (info.urdf_xml, or the file
+  // info.urdf_path when the text is empty), builds the transmissions (implicit
+  // ones for joints without), loads the joint limits (URDF + <ns>/joint_limits),
+  // the world settings (<ns>/sim) and motor parameters (<ns>/actuators), builds
+  // the engine's world and registers the joint and actuator interfaces.
+  // Throws servoloop::ConfigError naming the file or key at fault. Call once.
+  void init(const hardware_interface::HardwareInfo& info) override;
+
+  // Real-time. Joint and actuator state from the engine (time and period are
+  // not used: the state is the engine's after the last step()).
+  ReturnType read(Time time, Duration period) override;
+  // Real-time. Computes the applied commands from the controllers' joint
+  // commands; `period` drives the rate-dependent limits.
+  ReturnType write(Time time, Duration period) override;
+
+  // Non-real-time. Refuses (false, logged) a controller that claims an
+  // actuator command interface or a joint this hardware does not have:
+  // in simulation, controllers command joints.
+  bool prepareSwitch(const std::vector<hardware_interface::ControllerInfo>& start_list,
+                     const std::vector<hardware_interface::ControllerInfo>& stop_list) override;
+  // Real-time. The joints of stopped controllers go to mode none (zero
+  // effort), then those of started controllers to the mode of the joint
+  // interface they claim (EffortJointInterface → effort, ...).
+  void doSwitch(const std::vector<hardware_interface::ControllerInfo>& start_list,
+                const std::vector<hardware_interface::ControllerInfo>& stop_list) override;
+
+  Duration timeStep() const override;
+  // Real-time. Hands the applied commands to the engine and steps it once.
+  ReturnType step() override;
+  Time simTime() const override;
+  // Non-real-time. Engine back to its initial state, every command (joint and
+  // actuator) zeroed, limit handles reset, sim time 0. Command modes and the
+  // emergency stop stay as they are.
+  void reset() override;
+  // Real-time safe, from any thread; takes effect at the next write().
+  void setEmergencyStop(bool engaged) override;
+
+  // Real-time safe. Sets a joint's command mode directly, as doSwitch does
+  // (for a loop without a controller manager, and for tests).
+  void setJointCommandMode(JointIndex joint, JointCommandMode mode) noexcept;
+
+  // --- inspection ---------------------------------------------------------
+  std::size_t numJoints() const noexcept { return applied_.size(); }
+  // Joints are numbered as RobotTransmissions numbers them.
+  transmissions::RobotTransmissions& transmissions() { return *transmissions_; }
+  const transmissions::RobotTransmissions& transmissions() const { return *transmissions_; }
+  const urdf::ModelInterface& model() const { return *model_; }
+  const SimSettings& settings() const noexcept { return settings_; }
+  const hardware_interface::RobotJointLimits& jointLimits() const noexcept { return joint_limits_; }
+  const ActuatorParameters& actuatorParameters(ActuatorIndex actuator) const {
+    return actuator_parameters_.at(actuator.value());
+  }
+  const EngineJointConfig& engineJointConfig(JointIndex joint) const {
+    return engine_joints_.at(joint.value());
+  }
+  const PhysicsEngine& engine() const noexcept { return *engine_; }
+  // Real-time safe getters.
+  JointCommandMode jointCommandMode(JointIndex joint) const noexcept;
+  AppliedJointCommand appliedCommand(JointIndex joint) const noexcept;
+  bool emergencyStopActive() const noexcept { return estop_active_; }
+  LimitEnforcement limitEnforcement(JointIndex joint, JointCommandMode mode) const noexcept;
+
+ private:
+  void loadModel(const hardware_interface::HardwareInfo& info);
+  void configureActuators(const std::string& ns, const YAML::Node& parameters);
+  void configureEngineJoints();
+  void readEngineState() noexcept;
+  void zeroCommands() noexcept;
+  void applyModesFromClaims(const hardware_interface::ControllerInfo& controller,
+                            bool starting) noexcept;
+
+  std::unique_ptr<PhysicsEngine> engine_;
+  std::string source_name_;
+  std::shared_ptr<const urdf::ModelInterface> model_;
+  std::unique_ptr<transmissions::RobotTransmissions> transmissions_;
+  hardware_interface::RobotJointLimits joint_limits_;
+  SimSettings settings_;
+
+  // Per joint (RobotTransmissions' joint order).
+  std::vector<EngineJointConfig> engine_joints_;
+  std::vector<JointCommandLimiter> limiters_;
+  std::vector<JointCommandMode> modes_;
+  std::vector<AppliedJointCommand> applied_;
+  std::vector<double> estop_positions_;  // measured when the stop was engaged
+
+  // Per actuator (RobotTransmissions' actuator order).
+  std::vector<ActuatorParameters> actuator_parameters_;
+
+  std::atomic<bool> estop_requested_{false};
+  bool estop_active_ = false;
+  std::uint64_t steps_ = 0;
+};
+
+}  // namespace servoloop::sim_common

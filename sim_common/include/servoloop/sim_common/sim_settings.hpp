@@ -1,0 +1,63 @@
+#pragma once
+// Simulation parameters read from the robot namespace of the parameter YAML
+// (HardwareInfo::parameters), next to joint_limits: and the controllers:
+//
+//   one_DOF_robot:
+//     sim:
+//       time_step: 0.001            # s, > 0
+//       gravity: [0.0, 0.0, -9.81]  # m/s², world frame
+//       ground_plane: false         # static plane z = 0
+//       initial_positions:          # rad or m; joints not listed start at 0
+//         joint1: 0.5
+//     actuators:
+//       motor1:                     # an actuator of a <transmission>
+//         max_effort: 0.2           # motor torque/force limit, actuator space
+//         rotor_inertia: 1.0e-4     # kg·m² (kg for linear motors), actuator space
+//
+// Parsing is non-real-time and throws servoloop::ConfigError naming the key
+// (e.g. "/one_DOF_robot/sim/time_step") and what it must be. Unknown keys
+// under sim: and actuators/<name>: are logged as warnings and ignored.
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <urdf_model/model.h>
+#include <yaml-cpp/yaml.h>
+
+namespace servoloop::sim_common {
+
+struct SimSettings {
+  double time_step_s = 0.001;                      // one physics step, s
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};        // m/s², world frame
+  bool ground_plane = false;                       // static plane z = 0, normal +z
+  std::map<std::string, double> initial_positions;  // joint → rad or m
+};
+
+// Per-actuator parameters, in actuator space (motor side of the transmission).
+struct ActuatorParameters {
+  // Motor effort limit (N·m or N), applied to the actuator effort command after
+  // the joint→actuator transmission map. +infinity: no limit.
+  double max_effort = std::numeric_limits<double>::infinity();
+  // Rotor inertia (kg·m² or kg); the joint feels it multiplied by the square
+  // of the reduction.
+  double rotor_inertia = 0.0;
+};
+
+// Reads <ns>/sim from `robot_ns` (the map of the robot namespace; may be null
+// or lack sim:). `ns` (e.g. "/one_DOF_robot") prefixes key names in messages.
+// Throws ConfigError for a value of the wrong type or range, and for an
+// initial position naming no movable joint of `model` or lying outside the
+// joint's URDF position limits.
+SimSettings parseSimSettings(const YAML::Node& robot_ns, const urdf::ModelInterface& model,
+                             const std::string& ns);
+
+// Reads <ns>/actuators. Every actuator of `actuator_names` gets an entry (the
+// defaults when it is not listed). Throws ConfigError for a bad value and for
+// an entry naming an actuator not in `actuator_names` (listing the known ones).
+std::map<std::string, ActuatorParameters> parseActuatorParameters(
+    const YAML::Node& robot_ns, const std::vector<std::string>& actuator_names,
+    const std::string& ns);
+
+}  // namespace servoloop::sim_common

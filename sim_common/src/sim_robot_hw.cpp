@@ -1,0 +1,388 @@
+#include "servoloop/sim_common/sim_robot_hw.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string_view>
+
+#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/transmissions/transmission_parser.hpp"
+
+namespace servoloop::sim_common {
+
+namespace hi = hardware_interface;
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The joint command mode an interface name selects, accepting the
+// "hardware_interface/" and "hardware_interface::" spellings too. Returns
+// false for names that are not joint command interfaces.
+bool jointModeOfInterface(std::string_view name, JointCommandMode& mode) noexcept {
+  for (std::string_view prefix : {"hardware_interface::", "hardware_interface/"}) {
+    if (name.substr(0, prefix.size()) == prefix) name.remove_prefix(prefix.size());
+  }
+  if (name == "EffortJointInterface") mode = JointCommandMode::effort;
+  else if (name == "VelocityJointInterface") mode = JointCommandMode::velocity;
+  else if (name == "PositionJointInterface") mode = JointCommandMode::position;
+  else return false;
+  return true;
+}
+
+bool isActuatorCommandInterface(std::string_view name) noexcept {
+  for (std::string_view prefix : {"hardware_interface::", "hardware_interface/"}) {
+    if (name.substr(0, prefix.size()) == prefix) name.remove_prefix(prefix.size());
+  }
+  return name == "EffortActuatorInterface" || name == "VelocityActuatorInterface" ||
+         name == "PositionActuatorInterface";
+}
+
+bool offers(const transmissions::JointCommandInterfaces& offered, JointCommandMode mode) {
+  switch (mode) {
+    case JointCommandMode::effort: return offered.effort;
+    case JointCommandMode::velocity: return offered.velocity;
+    case JointCommandMode::position: return offered.position;
+    case JointCommandMode::none: return true;
+  }
+  return false;
+}
+
+std::string readTextFile(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw ConfigError(path + ": cannot read the robot description; check the path");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+const char* toString(JointCommandMode mode) noexcept {
+  switch (mode) {
+    case JointCommandMode::none: return "none";
+    case JointCommandMode::effort: return "effort";
+    case JointCommandMode::velocity: return "velocity";
+    case JointCommandMode::position: return "position";
+  }
+  return "?";
+}
+
+SimRobotHW::SimRobotHW(std::unique_ptr<PhysicsEngine> engine) : engine_(std::move(engine)) {
+  if (!engine_) throw Error("SimRobotHW: no physics engine given");
+}
+
+SimRobotHW::~SimRobotHW() = default;
+
+void SimRobotHW::init(const hi::HardwareInfo& info) {
+  if (transmissions_) throw Error("SimRobotHW::init: called twice; create a new hardware object");
+  const std::string& ns = info.robot_namespace;
+
+  // Robot description and its transmissions (implicit ones for joints without).
+  loadModel(info);
+
+  // Joint limits: URDF, overridden by <ns>/joint_limits.
+  joint_limits_ = hi::loadRobotJointLimits(*model_, info.parameters, ns);
+
+  // World settings and motor parameters.
+  settings_ = parseSimSettings(info.parameters, *model_, ns);
+  configureActuators(ns, info.parameters);
+
+  // Per-joint tables, sized once: nothing on the real-time path resizes them.
+  const std::size_t joint_count = transmissions_->numJoints();
+  modes_.assign(joint_count, JointCommandMode::none);
+  applied_.assign(joint_count, AppliedJointCommand{});
+  estop_positions_.assign(joint_count, 0.0);
+  limiters_.clear();
+  limiters_.reserve(joint_count);
+  for (std::size_t j = 0; j < joint_count; ++j) {
+    const JointIndex index(j);
+    const std::string& name = transmissions_->jointName(index);
+    const auto limits_it = joint_limits_.find(name);
+    limiters_.emplace_back(name, transmissions_->joint(index),
+                           transmissions_->jointCommandInterfaces(index),
+                           limits_it == joint_limits_.end() ? nullptr : &limits_it->second);
+  }
+
+  configureEngineJoints();
+  engine_->init(*model_, settings_, engine_joints_, source_name_);
+  transmissions_->registerInterfaces(*this);
+  readEngineState();
+  logger().info("{}: '{}' simulation of robot '{}' ready: {} joint(s), {} actuator(s), time step {} s",
+                source_name_, engine_->name(), model_->getName(), joint_count,
+                transmissions_->numActuators(), settings_.time_step_s);
+}
+
+void SimRobotHW::loadModel(const hi::HardwareInfo& info) {
+  source_name_ = info.urdf_path.empty() ? std::string("robot_description") : info.urdf_path;
+  std::string xml = info.urdf_xml;
+  if (xml.empty()) {
+    if (info.urdf_path.empty()) {
+      throw ConfigError("simulation: no robot description given (neither URDF text nor a URDF path)");
+    }
+    xml = readTextFile(info.urdf_path);
+  }
+  model_ = parseRobotModel(xml, source_name_);
+  transmissions::RobotTransmissions::Options options;
+  options.implicit_simple_transmissions = true;
+  options.source_name = source_name_;
+  transmissions_ = std::make_unique<transmissions::RobotTransmissions>(
+      *model_, transmissions::parseTransmissions(xml, source_name_), options);
+}
+
+void SimRobotHW::configureActuators(const std::string& ns, const YAML::Node& parameters) {
+  std::vector<std::string> actuator_names;
+  for (std::size_t a = 0; a < transmissions_->numActuators(); ++a) {
+    actuator_names.push_back(transmissions_->actuatorName(ActuatorIndex(a)));
+  }
+  const auto by_name = parseActuatorParameters(parameters, actuator_names, ns);
+  actuator_parameters_.clear();
+  for (const std::string& name : actuator_names) actuator_parameters_.push_back(by_name.at(name));
+}
+
+// The transmissions are linear in velocity: actuator velocity = T · joint
+// velocity. Power balance then gives joint effort = Tᵀ · actuator effort, so a
+// joint's motors can deliver at most Σ_a |T[a][j]|·max_effort_a, and the rotor
+// inertias appear at the joint as Tᵀ·diag(J)·T, whose diagonal Σ_a J_a·T[a][j]²
+// is what we add (the off-diagonal couplings of two-joint transmissions are
+// left out). T is measured by pushing unit joint velocities through the maps.
+void SimRobotHW::configureEngineJoints() {
+  transmissions::RobotTransmissions& tr = *transmissions_;
+  const std::size_t joint_count = tr.numJoints();
+  const std::size_t actuator_count = tr.numActuators();
+  engine_joints_.assign(joint_count, EngineJointConfig{});
+  for (std::size_t j = 0; j < joint_count; ++j) {
+    for (std::size_t k = 0; k < joint_count; ++k) tr.joint(JointIndex(k)) = transmissions::JointValues{};
+    tr.joint(JointIndex(j)).velocity = 1.0;
+    tr.jointStateToActuatorState();
+
+    double motor_bound = 0.0;
+    double reflected_inertia = 0.0;
+    for (std::size_t a = 0; a < actuator_count; ++a) {
+      const double ratio = tr.actuator(ActuatorIndex(a)).velocity;  // T[a][j]
+      if (ratio == 0.0) continue;
+      motor_bound += std::abs(ratio) * actuator_parameters_[a].max_effort;
+      reflected_inertia += actuator_parameters_[a].rotor_inertia * ratio * ratio;
+    }
+    EngineJointConfig& config = engine_joints_[j];
+    config.name = tr.jointName(JointIndex(j));
+    config.motor_effort_limit = motor_bound > 0.0 ? motor_bound : kInfinity;
+    const auto limits_it = joint_limits_.find(config.name);
+    if (limits_it != joint_limits_.end() && limits_it->second.limits.has_effort_limits) {
+      config.motor_effort_limit = std::min(config.motor_effort_limit, limits_it->second.limits.max_effort);
+    }
+    config.reflected_rotor_inertia = reflected_inertia;
+    const auto initial_it = settings_.initial_positions.find(config.name);
+    config.initial_position = initial_it == settings_.initial_positions.end() ? 0.0 : initial_it->second;
+  }
+  for (std::size_t k = 0; k < joint_count; ++k) tr.joint(JointIndex(k)) = transmissions::JointValues{};
+  for (std::size_t a = 0; a < actuator_count; ++a) tr.actuator(ActuatorIndex(a)) = transmissions::ActuatorValues{};
+}
+
+void SimRobotHW::readEngineState() noexcept {
+  transmissions::RobotTransmissions& tr = *transmissions_;
+  for (std::size_t j = 0; j < applied_.size(); ++j) {
+    transmissions::JointValues& joint = tr.joint(JointIndex(j));
+    joint.position = engine_->jointPosition(j);
+    joint.velocity = engine_->jointVelocity(j);
+    joint.effort = engine_->jointEffort(j);
+  }
+  // The motors measure the joints through the transmissions; controllers see
+  // the joint state the motors' readings give.
+  tr.jointStateToActuatorState();
+  tr.actuatorStateToJointState();
+}
+
+ReturnType SimRobotHW::read(Time /*time*/, Duration /*period*/) {
+  readEngineState();
+  return ReturnType::ok;
+}
+
+ReturnType SimRobotHW::write(Time /*time*/, Duration period) {
+  transmissions::RobotTransmissions& tr = *transmissions_;
+  const std::size_t joint_count = applied_.size();
+
+  // Emergency stop: remember where the joints were when it engaged; when it
+  // is released, the limit handles start again from the measured state.
+  const bool estop = estop_requested_.load(std::memory_order_acquire);
+  if (estop && !estop_active_) {
+    for (std::size_t j = 0; j < joint_count; ++j) estop_positions_[j] = tr.joint(JointIndex(j)).position;
+  } else if (!estop && estop_active_) {
+    for (JointCommandLimiter& limiter : limiters_) limiter.reset();
+  }
+  estop_active_ = estop;
+
+  // Joint limits on the commands controllers wrote, before anything else sees them.
+  for (std::size_t j = 0; j < joint_count; ++j) limiters_[j].enforce(modes_[j], period);
+
+  // Through the motors: joint → actuator, motor effort limits, actuator → joint.
+  tr.jointCommandToActuatorCommand();
+  for (std::size_t a = 0; a < actuator_parameters_.size(); ++a) {
+    const double max_effort = actuator_parameters_[a].max_effort;
+    double& effort_command = tr.actuator(ActuatorIndex(a)).effort_command;
+    if (std::isfinite(max_effort) && std::isfinite(effort_command)) {
+      effort_command = std::clamp(effort_command, -max_effort, max_effort);
+    }
+  }
+  tr.actuatorCommandToJointCommand();
+
+  // What the engine applies at the next step. Non-finite commands (from a
+  // joint without limit handles) become harmless: no effort, no motion.
+  for (std::size_t j = 0; j < joint_count; ++j) {
+    const transmissions::JointValues& joint = tr.joint(JointIndex(j));
+    AppliedJointCommand& applied = applied_[j];
+    applied.mode = modes_[j];
+    switch (modes_[j]) {
+      case JointCommandMode::none:
+        applied.value = 0.0;
+        break;
+      case JointCommandMode::effort:
+        applied.value = estop_active_ || !std::isfinite(joint.effort_command) ? 0.0 : joint.effort_command;
+        break;
+      case JointCommandMode::velocity:
+        applied.value =
+            estop_active_ || !std::isfinite(joint.velocity_command) ? 0.0 : joint.velocity_command;
+        break;
+      case JointCommandMode::position:
+        applied.value = estop_active_                              ? estop_positions_[j]
+                        : std::isfinite(joint.position_command) ? joint.position_command
+                                                                 : joint.position;
+        break;
+    }
+  }
+  return ReturnType::ok;
+}
+
+ReturnType SimRobotHW::step() {
+  for (std::size_t j = 0; j < applied_.size(); ++j) {
+    const AppliedJointCommand& applied = applied_[j];
+    switch (applied.mode) {
+      case JointCommandMode::none:
+      case JointCommandMode::effort:
+        engine_->setJointEffort(j, applied.value);
+        break;
+      case JointCommandMode::velocity:
+        engine_->setJointVelocityTarget(j, applied.value);
+        break;
+      case JointCommandMode::position:
+        engine_->setJointPositionTarget(j, applied.value);
+        break;
+    }
+  }
+  engine_->step();
+  ++steps_;
+  return ReturnType::ok;
+}
+
+bool SimRobotHW::prepareSwitch(const std::vector<hi::ControllerInfo>& start_list,
+                               const std::vector<hi::ControllerInfo>& /*stop_list*/) {
+  for (const hi::ControllerInfo& controller : start_list) {
+    for (const hi::InterfaceResources& claimed : controller.claimed_resources) {
+      if (isActuatorCommandInterface(claimed.hardware_interface)) {
+        logger().error(
+            "{}: controller '{}' claims {} ({}); the simulation takes commands through joint "
+            "interfaces only (EffortJointInterface, VelocityJointInterface, PositionJointInterface)",
+            source_name_, controller.name, claimed.hardware_interface,
+            claimed.resources.empty() ? std::string() : *claimed.resources.begin());
+        return false;
+      }
+      JointCommandMode mode = JointCommandMode::none;
+      if (!jointModeOfInterface(claimed.hardware_interface, mode)) continue;
+      for (const std::string& resource : claimed.resources) {
+        if (!transmissions_->hasJoint(resource)) {
+          logger().error("{}: controller '{}' claims joint '{}', which this robot does not have",
+                         source_name_, controller.name, resource);
+          return false;
+        }
+        const JointIndex joint = transmissions_->jointIndex(resource);
+        if (!offers(transmissions_->jointCommandInterfaces(joint), mode)) {
+          logger().error(
+              "{}: controller '{}' claims joint '{}' through {}, which the joint's <transmission> "
+              "does not name; add that <hardwareInterface> to it",
+              source_name_, controller.name, resource, claimed.hardware_interface);
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+void SimRobotHW::applyModesFromClaims(const hi::ControllerInfo& controller, bool starting) noexcept {
+  for (const hi::InterfaceResources& claimed : controller.claimed_resources) {
+    JointCommandMode mode = JointCommandMode::none;
+    if (!jointModeOfInterface(claimed.hardware_interface, mode)) continue;
+    for (const std::string& resource : claimed.resources) {
+      if (!transmissions_->hasJoint(resource)) continue;  // prepareSwitch refused those
+      const std::size_t j = transmissions_->jointIndex(resource).value();
+      modes_[j] = starting ? mode : JointCommandMode::none;
+      if (starting) limiters_[j].reset();
+    }
+  }
+}
+
+void SimRobotHW::doSwitch(const std::vector<hi::ControllerInfo>& start_list,
+                          const std::vector<hi::ControllerInfo>& stop_list) {
+  for (const hi::ControllerInfo& controller : stop_list) applyModesFromClaims(controller, false);
+  for (const hi::ControllerInfo& controller : start_list) applyModesFromClaims(controller, true);
+}
+
+void SimRobotHW::setJointCommandMode(JointIndex joint, JointCommandMode mode) noexcept {
+  modes_[joint.value()] = mode;
+  limiters_[joint.value()].reset();
+}
+
+JointCommandMode SimRobotHW::jointCommandMode(JointIndex joint) const noexcept {
+  return modes_[joint.value()];
+}
+
+AppliedJointCommand SimRobotHW::appliedCommand(JointIndex joint) const noexcept {
+  return applied_[joint.value()];
+}
+
+LimitEnforcement SimRobotHW::limitEnforcement(JointIndex joint, JointCommandMode mode) const noexcept {
+  return limiters_[joint.value()].enforcement(mode);
+}
+
+Duration SimRobotHW::timeStep() const { return Duration(settings_.time_step_s); }
+
+Time SimRobotHW::simTime() const {
+  return Time(static_cast<double>(steps_) * settings_.time_step_s);
+}
+
+void SimRobotHW::zeroCommands() noexcept {
+  transmissions::RobotTransmissions& tr = *transmissions_;
+  for (std::size_t j = 0; j < tr.numJoints(); ++j) {
+    transmissions::JointValues& joint = tr.joint(JointIndex(j));
+    joint.effort_command = joint.velocity_command = joint.position_command = 0.0;
+  }
+  for (std::size_t a = 0; a < tr.numActuators(); ++a) {
+    transmissions::ActuatorValues& actuator = tr.actuator(ActuatorIndex(a));
+    actuator.effort_command = actuator.velocity_command = actuator.position_command = 0.0;
+  }
+  for (AppliedJointCommand& applied : applied_) applied = AppliedJointCommand{};
+}
+
+void SimRobotHW::reset() {
+  if (!transmissions_) throw Error("SimRobotHW::reset: call init() first");
+  engine_->reset();
+  zeroCommands();
+  for (JointCommandLimiter& limiter : limiters_) limiter.reset();
+  steps_ = 0;
+  readEngineState();
+  if (estop_active_) {
+    for (std::size_t j = 0; j < applied_.size(); ++j) {
+      estop_positions_[j] = transmissions_->joint(JointIndex(j)).position;
+    }
+  }
+}
+
+void SimRobotHW::setEmergencyStop(bool engaged) {
+  estop_requested_.store(engaged, std::memory_order_release);
+}
+
+}  // namespace servoloop::sim_common

@@ -1,0 +1,193 @@
+#include "servoloop/sim_common/sim_settings.hpp"
+
+#include <array>
+#include <cmath>
+#include <string_view>
+
+#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/hardware_interface/logging.hpp"
+
+namespace servoloop::sim_common {
+namespace {
+
+std::string keyPath(const std::string& ns, std::string_view key) {
+  std::string path = ns;
+  if (!path.empty() && path.back() != '/') path += '/';
+  path += key;
+  return path;
+}
+
+std::string describe(const YAML::Node& value) {
+  if (value.IsScalar()) return "'" + value.Scalar() + "'";
+  if (value.IsSequence()) return "a list";
+  if (value.IsMap()) return "a map";
+  return "nothing";
+}
+
+double readNumber(const YAML::Node& value, const std::string& path) {
+  const auto fail = [&]() { return ConfigError(path + ": expected a number, got " + describe(value)); };
+  if (!value.IsScalar()) throw fail();
+  double number = 0.0;
+  try {
+    number = value.as<double>();
+  } catch (const YAML::BadConversion&) {
+    throw fail();
+  }
+  if (!std::isfinite(number)) throw ConfigError(path + ": expected a finite number, got " + describe(value));
+  return number;
+}
+
+bool readBool(const YAML::Node& value, const std::string& path) {
+  const auto fail = [&]() {
+    return ConfigError(path + ": expected a boolean (true or false), got " + describe(value));
+  };
+  if (!value.IsScalar()) throw fail();
+  try {
+    return value.as<bool>();
+  } catch (const YAML::BadConversion&) {
+    throw fail();
+  }
+}
+
+void requireMap(const YAML::Node& node, const std::string& path, const char* what) {
+  if (!node.IsMap()) throw ConfigError(path + ": expected a map of " + what + ", got " + describe(node));
+}
+
+template <std::size_t N>
+void warnUnknownKeys(const YAML::Node& map, const std::string& path,
+                     const std::array<std::string_view, N>& known) {
+  for (const auto& entry : map) {
+    const std::string key = entry.first.as<std::string>();
+    bool is_known = false;
+    for (std::string_view k : known) is_known |= (k == key);
+    if (is_known) continue;
+    std::string list;
+    for (std::string_view k : known) list.append(list.empty() ? "" : ", ").append(k);
+    logger().warn("{}: unknown key '{}' ignored (known keys: {})", path, key, list);
+  }
+}
+
+bool isMovable(const urdf::Joint& joint) {
+  return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
+         joint.type == urdf::Joint::PRISMATIC;
+}
+
+std::string movableJointNames(const urdf::ModelInterface& model) {
+  std::string names;
+  for (const auto& [name, joint] : model.joints_) {
+    if (joint && isMovable(*joint)) names += (names.empty() ? "" : ", ") + name;
+  }
+  return names.empty() ? "none" : names;
+}
+
+void readInitialPositions(const YAML::Node& node, const std::string& path,
+                          const urdf::ModelInterface& model, SimSettings& settings) {
+  requireMap(node, path, "joint names to positions");
+  for (const auto& entry : node) {
+    const std::string joint_name = entry.first.as<std::string>();
+    const std::string joint_path = keyPath(path, joint_name);
+    const auto joint_it = model.joints_.find(joint_name);
+    if (joint_it == model.joints_.end() || !joint_it->second || !isMovable(*joint_it->second)) {
+      throw ConfigError(joint_path + ": robot '" + model.getName() + "' has no movable joint '" +
+                        joint_name + "' (movable joints: " + movableJointNames(model) + ")");
+    }
+    const double position = readNumber(entry.second, joint_path);
+    const urdf::Joint& joint = *joint_it->second;
+    if (joint.type != urdf::Joint::CONTINUOUS && joint.limits &&
+        joint.limits->lower < joint.limits->upper &&
+        (position < joint.limits->lower || position > joint.limits->upper)) {
+      throw ConfigError(joint_path + ": " + std::to_string(position) +
+                        " lies outside the joint's URDF position limits [" +
+                        std::to_string(joint.limits->lower) + ", " +
+                        std::to_string(joint.limits->upper) + "]; choose a position inside them");
+    }
+    settings.initial_positions[joint_name] = position;
+  }
+}
+
+}  // namespace
+
+SimSettings parseSimSettings(const YAML::Node& robot_ns, const urdf::ModelInterface& model,
+                             const std::string& ns) {
+  SimSettings settings;
+  if (!robot_ns || !robot_ns.IsMap()) return settings;
+  const YAML::Node sim = robot_ns["sim"];
+  if (!sim.IsDefined() || sim.IsNull()) return settings;
+  const std::string sim_path = keyPath(ns, "sim");
+  requireMap(sim, sim_path, "simulation settings (time_step, gravity, ground_plane, initial_positions)");
+
+  static constexpr std::array<std::string_view, 4> kKnown = {"time_step", "gravity", "ground_plane",
+                                                             "initial_positions"};
+  warnUnknownKeys(sim, sim_path, kKnown);
+
+  if (const YAML::Node value = sim["time_step"]; value.IsDefined()) {
+    const std::string path = keyPath(sim_path, "time_step");
+    settings.time_step_s = readNumber(value, path);
+    if (!(settings.time_step_s > 0.0)) {
+      throw ConfigError(path + ": expected a time step > 0 s, got " + describe(value));
+    }
+  }
+  if (const YAML::Node value = sim["gravity"]; value.IsDefined()) {
+    const std::string path = keyPath(sim_path, "gravity");
+    if (!value.IsSequence() || value.size() != 3) {
+      throw ConfigError(path + ": expected a list of 3 numbers [x, y, z] in m/s², got " +
+                        describe(value));
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      settings.gravity[axis] = readNumber(value[axis], path + "[" + std::to_string(axis) + "]");
+    }
+  }
+  if (const YAML::Node value = sim["ground_plane"]; value.IsDefined()) {
+    settings.ground_plane = readBool(value, keyPath(sim_path, "ground_plane"));
+  }
+  if (const YAML::Node value = sim["initial_positions"]; value.IsDefined() && !value.IsNull()) {
+    readInitialPositions(value, keyPath(sim_path, "initial_positions"), model, settings);
+  }
+  return settings;
+}
+
+std::map<std::string, ActuatorParameters> parseActuatorParameters(
+    const YAML::Node& robot_ns, const std::vector<std::string>& actuator_names,
+    const std::string& ns) {
+  std::map<std::string, ActuatorParameters> parameters;
+  for (const std::string& name : actuator_names) parameters[name] = ActuatorParameters{};
+  if (!robot_ns || !robot_ns.IsMap()) return parameters;
+  const YAML::Node actuators = robot_ns["actuators"];
+  if (!actuators.IsDefined() || actuators.IsNull()) return parameters;
+  const std::string actuators_path = keyPath(ns, "actuators");
+  requireMap(actuators, actuators_path, "actuator names to parameters");
+
+  static constexpr std::array<std::string_view, 2> kKnown = {"max_effort", "rotor_inertia"};
+  for (const auto& entry : actuators) {
+    const std::string name = entry.first.as<std::string>();
+    const std::string path = keyPath(actuators_path, name);
+    const auto it = parameters.find(name);
+    if (it == parameters.end()) {
+      std::string known;
+      for (const std::string& n : actuator_names) known += (known.empty() ? "" : ", ") + n;
+      throw ConfigError(path + ": the robot has no actuator '" + name + "' (actuators: " +
+                        (known.empty() ? "none" : known) +
+                        "; a joint without a <transmission> has the actuator '<joint>_motor')");
+    }
+    const YAML::Node node = entry.second;
+    requireMap(node, path, "actuator parameters (max_effort, rotor_inertia)");
+    warnUnknownKeys(node, path, kKnown);
+    if (const YAML::Node value = node["max_effort"]; value.IsDefined()) {
+      const std::string key = keyPath(path, "max_effort");
+      it->second.max_effort = readNumber(value, key);
+      if (!(it->second.max_effort > 0.0)) {
+        throw ConfigError(key + ": expected a motor effort limit > 0, got " + describe(value));
+      }
+    }
+    if (const YAML::Node value = node["rotor_inertia"]; value.IsDefined()) {
+      const std::string key = keyPath(path, "rotor_inertia");
+      it->second.rotor_inertia = readNumber(value, key);
+      if (it->second.rotor_inertia < 0.0) {
+        throw ConfigError(key + ": expected a rotor inertia >= 0, got " + describe(value));
+      }
+    }
+  }
+  return parameters;
+}
+
+}  // namespace servoloop::sim_common
