@@ -17,6 +17,14 @@
 //
 // Everything here is non-real-time except what realtime_publisher.hpp and
 // realtime_subscriber.hpp mark real-time, and setTime()/now().
+//
+// Callbacks run on the delivery thread (or in flush()). Destroying a
+// Subscription waits for a callback in progress, so do not destroy one while
+// holding a lock that a callback of the same bus may be waiting for.
+// Plugins: the built-in message types are instantiated inside this library
+// (see the end of this file), so topics outlive the plugin that made them. A
+// message type defined in a plugin lives in that plugin's code: drop its
+// handles before the plugin is unloaded, and do not reuse the topic afterwards.
 #include <chrono>
 #include <condition_variable>
 #include <cstddef>
