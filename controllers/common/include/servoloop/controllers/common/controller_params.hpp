@@ -1,0 +1,48 @@
+#pragma once
+// Reading a controller's parameters (its YAML subtree) and naming its topics.
+// Non-real-time. Every error names the controller, the full parameter path
+// and the fix.
+#include <string>
+#include <vector>
+
+#include "servoloop/controller_manager/controller_context.hpp"
+
+namespace servoloop::controllers {
+
+using controller_manager::ControllerContext;
+
+// "<robot ns>/<controller>/<key>" without a leading slash, e.g.
+// "one_DOF_robot/joint1_position_controller/pid", as a user finds it in the YAML.
+std::string parameterPath(const ControllerContext& context, const std::string& key);
+
+// "<robot ns>/<controller>/<leaf>", e.g. "/one_DOF_robot/joint1_position_controller/command".
+std::string controllerTopic(const ControllerContext& context, const std::string& leaf);
+// "<robot ns>/<leaf>", e.g. "/one_DOF_robot/joint_states".
+std::string namespaceTopic(const ControllerContext& context, const std::string& leaf);
+
+// A required string, e.g. `joint: joint1`. Throws servoloop::ConfigError when
+// missing or not a string; example is shown in the message ("joint: joint1").
+std::string requireString(const ControllerContext& context, const std::string& key,
+                          const std::string& example);
+// An optional string with a default.
+std::string optionalString(const ControllerContext& context, const std::string& key,
+                           const std::string& fallback);
+
+// A required non-empty list of distinct strings, e.g. `joints: [joint1, joint2]`.
+std::vector<std::string> requireStringList(const ControllerContext& context, const std::string& key,
+                                           const std::string& example);
+
+// A required finite number. Throws servoloop::ConfigError when missing or not a number.
+double requireNumber(const ControllerContext& context, const std::string& key,
+                     const std::string& example);
+// An optional finite number with a default.
+double optionalNumber(const ControllerContext& context, const std::string& key, double fallback);
+
+// map[key], or an undefined (but valid) node when map is not a map or has no
+// such key, so the result can be inspected without yaml-cpp throwing.
+YAML::Node childNode(const YAML::Node& map, const std::string& key);
+
+// The number at node (or fallback when node is undefined); where names it in errors.
+double numberAt(const YAML::Node& node, const std::string& where, double fallback);
+
+}  // namespace servoloop::controllers

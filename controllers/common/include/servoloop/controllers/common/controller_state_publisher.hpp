@@ -1,0 +1,57 @@
+#pragma once
+// The control_msgs/JointControllerState topic of a PID joint controller,
+// published every 10th update as ros_control's effort controllers do: on the
+// 1st, 11th, 21st, ... update after starting. Real-time safe except advertise().
+#include <cstdint>
+#include <string>
+
+#include "servoloop/controller_manager/messages.hpp"
+#include "servoloop/controller_manager/realtime_publisher.hpp"
+#include "servoloop/controllers/pid.hpp"
+
+namespace servoloop::controller_manager {
+class TopicBus;
+}
+
+namespace servoloop::controllers {
+
+class ControllerStatePublisher {
+ public:
+  using Message = controller_manager::control_msgs::JointControllerState;
+  static constexpr std::uint64_t kPublishEveryNthUpdate = 10;
+
+  // Non-real-time. Nothing is published when bus is null.
+  void advertise(controller_manager::TopicBus* bus, const std::string& topic);
+
+  // Real-time: the next update publishes (call from starting()).
+  void reset() noexcept { update_count_ = 0; }
+
+  // Real-time: call once per update. On the updates that publish, fill(msg)
+  // writes the message (every field, it is reused) and it is published.
+  template <class Fill>
+  void onUpdate(Fill&& fill) noexcept {
+    const bool publish_now = update_count_ % kPublishEveryNthUpdate == 0;
+    ++update_count_;
+    if (!publish_now || !publisher_.valid() || !publisher_.trylock()) return;
+    fill(publisher_.msg());
+    publisher_.unlockAndPublish();
+  }
+
+  // Real-time: copies the gains into msg (i_clamp is i_max, as in ros_control).
+  static void setGains(Message& msg, const Pid::Gains& gains) noexcept {
+    msg.p = gains.p_gain;
+    msg.i = gains.i_gain;
+    msg.d = gains.d_gain;
+    msg.i_clamp = gains.i_max;
+    msg.antiwindup = gains.antiwindup;
+  }
+
+  std::uint64_t publishedCount() const noexcept { return publisher_.publishedCount(); }
+  const std::string& topic() const noexcept { return publisher_.topic(); }
+
+ private:
+  controller_manager::RealtimePublisher<Message> publisher_;
+  std::uint64_t update_count_ = 0;
+};
+
+}  // namespace servoloop::controllers

@@ -1,0 +1,12 @@
+#include "servoloop/controllers/common/controller_state_publisher.hpp"
+
+#include "servoloop/controller_manager/topic_bus.hpp"
+
+namespace servoloop::controllers {
+
+void ControllerStatePublisher::advertise(controller_manager::TopicBus* bus, const std::string& topic) {
+  if (bus == nullptr) return;
+  publisher_ = bus->advertise<Message>(topic);
+}
+
+}  // namespace servoloop::controllers

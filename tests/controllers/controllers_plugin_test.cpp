@@ -1,0 +1,171 @@
+// The controller plugins as a node uses them: found by the plugin loader in the
+// build's plugin folder, created by type name and run by the controller
+// manager from the seed's YAML.
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "controller_test_support.hpp"
+#include "servoloop/controller_manager/controller_factory.hpp"
+#include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/plugin_loader.hpp"
+
+namespace servoloop::controllers {
+namespace {
+
+namespace cm = controller_manager;
+using testing::TestJointsHW;
+using Float64 = cm::std_msgs::Float64;
+using JointStateMsg = cm::sensor_msgs::JointState;
+
+// Controllers from the plugin loader, as the node's factory makes them.
+class LoaderFactory : public cm::ControllerFactory {
+ public:
+  LoaderFactory() : loader_({std::filesystem::path(SERVOLOOP_PLUGIN_DIR)}) {}
+
+  cm::ControllerPtr create(const std::string& type) override {
+    if (!loader_.hasType(type)) return {};
+    auto plugin = loader_.create<cm::ControllerBase>(type);
+    cm::PluginDeleter deleter = plugin.get_deleter();
+    return cm::ControllerPtr(plugin.release(), [deleter](cm::ControllerBase* c) { deleter(c); });
+  }
+  std::vector<std::string> types() override {
+    std::vector<std::string> names;
+    for (const auto& info : loader_.listTypes(cm::ControllerBase::kPluginKind)) names.push_back(info.type);
+    return names;
+  }
+  cm::PluginLoader& loader() { return loader_; }
+
+ private:
+  cm::PluginLoader loader_;
+};
+
+TEST(ControllerPlugins, OneLibraryPerPackageProvidesEveryType) {
+  LoaderFactory factory;
+  EXPECT_TRUE(factory.loader().diagnostics().empty());
+  std::map<std::string, std::string> library_of_type;
+  for (const auto& info : factory.loader().listTypes("controller")) {
+    library_of_type[info.type] = info.library.filename().string();
+  }
+  const std::map<std::string, std::string> expected = {
+      {"joint_state_controller/JointStateController", "libjoint_state_controller.so"},
+      {"effort_controllers/JointPositionController", "libeffort_controllers.so"},
+      {"effort_controllers/JointVelocityController", "libeffort_controllers.so"},
+      {"effort_controllers/JointEffortController", "libeffort_controllers.so"},
+      {"effort_controllers/JointGroupEffortController", "libeffort_controllers.so"},
+      {"effort_controllers/JointGroupPositionController", "libeffort_controllers.so"},
+      {"position_controllers/JointPositionController", "libposition_controllers.so"},
+      {"position_controllers/JointGroupPositionController", "libposition_controllers.so"},
+      {"velocity_controllers/JointVelocityController", "libvelocity_controllers.so"},
+      {"velocity_controllers/JointGroupVelocityController", "libvelocity_controllers.so"},
+      {"minimal_joint_controller/MinimalJointController", "libminimal_joint_controller.so"},
+  };
+  for (const auto& [type, library] : expected) {
+    ASSERT_TRUE(library_of_type.count(type)) << type;
+    EXPECT_EQ(library_of_type[type], library) << type;
+  }
+}
+
+class SeedThroughManager : public ::testing::Test {
+ protected:
+  SeedThroughManager() {
+    cm::ControllerContext context;
+    context.robot_namespace = "/one_DOF_robot";
+    context.topics = &bus;
+    context.robot_model = testing::seedRobotModel();
+    params = testing::seedControllerParams();
+    manager = std::make_unique<cm::ControllerManager>(&hw, std::make_shared<LoaderFactory>(),
+                                                      cm::ControllerManager::lookupIn(params), context,
+                                                      1000.0);
+  }
+  ~SeedThroughManager() override { manager.reset(); }
+
+  void start(const std::vector<std::string>& names) {
+    for (const auto& name : names) ASSERT_TRUE(manager->loadController(name)) << name;
+    cm::SwitchRequest request;
+    request.start_controllers = names;
+    ASSERT_TRUE(manager->requestSwitch(request));
+    cycle();  // the switch is carried out at the start of this cycle
+    ASSERT_FALSE(manager->switchPending());
+  }
+  void cycle() {
+    ++cycles;
+    manager->update(Time(0.001 * cycles), Duration(0.001));
+  }
+
+  cm::TopicBus bus;
+  TestJointsHW hw{{"joint1"}};
+  YAML::Node params;
+  std::unique_ptr<cm::ControllerManager> manager;
+  int cycles = 0;
+};
+
+TEST_F(SeedThroughManager, PositionControllerAndJointStatesFromTheSeedYaml) {
+  std::vector<JointStateMsg> joint_states;
+  auto subscription = bus.subscribe<JointStateMsg>(
+      "/one_DOF_robot/joint_states", [&](const JointStateMsg& msg) { joint_states.push_back(msg); });
+  hw.position[0] = 0.5;
+  start({"joint_state_controller", "joint1_position_controller"});
+  bus.publish("/one_DOF_robot/joint1_position_controller/command", Float64{1.0});
+  cycle();  // the controllers' first update, 1 ms after starting
+
+  // The seed's PID (p 10, i 10, d 10, i_clamp ±10) on error 0.5 with dt 1 ms.
+  const double error = 0.5, dt = 0.001;
+  EXPECT_NEAR(hw.effort_command[0], 10.0 * error + std::min(10.0 * dt * error, 10.0) + 10.0 * error / dt,
+              1e-9);
+
+  for (int k = 0; k < 39; ++k) cycle();  // 40 updates at 1 kHz with publish_rate 50
+  bus.flush();
+  ASSERT_EQ(joint_states.size(), 2u);
+  EXPECT_EQ(joint_states[0].name, (std::vector<std::string>{"joint1"}));
+  EXPECT_DOUBLE_EQ(joint_states[0].position[0], 0.5);
+  EXPECT_NEAR(joint_states[1].stamp - joint_states[0].stamp, 0.020, 1e-12);
+}
+
+TEST_F(SeedThroughManager, RawPdRunsAtItsOwnRateWithOrWithoutTheManagersHelp) {
+  params["pd_default"]["type"] = "minimal_joint_controller/MinimalJointController";
+  params["pd_rate"]["type"] = "minimal_joint_controller/MinimalJointController";
+  params["pd_rate"]["update_rate"] = 100;  // here the manager runs it every 10th cycle
+  std::map<std::string, int> effort_messages;
+  std::vector<cm::Subscription> subscriptions;
+  for (const std::string name : {"pd_default", "pd_rate"}) {
+    subscriptions.push_back(bus.subscribe<Float64>(
+        "/one_DOF_robot/" + name + "/jnt_trq", [&effort_messages, name](const Float64&) { ++effort_messages[name]; }));
+  }
+  ASSERT_TRUE(manager->loadController("pd_rate"));
+
+  // Runs 100 cycles with the joint moving every cycle; returns how often the
+  // effort command changed (once per control update: it is held in between).
+  const auto effortChanges = [&] {
+    int changes = 0;
+    double effort = hw.effort_command[0];
+    for (int k = 0; k < 100; ++k) {
+      hw.position[0] = 0.001 * cycles;
+      cycle();
+      if (hw.effort_command[0] != effort) ++changes;
+      effort = hw.effort_command[0];
+    }
+    return changes;
+  };
+
+  start({"pd_default"});  // no update_rate parameter: the controller keeps its default 100 Hz itself
+  EXPECT_EQ(effortChanges(), 10);
+  cm::SwitchRequest request;
+  request.start_controllers = {"pd_rate"};
+  request.stop_controllers = {"pd_default"};
+  ASSERT_TRUE(manager->requestSwitch(request));
+  cycle();
+  ASSERT_FALSE(manager->switchPending());
+  EXPECT_EQ(effortChanges(), 10);
+  bus.flush();
+  EXPECT_EQ(effort_messages["pd_default"], 10);
+  EXPECT_EQ(effort_messages["pd_rate"], 10);
+}
+
+}  // namespace
+}  // namespace servoloop::controllers
