@@ -1,0 +1,227 @@
+// `servoloop control list|list-joints|load|unload|start|stop|switch|reload-libraries`:
+// the controller manager commands that talk to a running node (ros_control's
+// `controller_manager` script). `control list-types` lives in control_command.cpp.
+#include <algorithm>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "command_registry.hpp"
+#include "node_connection.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop::cli {
+namespace {
+
+namespace cm = servoloop::controller_manager;
+
+// A switch is carried out by the real-time thread at its next cycle.
+constexpr double kSwitchCallTimeoutS = 30.0;
+
+struct ControlOptions {
+  std::string ns;
+  bool json = false;
+  std::vector<std::string> names;
+  std::vector<std::string> start;
+  std::vector<std::string> stop;
+  std::string strictness = "strict";
+  bool start_asap = false;
+  double timeout_s = 0.0;
+  bool force_kill = false;
+};
+
+std::string stringField(const nlohmann::json& object, const char* key) {
+  const auto found = object.find(key);
+  return found != object.end() && found->is_string() ? found->get<std::string>() : "";
+}
+
+// controller_manager list's layout: "name - type ( state )", then each claimed
+// interface with its resources.
+void printControllers(const nlohmann::json& controllers) {
+  for (const auto& controller : controllers) {
+    std::cout << stringField(controller, "name") << " - " << stringField(controller, "type")
+              << " ( " << stringField(controller, "state") << " )\n";
+    const auto claims = controller.find("claimed_resources");
+    if (claims == controller.end() || !claims->is_array()) continue;
+    for (const auto& claim : *claims) {
+      std::cout << "    " << stringField(claim, "hardware_interface") << ":";
+      for (const auto& resource : claim.value("resources", nlohmann::json::array())) {
+        std::cout << " " << (resource.is_string() ? resource.get<std::string>() : resource.dump());
+      }
+      std::cout << "\n";
+    }
+  }
+}
+
+void runList(const ControlOptions& options) {
+  cm::IpcClient client = connectToRobotNode(options.ns);
+  const auto reply = client.call("control.list");
+  const auto controllers = reply.value("controllers", nlohmann::json::array());
+  if (options.json) {
+    std::cout << controllers.dump(2) << "\n";
+  } else {
+    printControllers(controllers);
+  }
+}
+
+void runListJoints(const ControlOptions& options) {
+  cm::IpcClient client = connectToRobotNode(options.ns);
+  const auto reply = client.call("control.list_joints");
+  const auto joints = reply.value("joints", nlohmann::json::array());
+  if (options.json) {
+    std::cout << joints.dump(2) << "\n";
+    return;
+  }
+  for (const auto& joint : joints) {
+    std::cout << stringField(joint, "name") << ":";
+    std::string separator = " ";
+    for (const auto& interface : joint.value("interfaces", nlohmann::json::array())) {
+      std::cout << separator << (interface.is_string() ? interface.get<std::string>() : "?");
+      separator = ", ";
+    }
+    std::cout << "\n";
+  }
+}
+
+// load/unload each name in order; the first failure ends the command.
+void runEach(const ControlOptions& options, const char* op, const char* done) {
+  cm::IpcClient client = connectToRobotNode(options.ns);
+  for (const auto& name : options.names) {
+    client.call(op, {{"name", name}});
+    std::cout << done << " '" << name << "'\n";
+  }
+}
+
+void runSwitch(const ControlOptions& options) {
+  if (options.start.empty() && options.stop.empty()) {
+    throw Error("nothing to switch: give --start and/or --stop controller names");
+  }
+  cm::IpcClient client = connectToRobotNode(options.ns);
+  client.call("control.switch",
+              {{"start", options.start},
+               {"stop", options.stop},
+               {"strictness", options.strictness},
+               {"start_asap", options.start_asap},
+               {"timeout", options.timeout_s}},
+              kSwitchCallTimeoutS + std::max(options.timeout_s, 0.0));
+  if (!options.stop.empty()) {
+    std::cout << "Stopped:";
+    for (const auto& name : options.stop) std::cout << " " << name;
+    std::cout << "\n";
+  }
+  if (!options.start.empty()) {
+    std::cout << "Started:";
+    for (const auto& name : options.start) std::cout << " " << name;
+    std::cout << "\n";
+  }
+}
+
+void runReloadLibraries(const ControlOptions& options) {
+  cm::IpcClient client = connectToRobotNode(options.ns);
+  client.call("control.reload_libraries", {{"force_kill", options.force_kill}},
+              kSwitchCallTimeoutS);
+  std::cout << "Reloaded controller libraries\n";
+}
+
+CLI::App* addClientSubcommand(CLI::App& control, const std::string& name,
+                              const std::string& description, ControlOptions& options) {
+  CLI::App* command = control.add_subcommand(name, description);
+  addNamespaceOption(*command, options.ns);
+  return command;
+}
+
+void addSwitchTimingOptions(CLI::App& command, ControlOptions& options) {
+  command.add_flag("--start-asap", options.start_asap,
+                   "Start the controllers as soon as their resources are ready");
+  command
+      .add_option("--timeout", options.timeout_s,
+                  "Seconds the node may wait for the switch to be carried out (0 = no limit)")
+      ->type_name("SECONDS");
+}
+
+void addControlClientCommands(CLI::App& root) {
+  CLI::App& control = commandGroup(
+      root, "control", "Controller manager: list, load, start, stop and switch controllers");
+
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* list = addClientSubcommand(
+        control, "list", "List the loaded controllers: type, state and claimed resources",
+        *options);
+    list->add_flag("--json", options->json,
+                   "Print a JSON array of {name, type, state, claimed_resources}");
+    list->callback([options] { runList(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* list_joints = addClientSubcommand(
+        control, "list-joints", "List the robot's joints and the interfaces each offers",
+        *options);
+    list_joints->add_flag("--json", options->json, "Print a JSON array of {name, interfaces}");
+    list_joints->callback([options] { runListJoints(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* load = addClientSubcommand(
+        control, "load", "Load controllers (configured under <namespace>/<name>/type)", *options);
+    load->add_option("names", options->names, "Controller names")->required()->type_name("NAME");
+    load->callback([options] { runEach(*options, "control.load", "Loaded"); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* unload =
+        addClientSubcommand(control, "unload", "Unload stopped controllers", *options);
+    unload->add_option("names", options->names, "Controller names")->required()->type_name("NAME");
+    unload->callback([options] { runEach(*options, "control.unload", "Unloaded"); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* start = addClientSubcommand(
+        control, "start", "Start controllers (one STRICT switch)", *options);
+    start->add_option("names", options->start, "Controller names")->required()->type_name("NAME");
+    addSwitchTimingOptions(*start, *options);
+    start->callback([options] { runSwitch(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* stop =
+        addClientSubcommand(control, "stop", "Stop controllers (one STRICT switch)", *options);
+    stop->add_option("names", options->stop, "Controller names")->required()->type_name("NAME");
+    addSwitchTimingOptions(*stop, *options);
+    stop->callback([options] { runSwitch(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* switch_command = addClientSubcommand(
+        control, "switch", "Stop some controllers and start others in one switch", *options);
+    switch_command->add_option("--start", options->start, "Controllers to start")
+        ->type_name("NAME");
+    switch_command->add_option("--stop", options->stop, "Controllers to stop")->type_name("NAME");
+    switch_command
+        ->add_option("--strictness", options->strictness,
+                     "strict: fail on any unknown/misplaced name; best_effort: drop those")
+        ->check(CLI::IsMember({"strict", "best_effort"}))
+        ->capture_default_str();
+    addSwitchTimingOptions(*switch_command, *options);
+    switch_command->callback([options] { runSwitch(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* reload = addClientSubcommand(
+        control, "reload-libraries",
+        "Reload the controller plugin libraries (refused while controllers are loaded)",
+        *options);
+    reload->add_flag("--force-kill", options->force_kill,
+                     "Stop and unload every controller first");
+    reload->callback([options] { runReloadLibraries(*options); });
+  }
+}
+
+}  // namespace
+}  // namespace servoloop::cli
+
+SERVOLOOP_CLI_COMMANDS(31, servoloop::cli::addControlClientCommands)

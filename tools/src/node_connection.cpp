@@ -1,0 +1,209 @@
+#include "node_connection.hpp"
+
+#include <csignal>
+#include <ctime>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "servoloop/controller_manager/ipc_socket_path.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop::cli {
+namespace {
+
+namespace cm = servoloop::controller_manager;
+
+const char* const kStartHint = "start one with `servoloop launch <launch file>`";
+
+std::vector<cm::IpcNodeEntry> acceptingNodes() {
+  std::vector<cm::IpcNodeEntry> accepting;
+  for (auto& entry : cm::listNodes()) {
+    if (entry.accepting) accepting.push_back(std::move(entry));
+  }
+  return accepting;
+}
+
+std::string joinNames(const std::vector<cm::IpcNodeEntry>& nodes) {
+  std::string names;
+  for (const auto& node : nodes) {
+    if (!names.empty()) names += ", ";
+    names += node.node_name;
+  }
+  return names;
+}
+
+// The only robot node, or the world's socket when nothing else is served;
+// nullopt when no node runs. Throws when several robot nodes run.
+std::optional<cm::IpcNodeEntry> onlyNode(const std::vector<cm::IpcNodeEntry>& accepting) {
+  std::vector<cm::IpcNodeEntry> robots;
+  for (const auto& node : accepting) {
+    if (node.node_name != "/") robots.push_back(node);
+  }
+  if (robots.size() == 1) return robots.front();
+  if (robots.size() > 1) {
+    throw Error("several servoloop nodes are running (" + joinNames(robots) +
+                "); choose one with --namespace");
+  }
+  if (!accepting.empty()) return accepting.front();
+  return std::nullopt;
+}
+
+cm::IpcClient connectTo(const cm::IpcNodeEntry& node) {
+  cm::IpcClient client;
+  client.connect(node.socket_path);
+  return client;
+}
+
+bool isPrefixNamespace(const std::string& ns, const std::string& name) {
+  if (ns == "/") return false;
+  return name.size() > ns.size() && name.compare(0, ns.size(), ns) == 0 && name[ns.size()] == '/';
+}
+
+std::string formatSeconds(double seconds) {
+  std::ostringstream text;
+  text << seconds;
+  return text.str();
+}
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void onStopSignal(int signal) { g_stop_signal = signal; }
+
+}  // namespace
+
+std::string normalizeNamespace(std::string_view ns) {
+  if (ns.empty()) return "";
+  std::string normalized(ns);
+  while (normalized.size() > 1 && normalized.back() == '/') normalized.pop_back();
+  if (normalized.front() != '/') normalized.insert(normalized.begin(), '/');
+  return normalized;
+}
+
+std::string resolveName(std::string_view ns, std::string_view name) {
+  if (!name.empty() && name.front() == '/') return std::string(name);
+  std::string base = normalizeNamespace(ns);
+  if (base.empty() || base == "/") return "/" + std::string(name);
+  return base + "/" + std::string(name);
+}
+
+CLI::Option* addNamespaceOption(CLI::App& command, std::string& ns) {
+  return command
+      .add_option("-N,--namespace", ns,
+                  "Robot namespace of the node, e.g. /one_DOF_robot (default: the only node "
+                  "running)")
+      ->type_name("NS");
+}
+
+std::string describeRunningNodes() {
+  const auto accepting = acceptingNodes();
+  if (accepting.empty()) {
+    return "no servoloop node is running (run directory " + cm::ipcRunDirectory().string() + ")";
+  }
+  return "running nodes: " + joinNames(accepting);
+}
+
+cm::IpcClient connectToRobotNode(const std::string& ns_option, double wait_s, bool wait) {
+  const std::string ns = normalizeNamespace(ns_option);
+  if (!ns.empty()) {
+    if (wait && !cm::waitForNode(ns, wait_s)) {
+      throw Error("no servoloop node for namespace '" + ns + "' appeared within " +
+                  formatSeconds(wait_s) + " s (" + describeRunningNodes() + "); " + kStartHint +
+                  " or raise --timeout");
+    }
+    try {
+      return cm::IpcClient::connectToNode(ns);
+    } catch (const Error& error) {
+      throw Error(std::string(error.what()) + " (" + describeRunningNodes() + ")");
+    }
+  }
+
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(wait_s));
+  while (true) {
+    if (auto node = onlyNode(acceptingNodes())) return connectTo(*node);
+    if (!wait || (wait_s > 0.0 && std::chrono::steady_clock::now() >= deadline)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::string message = "no servoloop node is running (run directory " +
+                        cm::ipcRunDirectory().string() + ")";
+  if (wait) message += " after waiting " + formatSeconds(wait_s) + " s";
+  throw Error(message + "; " + kStartHint);
+}
+
+cm::IpcClient connectForName(const std::string& name, const std::string& ns_option) {
+  if (!normalizeNamespace(ns_option).empty()) return connectToRobotNode(ns_option);
+  const auto accepting = acceptingNodes();
+  const cm::IpcNodeEntry* best = nullptr;
+  for (const auto& node : accepting) {
+    if (isPrefixNamespace(node.node_name, name) &&
+        (best == nullptr || node.node_name.size() > best->node_name.size())) {
+      best = &node;
+    }
+  }
+  if (best != nullptr) return connectTo(*best);
+  if (auto node = onlyNode(accepting)) return connectTo(*node);
+  throw Error("no servoloop node is running for '" + name + "' (run directory " +
+              cm::ipcRunDirectory().string() + "); " + kStartHint);
+}
+
+cm::IpcClient connectToWorld() {
+  const auto accepting = acceptingNodes();
+  for (const auto& node : accepting) {
+    if (node.node_name == "/") return connectTo(node);
+  }
+  if (accepting.size() == 1) return connectTo(accepting.front());
+  if (accepting.empty()) {
+    throw Error("no servoloop world is running (run directory " + cm::ipcRunDirectory().string() +
+                "); " + kStartHint);
+  }
+  throw Error("several servoloop nodes are running (" + joinNames(accepting) +
+              ") and none serves the world's socket (default.sock); stop the others or "
+              "launch a world");
+}
+
+void installStopSignalHandlers() {
+  struct sigaction action {};
+  action.sa_handler = onStopSignal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;  // no SA_RESTART: blocking reads return EINTR and notice the flag
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+bool stopRequested() { return g_stop_signal != 0; }
+
+int stopSignal() { return static_cast<int>(g_stop_signal); }
+
+bool sleepUnlessStopped(double seconds) {
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(std::max(seconds, 0.0)));
+  while (!stopRequested()) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) return true;
+    // Short slices: a signal may arrive just before the sleep starts.
+    const auto slice = std::min<std::chrono::steady_clock::duration>(
+        deadline - now, std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(slice);
+  }
+  return false;
+}
+
+std::string existingFileArgument(const std::string& path, std::string_view what) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) {
+    throw Error(std::string(what) + " '" + path + "' does not exist or is not a file");
+  }
+  return fs::absolute(path).lexically_normal().string();
+}
+
+}  // namespace servoloop::cli

@@ -1,0 +1,65 @@
+#pragma once
+// Finding the running servoloop node a command should talk to, and the pieces
+// every client command shares (the --namespace option, SIGINT/SIGTERM flags).
+//
+// A node serves one socket per robot namespace, plus the world's socket
+// (`default.sock`, node name "/") while it has no robot. A command picks:
+//   - the node named by --namespace, if given;
+//   - for a topic or parameter name, the node whose namespace prefixes it;
+//   - otherwise the only robot node running (or the world's socket if that is
+//     all there is).
+// Every failure names what was looked for and lists the nodes that are running.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "servoloop/controller_manager/ipc_client.hpp"
+
+namespace servoloop::cli {
+
+// "/one_DOF_robot" for "one_DOF_robot", "/one_DOF_robot/" or "/one_DOF_robot";
+// "" stays "" (no namespace chosen), "/" stays "/".
+std::string normalizeNamespace(std::string_view ns);
+
+// A topic or parameter name made absolute: an absolute name is kept; a
+// relative one is put under `ns` (or "/" when ns is empty).
+std::string resolveName(std::string_view ns, std::string_view name);
+
+// Adds `--namespace NS` (also `-N`) selecting the node by robot namespace.
+CLI::Option* addNamespaceOption(CLI::App& command, std::string& ns);
+
+// "running nodes: /a, /b" or "no servoloop node is running (run directory <dir>)".
+std::string describeRunningNodes();
+
+// Connects to the node for `ns` (normalized), or when `ns` is empty to the only
+// robot node running. Waits up to `wait_s` seconds for such a node to accept
+// (0 with wait == true: forever; wait == false: a single look). Throws
+// servoloop::Error naming the namespace, the running nodes and the fix.
+controller_manager::IpcClient connectToRobotNode(const std::string& ns, double wait_s = 0.0,
+                                                 bool wait = false);
+
+// Connects to the node serving `name` (a topic or parameter, absolute): the
+// --namespace node if `ns` is set, else the longest running namespace that
+// prefixes `name`, else the only robot node (or the world's socket).
+controller_manager::IpcClient connectForName(const std::string& name, const std::string& ns);
+
+// Connects to the world: default.sock if it is served, else the only node.
+controller_manager::IpcClient connectToWorld();
+
+// Installs handlers so SIGINT and SIGTERM set a flag instead of killing the
+// process; stopRequested() reads it. Idempotent.
+void installStopSignalHandlers();
+bool stopRequested();
+// The signal that set the flag (SIGINT/SIGTERM), 0 if none.
+int stopSignal();
+
+// Sleeps up to `seconds`, returning early (false) when a stop was requested.
+bool sleepUnlessStopped(double seconds);
+
+// Absolute path of an existing regular file given on the command line; throws
+// servoloop::Error "<what> '<path>' does not exist" otherwise.
+std::string existingFileArgument(const std::string& path, std::string_view what);
+
+}  // namespace servoloop::cli

@@ -1,0 +1,63 @@
+// `servoloop spawn-model`: gazebo_ros's spawn_model for a running world. Adds a
+// robot from a URDF file to the world served on default.sock (or the only node).
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "command_registry.hpp"
+#include "node_connection.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop::cli {
+namespace {
+
+namespace cm = servoloop::controller_manager;
+
+// Spawning loads the model, its hardware and plugins on the node.
+constexpr double kSpawnCallTimeoutS = 60.0;
+
+struct SpawnModelOptions {
+  std::string urdf;
+  std::string model;
+  std::string ns;
+  std::vector<std::string> params;
+};
+
+void runSpawnModel(const SpawnModelOptions& options) {
+  const std::string urdf = existingFileArgument(options.urdf, "--urdf file");
+  nlohmann::json params = nlohmann::json::array();
+  for (const auto& file : options.params) params.push_back(existingFileArgument(file, "--param file"));
+
+  nlohmann::json request{{"urdf", urdf}, {"model", options.model}};
+  if (!options.ns.empty()) request["namespace"] = normalizeNamespace(options.ns);
+  if (!params.empty()) request["params"] = params;
+
+  cm::IpcClient client = connectToWorld();
+  const auto reply = client.call("model.spawn", request, kSpawnCallTimeoutS);
+  std::cout << "Spawned model '" << options.model << "' in namespace "
+            << reply.value("namespace", normalizeNamespace(options.ns)) << "\n";
+}
+
+void addSpawnModelCommand(CLI::App& root) {
+  auto options = std::make_shared<SpawnModelOptions>();
+  CLI::App* spawn = root.add_subcommand(
+      "spawn-model", "Add a robot from a URDF file to the running world (gazebo_ros spawn_model)");
+  spawn->add_option("--urdf", options->urdf, "URDF file")->required()->type_name("FILE");
+  spawn->add_option("--model", options->model, "Model name")->required()->type_name("NAME");
+  spawn->add_option("-N,--namespace", options->ns,
+                    "Robot namespace (default: the URDF's robotNamespace, else /<model>)")
+      ->type_name("NS");
+  spawn->add_option("--param", options->params,
+                    "YAML parameter file to load before the robot starts (repeatable)")
+      ->type_name("FILE.yaml");
+  spawn->callback([options] { runSpawnModel(*options); });
+}
+
+}  // namespace
+}  // namespace servoloop::cli
+
+SERVOLOOP_CLI_COMMANDS(15, servoloop::cli::addSpawnModelCommand)
