@@ -1,0 +1,274 @@
+#include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "servoloop/hardware_interface/errors.hpp"
+#include "stl_vertices.hpp"
+
+namespace servoloop::sim_mujoco {
+namespace {
+
+// Soft-constraint reference of joint stops and joint friction: MuJoCo's
+// stiffest safe time constant is 2 steps (it clamps smaller values), with
+// critical damping. The impedance 0.95..0.99 leaves a stop pushed by the
+// full effort a few microradians deep (see the limit test).
+constexpr double kStopTimeConstantInSteps = 2.0;
+constexpr const char* kStopImpedance = "0.95 0.99 0.001";
+// Contact and constraint-row capacity per body; MuJoCo 2.2 drops contacts
+// beyond nconmax (with a warning), so leave room for every body on the ground.
+constexpr int kContactsPerBody = 16;
+constexpr int kMinContacts = 100;
+constexpr int kConstraintRowsPerContact = 6;
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", value);
+  return text;
+}
+
+std::string vec3(double x, double y, double z) { return number(x) + " " + number(y) + " " + number(z); }
+
+std::string xmlEscape(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// pos="x y z" quat="w x y z" of a URDF pose.
+std::string poseAttributes(const urdf::Pose& pose) {
+  double w = 1.0, x = 0.0, y = 0.0, z = 0.0;
+  pose.rotation.getQuaternion(x, y, z, w);
+  return "pos=\"" + vec3(pose.position.x, pose.position.y, pose.position.z) + "\" quat=\"" + number(w) + " " +
+         vec3(x, y, z) + "\"";
+}
+
+bool isMovable(const urdf::Joint& joint) {
+  return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
+         joint.type == urdf::Joint::PRISMATIC;
+}
+
+class MjcfWriter {
+ public:
+  MjcfWriter(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
+             const std::map<std::string, double>& joint_armature, const std::string& source_name)
+      : model_(model), settings_(settings), joint_armature_(joint_armature), source_name_(source_name) {}
+
+  std::string write() {
+    const urdf::LinkConstSharedPtr root = model_.getRoot();
+    if (!root) throw ConfigError(source_name_ + ": the robot has no root link");
+    const bool fixed_base = root->name == "world";
+
+    std::ostringstream world;
+    if (settings_.ground_plane) world << "    <geom name=\"servoloop_ground_plane\" type=\"plane\" size=\"0 0 1\"/>\n";
+    if (fixed_base) {
+      for (const auto& child : root->child_links) collectWorldWelded(*child);
+      writeGeoms(*root, world, "    ");
+      for (const auto& child : root->child_links) writeBody(*child, world, 2, /*welded_to_world=*/true);
+    } else {
+      writeBody(*root, world, 2, /*welded_to_world=*/false);
+    }
+
+    const double dt = settings_.time_step_s;
+    const int contacts = std::max(kMinContacts, kContactsPerBody * (body_count_ + 1));
+    std::ostringstream out;
+    out << "<mujoco model=\"" << xmlEscape(model_.getName()) << "\">\n"
+        << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
+        << "  <option timestep=\"" << number(dt) << "\" gravity=\""
+        << vec3(settings_.gravity.x(), settings_.gravity.y(), settings_.gravity.z())
+        << "\" integrator=\"RK4\"/>\n"
+        << "  <size nconmax=\"" << contacts << "\" njmax=\""
+        << contacts * kConstraintRowsPerContact + 2 * movable_joint_count_ << "\"/>\n"
+        << "  <default>\n"
+        << "    <joint solreflimit=\"" << number(kStopTimeConstantInSteps * dt) << " 1\" solimplimit=\""
+        << kStopImpedance << "\" solreffriction=\"" << number(kStopTimeConstantInSteps * dt)
+        << " 1\" solimpfriction=\"" << kStopImpedance << "\"/>\n"
+        << "  </default>\n";
+    if (!assets_.str().empty()) out << "  <asset>\n" << assets_.str() << "  </asset>\n";
+    out << "  <worldbody>\n" << world.str() << "  </worldbody>\n";
+    if (!excludes_.str().empty()) out << "  <contact>\n" << excludes_.str() << "  </contact>\n";
+    out << "</mujoco>\n";
+    return out.str();
+  }
+
+ private:
+  // `welded_to_world`: the link's parent body is the world or welded to it.
+  void writeBody(const urdf::Link& link, std::ostringstream& out, int depth, bool welded_to_world) {
+    const std::string indent(2 * depth, ' ');
+    const urdf::JointSharedPtr& joint = link.parent_joint;
+    ++body_count_;
+    out << indent << "<body name=\"" << xmlEscape(link.name) << "\"";
+    if (joint) out << " " << poseAttributes(joint->parent_to_joint_origin_transform);
+    out << ">\n";
+
+    bool moves = false;
+    if (!joint) {
+      out << indent << "  <freejoint name=\"" << xmlEscape(link.name) << "_floating_base\"/>\n";
+      moves = true;
+    } else if (isMovable(*joint)) {
+      writeJoint(*joint, out, indent + "  ");
+      moves = true;
+      // MuJoCo does not filter a child from a parent welded to the world; the
+      // links welded to the world form one rigid base, as in the bullet backend.
+      if (welded_to_world) {
+        for (const std::string& static_link : world_welded_links_) {
+          excludes_ << "    <exclude body1=\"" << xmlEscape(static_link) << "\" body2=\"" << xmlEscape(link.name)
+                    << "\"/>\n";
+        }
+      }
+    } else if (joint->type != urdf::Joint::FIXED) {
+      throw ConfigError(source_name_ + ": joint '" + joint->name +
+                        "' is floating or planar; servoloop simulates revolute, continuous, prismatic and "
+                        "fixed joints only (make the link the root for a floating base)");
+    }
+    writeInertial(link, out, indent + "  ");
+    writeGeoms(link, out, indent + "  ");
+
+    const bool children_welded_to_world = welded_to_world && !moves;
+    for (const auto& child : link.child_links) writeBody(*child, out, depth + 1, children_welded_to_world);
+    out << indent << "</body>\n";
+  }
+
+  // The links attached to the world link through fixed joints only.
+  void collectWorldWelded(const urdf::Link& link) {
+    if (!link.parent_joint || link.parent_joint->type != urdf::Joint::FIXED) return;
+    world_welded_links_.push_back(link.name);
+    for (const auto& child : link.child_links) collectWorldWelded(*child);
+  }
+
+  void writeJoint(const urdf::Joint& joint, std::ostringstream& out, const std::string& indent) {
+    ++movable_joint_count_;
+    const bool prismatic = joint.type == urdf::Joint::PRISMATIC;
+    out << indent << "<joint name=\"" << xmlEscape(joint.name) << "\" type=\"" << (prismatic ? "slide" : "hinge")
+        << "\" pos=\"0 0 0\" axis=\"" << vec3(joint.axis.x, joint.axis.y, joint.axis.z) << "\"";
+    const bool limited = joint.type != urdf::Joint::CONTINUOUS && joint.limits &&
+                         std::isfinite(joint.limits->lower) && std::isfinite(joint.limits->upper) &&
+                         joint.limits->lower < joint.limits->upper;
+    if (limited) {
+      out << " limited=\"true\" range=\"" << number(joint.limits->lower) << " " << number(joint.limits->upper) << "\"";
+    } else {
+      out << " limited=\"false\"";
+    }
+    if (joint.dynamics) {
+      out << " damping=\"" << number(joint.dynamics->damping) << "\" frictionloss=\""
+          << number(joint.dynamics->friction) << "\"";
+    }
+    const auto armature = joint_armature_.find(joint.name);
+    if (armature != joint_armature_.end() && armature->second > 0.0) {
+      out << " armature=\"" << number(armature->second) << "\"";
+    }
+    out << "/>\n";
+  }
+
+  static void writeInertial(const urdf::Link& link, std::ostringstream& out, const std::string& indent) {
+    if (!link.inertial || !(link.inertial->mass > 0.0)) return;
+    const urdf::Inertial& inertial = *link.inertial;
+    Eigen::Matrix3d inertia;
+    inertia << inertial.ixx, inertial.ixy, inertial.ixz,  //
+        inertial.ixy, inertial.iyy, inertial.iyz,          //
+        inertial.ixz, inertial.iyz, inertial.izz;
+    double w = 1.0, x = 0.0, y = 0.0, z = 0.0;
+    inertial.origin.rotation.getQuaternion(x, y, z, w);
+    // The tensor is given in the <inertial><origin> frame; MuJoCo wants it in
+    // the body (link) frame when fullinertia is used: R I Rᵀ.
+    const Eigen::Matrix3d rotation = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
+    const Eigen::Matrix3d in_link = rotation * inertia * rotation.transpose();
+    const urdf::Vector3& com = inertial.origin.position;
+    out << indent << "<inertial pos=\"" << vec3(com.x, com.y, com.z) << "\" mass=\"" << number(inertial.mass)
+        << "\" fullinertia=\"" << vec3(in_link(0, 0), in_link(1, 1), in_link(2, 2)) << " "
+        << vec3(in_link(0, 1), in_link(0, 2), in_link(1, 2)) << "\"/>\n";
+  }
+
+  void writeGeoms(const urdf::Link& link, std::ostringstream& out, const std::string& indent) {
+    std::vector<urdf::CollisionSharedPtr> collisions = link.collision_array;
+    if (collisions.empty() && link.collision) collisions.push_back(link.collision);
+    for (const auto& collision : collisions) {
+      if (!collision || !collision->geometry) continue;
+      const urdf::Geometry& geometry = *collision->geometry;
+      const std::string pose = poseAttributes(collision->origin);
+      switch (geometry.type) {
+        case urdf::Geometry::BOX: {
+          const auto& box = static_cast<const urdf::Box&>(geometry);
+          out << indent << "<geom type=\"box\" " << pose << " size=\""
+              << vec3(box.dim.x / 2, box.dim.y / 2, box.dim.z / 2) << "\"/>\n";
+          break;
+        }
+        case urdf::Geometry::CYLINDER: {  // both along the local z axis
+          const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+          out << indent << "<geom type=\"cylinder\" " << pose << " size=\"" << number(cylinder.radius) << " "
+              << number(cylinder.length / 2) << "\"/>\n";
+          break;
+        }
+        case urdf::Geometry::SPHERE:
+          out << indent << "<geom type=\"sphere\" " << pose << " size=\""
+              << number(static_cast<const urdf::Sphere&>(geometry).radius) << "\"/>\n";
+          break;
+        case urdf::Geometry::MESH:
+          out << indent << "<geom type=\"mesh\" mesh=\"" << addMesh(link, static_cast<const urdf::Mesh&>(geometry))
+              << "\" " << pose << "/>\n";
+          break;
+        default:
+          break;
+      }
+    }
+  }
+
+  std::string addMesh(const urdf::Link& link, const urdf::Mesh& mesh) {
+    std::string extension = mesh.filename.size() >= 4 ? mesh.filename.substr(mesh.filename.size() - 4) : "";
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension != ".stl") {
+      throw ConfigError(source_name_ + ": link '" + link.name + "' <collision> mesh '" + mesh.filename +
+                        "': the mujoco backend collides with STL meshes only; convert it to STL");
+    }
+    std::vector<std::array<double, 3>> vertices;
+    try {
+      vertices = detail::readStlVertices(mesh.filename);
+    } catch (const ConfigError& error) {
+      throw ConfigError(source_name_ + ": link '" + link.name + "' <collision> mesh: " + error.what());
+    }
+    const std::string name = "servoloop_mesh_" + std::to_string(mesh_count_++);
+    assets_ << "    <mesh name=\"" << name << "\" scale=\"" << vec3(mesh.scale.x, mesh.scale.y, mesh.scale.z)
+            << "\" vertex=\"";
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+      assets_ << (i == 0 ? "" : " ") << vec3(vertices[i][0], vertices[i][1], vertices[i][2]);
+    }
+    assets_ << "\"/>\n";
+    return name;
+  }
+
+  const urdf::ModelInterface& model_;
+  const sim_common::SimSettings& settings_;
+  const std::map<std::string, double>& joint_armature_;
+  const std::string& source_name_;
+  std::ostringstream assets_;
+  std::ostringstream excludes_;
+  std::vector<std::string> world_welded_links_;  // (not the world link itself: it is <worldbody>)
+  int body_count_ = 0;
+  int movable_joint_count_ = 0;
+  int mesh_count_ = 0;
+};
+
+}  // namespace
+
+std::string mjcfFromUrdf(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
+                         const std::map<std::string, double>& joint_armature, const std::string& source_name) {
+  return MjcfWriter(model, settings, joint_armature, source_name).write();
+}
+
+}  // namespace servoloop::sim_mujoco

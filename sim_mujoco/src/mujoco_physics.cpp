@@ -1,0 +1,228 @@
+#include "servoloop/sim_mujoco/mujoco_physics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+
+#include <mujoco/mujoco.h>
+
+#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
+
+namespace servoloop::sim_mujoco {
+namespace {
+
+using sim_common::JointCommandMode;
+
+constexpr const char* kModelFileName = "servoloop_model.xml";
+// Projected Gauss-Seidel sweeps for several coupled motors (one motor is
+// solved exactly in one sweep); stops early once the efforts settle.
+constexpr int kMotorSolverSweeps = 50;
+constexpr double kMotorSolverTolerance = 1e-12;
+
+// Compiles MJCF text from memory: one file in a virtual file system (which is
+// ~2 MB, hence on the heap).
+mjModel* compileMjcf(const std::string& mjcf, const std::string& source_name) {
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), kModelFileName, static_cast<int>(mjcf.size())) != 0) {
+    throw Error(source_name + ": could not create MuJoCo's in-memory model file");
+  }
+  const int file = mj_findFileVFS(vfs.get(), kModelFileName);
+  std::memcpy(vfs->filedata[file], mjcf.data(), mjcf.size());
+  char error[1024] = "";
+  mjModel* model = mj_loadXML(kModelFileName, vfs.get(), error, sizeof(error));
+  mj_deleteVFS(vfs.get());
+  if (model == nullptr) {
+    throw ConfigError(source_name + ": MuJoCo refused the model generated from the URDF: " + error +
+                      " (check the link's <inertial>: MuJoCo needs principal moments with A + B >= C)");
+  }
+  return model;
+}
+
+}  // namespace
+
+void MujocoPhysics::ModelDeleter::operator()(mjModel_* model) const noexcept { mj_deleteModel(model); }
+void MujocoPhysics::DataDeleter::operator()(mjData_* data) const noexcept { mj_deleteData(data); }
+
+MujocoPhysics::MujocoPhysics() = default;
+MujocoPhysics::~MujocoPhysics() = default;
+
+void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
+                         const std::vector<sim_common::EngineJointConfig>& joints, const std::string& source_name) {
+  std::map<std::string, double> armature;
+  for (const auto& joint : joints) armature[joint.name] = joint.reflected_rotor_inertia;
+  mjcf_ = mjcfFromUrdf(model, settings, armature, source_name);
+  data_.reset();
+  model_.reset(compileMjcf(mjcf_, source_name));
+  data_.reset(mj_makeData(model_.get()));
+  if (!data_) throw Error(source_name + ": MuJoCo could not allocate its simulation data");
+
+  const mjModel& m = *model_;
+  joints_.clear();
+  initial_positions_.clear();
+  for (const auto& config : joints) {
+    const int id = mj_name2id(&m, mjOBJ_JOINT, config.name.c_str());
+    if (id < 0 || (m.jnt_type[id] != mjJNT_HINGE && m.jnt_type[id] != mjJNT_SLIDE)) {
+      throw ConfigError(source_name + ": joint '" + config.name +
+                        "' is not a revolute, continuous or prismatic joint of the robot");
+    }
+    Joint joint;
+    joint.qpos_address = m.jnt_qposadr[id];
+    joint.dof_address = m.jnt_dofadr[id];
+    joint.motor_effort_limit = config.motor_effort_limit > 0.0 ? config.motor_effort_limit
+                                                               : std::numeric_limits<double>::infinity();
+    joints_.push_back(joint);
+    initial_positions_.push_back(config.initial_position);
+  }
+  position_motor_time_constant_s_ = std::max(kPositionMotorTimeConstant_s, settings.time_step_s);
+
+  const std::size_t count = joints_.size();
+  const std::size_t nv = static_cast<std::size_t>(m.nv);
+  motor_joints_.assign(count, 0);
+  unit_forces_.assign(count * nv, 0.0);
+  inverse_inertia_.assign(count * nv, 0.0);
+  wanted_accel_.assign(count, 0.0);
+  motor_efforts_.assign(count, 0.0);
+  reset();
+}
+
+void MujocoPhysics::placeAtInitialPositions() {
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    data_->qpos[joints_[j].qpos_address] = initial_positions_[j];
+    data_->qvel[joints_[j].dof_address] = 0.0;
+  }
+  mj_forward(model_.get(), data_.get());
+}
+
+double MujocoPhysics::jointPosition(std::size_t joint) const noexcept {
+  return data_->qpos[joints_[joint].qpos_address];
+}
+
+double MujocoPhysics::jointVelocity(std::size_t joint) const noexcept {
+  return data_->qvel[joints_[joint].dof_address];
+}
+
+void MujocoPhysics::setJointEffort(std::size_t joint, double effort) noexcept {
+  joints_[joint].mode = JointCommandMode::effort;
+  joints_[joint].command = effort;
+}
+
+void MujocoPhysics::setJointVelocityTarget(std::size_t joint, double velocity) noexcept {
+  joints_[joint].mode = JointCommandMode::velocity;
+  joints_[joint].command = velocity;
+}
+
+void MujocoPhysics::setJointPositionTarget(std::size_t joint, double position) noexcept {
+  joints_[joint].mode = JointCommandMode::position;
+  joints_[joint].command = position;
+}
+
+void MujocoPhysics::step() noexcept {
+  mjData& d = *data_;
+  // Efforts for this step; the motors' are solved below.
+  std::size_t motors = 0;
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    Joint& joint = joints_[j];
+    const bool motor = joint.mode == JointCommandMode::velocity || joint.mode == JointCommandMode::position;
+    joint.applied_effort = motor ? 0.0 : joint.command;
+    d.qfrc_applied[joint.dof_address] = joint.applied_effort;
+    if (motor) motor_joints_[motors++] = j;
+  }
+  if (motors > 0) solveMotorEfforts(motors);
+
+  mj_step(model_.get(), &d);
+
+  // An effort acts for one step only.
+  for (Joint& joint : joints_) {
+    if (joint.mode == JointCommandMode::effort || joint.mode == JointCommandMode::none) joint.command = 0.0;
+  }
+}
+
+// The motor efforts u (one per motor-driven joint) that give each motor its
+// wanted velocity at the end of the step, v + dt·(a_free + M⁻¹u) = v_wanted,
+// with |u| within each motor's bound. a_free is the acceleration of every
+// other force (gravity, Coriolis, damping, stops, contacts, effort
+// commands) at the start of the step.
+void MujocoPhysics::solveMotorEfforts(std::size_t motors) noexcept {
+  const mjModel& m = *model_;
+  mjData& d = *data_;
+  const std::size_t nv = static_cast<std::size_t>(m.nv);
+  const double dt = m.opt.timestep;
+
+  // a_free, and the mass matrix factorised (with armature), at the current state.
+  mj_forward(&m, &d);
+  // Columns of M⁻¹ for the motor dofs: M x_k = e_k.
+  std::fill(unit_forces_.begin(), unit_forces_.begin() + static_cast<std::ptrdiff_t>(motors * nv), 0.0);
+  for (std::size_t k = 0; k < motors; ++k) {
+    unit_forces_[k * nv + static_cast<std::size_t>(joints_[motor_joints_[k]].dof_address)] = 1.0;
+  }
+  mj_solveM(&m, &d, inverse_inertia_.data(), unit_forces_.data(), static_cast<int>(motors));
+  const auto inverse_inertia = [&](std::size_t row, std::size_t column) {  // M⁻¹ between two motors
+    return inverse_inertia_[column * nv + static_cast<std::size_t>(joints_[motor_joints_[row]].dof_address)];
+  };
+
+  for (std::size_t k = 0; k < motors; ++k) {
+    const Joint& joint = joints_[motor_joints_[k]];
+    const double velocity = d.qvel[joint.dof_address];
+    const double wanted_velocity = joint.mode == JointCommandMode::velocity
+                                       ? joint.command
+                                       : (joint.command - d.qpos[joint.qpos_address]) / position_motor_time_constant_s_;
+    // The extra acceleration the motor must add to what the other forces give.
+    wanted_accel_[k] = (wanted_velocity - velocity) / dt - d.qacc[joint.dof_address];
+    motor_efforts_[k] = 0.0;
+  }
+  // Projected Gauss-Seidel on M⁻¹_SS u = wanted, |u_k| <= bound_k: exact in
+  // one sweep for a single motor, converging for several (M⁻¹_SS is positive definite).
+  for (int sweep = 0; sweep < kMotorSolverSweeps; ++sweep) {
+    double largest_change = 0.0;
+    double largest_effort = 0.0;
+    for (std::size_t k = 0; k < motors; ++k) {
+      double accel = 0.0;
+      for (std::size_t i = 0; i < motors; ++i) accel += inverse_inertia(k, i) * motor_efforts_[i];
+      const double bound = joints_[motor_joints_[k]].motor_effort_limit;
+      const double updated =
+          std::clamp(motor_efforts_[k] + (wanted_accel_[k] - accel) / inverse_inertia(k, k), -bound, bound);
+      largest_change = std::max(largest_change, std::abs(updated - motor_efforts_[k]));
+      motor_efforts_[k] = updated;
+      largest_effort = std::max(largest_effort, std::abs(updated));
+    }
+    if (motors == 1 || largest_change <= kMotorSolverTolerance * (1.0 + largest_effort)) break;
+  }
+  for (std::size_t k = 0; k < motors; ++k) {
+    Joint& joint = joints_[motor_joints_[k]];
+    joint.applied_effort = motor_efforts_[k];
+    d.qfrc_applied[joint.dof_address] = motor_efforts_[k];
+  }
+}
+
+void MujocoPhysics::reset() {
+  mj_resetData(model_.get(), data_.get());
+  for (Joint& joint : joints_) {
+    joint.mode = JointCommandMode::effort;
+    joint.command = 0.0;
+    joint.applied_effort = 0.0;
+  }
+  placeAtInitialPositions();
+}
+
+void MujocoPhysics::setJointState(std::size_t joint, double position, double velocity) {
+  data_->qpos[joints_.at(joint).qpos_address] = position;
+  data_->qvel[joints_.at(joint).dof_address] = velocity;
+  mj_forward(model_.get(), data_.get());
+}
+
+std::array<double, 3> MujocoPhysics::linkWorldPosition(const std::string& link_name) const {
+  const int body = link_name == "world" ? 0 : mj_name2id(model_.get(), mjOBJ_BODY, link_name.c_str());
+  if (body < 0) throw Error("MuJoCo world: no link '" + link_name + "' in the robot");
+  const mjtNum* position = data_->xpos + 3 * body;
+  return {position[0], position[1], position[2]};
+}
+
+int MujocoPhysics::contactCount() const noexcept { return data_ ? data_->ncon : 0; }
+
+double MujocoPhysics::time() const noexcept { return data_ ? data_->time : 0.0; }
+
+}  // namespace servoloop::sim_mujoco
