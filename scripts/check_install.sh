@@ -1,0 +1,182 @@
+#!/usr/bin/env bash
+# Checks that servoloop works as an installed package, the way a user who
+# writes a controller out of tree uses it:
+#   1. installs BUILD_DIR into a fresh temporary prefix (cmake --install);
+#   2. configures and builds examples/custom_controller against that prefix
+#      only (find_package(servoloop), Ninja), with its gtest;
+#   3. checks `<prefix>/bin/servoloop control list-types --json`: the installed
+#      plugins are found with no environment variable, the example's type is
+#      found through SERVOLOOP_PLUGIN_PATH, and again after it is installed
+#      into the package's plugin folder;
+#   4. runs the example's gtest (plugin loader + test RobotHW + hand-computed efforts).
+# Usage: scripts/check_install.sh BUILD_DIR   (BUILD_DIR fully built first)
+# Exits non-zero with a message saying what failed. Set CHECK_INSTALL_KEEP=1
+# to keep the temporary folder for inspection.
+set -euo pipefail
+
+fail() {
+  echo "check_install: FAILED: $*" >&2
+  exit 1
+}
+step() { echo "== check_install: $*"; }
+# Prints the last lines of a log file to stderr (for a failed step).
+show_log() { echo "--- last lines of $1:" >&2; tail -n 40 "$1" >&2; }
+
+[[ $# -eq 1 ]] || fail "usage: $0 BUILD_DIR (a configured and fully built servoloop build folder)"
+[[ -f "$1/CMakeCache.txt" ]] || fail "'$1' is not a CMake build folder (no CMakeCache.txt)"
+build_dir=$(cd "$1" && pwd)
+source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+example_source=$source_dir/examples/custom_controller
+example_type=my_controllers/GravityCompensatedPD
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/servoloop-check-install.XXXXXX")
+if [[ "${CHECK_INSTALL_KEEP:-0}" == 1 ]]; then
+  echo "check_install: keeping $work"
+else
+  trap 'rm -rf "$work"' EXIT
+fi
+prefix=$work/prefix
+example_build=$work/example-build
+
+cache_value() { sed -n "s/^$1:[A-Z]*=//p" "$build_dir/CMakeCache.txt"; }
+
+# --- 1. install ---------------------------------------------------------------------
+step "installing $build_dir into a temporary prefix"
+if ! cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" 2>&1; then
+  show_log "$work/install.log"
+  fail "cmake --install $build_dir failed; build it completely first (cmake --build $build_dir)"
+fi
+servoloop_exe=$prefix/bin/servoloop
+[[ -x "$servoloop_exe" ]] || fail "the install has no bin/servoloop"
+config=$(find "$prefix" -name servoloopConfig.cmake -print -quit)
+[[ -n "$config" ]] || fail "the install has no servoloopConfig.cmake (find_package(servoloop) cannot work)"
+for header in controller_manager/controller.hpp controller_manager/plugin_register.hpp \
+              controller_manager/plugin_loader.hpp controller_manager/topic_bus.hpp \
+              hardware_interface/robot_hw.hpp; do
+  [[ -f "$prefix/include/servoloop/$header" ]] || fail "the install lacks the header include/servoloop/$header"
+done
+libdir=$(cache_value CMAKE_INSTALL_LIBDIR)
+installed_plugin_dir=$prefix/${libdir:-lib}/servoloop/plugins
+
+# Every servoloop library the installed binaries and plugins load must come from
+# the prefix itself (RUNPATH), not from the build folder.
+check_runpath() {
+  local binary=$1 line
+  while IFS= read -r line; do
+    [[ "$line" == *"not found"* ]] && fail "$binary: a library is not found: $line"
+    if [[ "$line" == *libservoloop_* && "$line" != *"=> $prefix/"* ]]; then
+      fail "$binary loads a servoloop library from outside the install: $line (check CMAKE_INSTALL_RPATH)"
+    fi
+  done < <(env -u LD_LIBRARY_PATH ldd "$binary")
+}
+check_runpath "$servoloop_exe"
+shopt -s nullglob
+installed_plugins=("$installed_plugin_dir"/*.so)
+shopt -u nullglob
+for plugin in "${installed_plugins[@]}"; do check_runpath "$plugin"; done
+echo "installed: ${#installed_plugins[@]} plugin libraries in ${installed_plugin_dir#"$prefix"/}"
+
+# --- 2. build the example against the prefix -----------------------------------------
+# A sanitized servoloop can only be linked into sanitized programs: build the
+# example the same way.
+cmake_args=(-G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DMY_CONTROLLERS_BUILD_TESTS=ON
+            -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+build_type=$(cache_value CMAKE_BUILD_TYPE)
+[[ -n "$build_type" ]] && cmake_args+=(-DCMAKE_BUILD_TYPE="$build_type")
+if [[ "$(cache_value SERVOLOOP_SANITIZE)" == ON ]]; then
+  sanitize="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+  cmake_args+=(-DCMAKE_CXX_FLAGS="$sanitize" -DCMAKE_EXE_LINKER_FLAGS="$sanitize"
+               -DCMAKE_MODULE_LINKER_FLAGS="$sanitize")
+fi
+step "configuring examples/custom_controller with find_package(servoloop) from the prefix"
+if ! cmake -S "$example_source" -B "$example_build" "${cmake_args[@]}" >"$work/configure.log" 2>&1; then
+  show_log "$work/configure.log"
+  fail "configuring the example against the installed package failed (see above)"
+fi
+found_dir=$(sed -n 's/^servoloop_DIR:PATH=//p' "$example_build/CMakeCache.txt")
+[[ "$found_dir" == "$prefix"/* ]] || fail "the example found servoloop in '$found_dir', not in the install"
+step "building the example"
+if ! cmake --build "$example_build" --parallel 2 >"$work/build.log" 2>&1; then
+  show_log "$work/build.log"
+  fail "building the example against the installed package failed (see above)"
+fi
+example_library=$example_build/libmy_controllers.so
+[[ -f "$example_library" ]] || fail "the example build made no libmy_controllers.so"
+
+# --- 3. list-types -------------------------------------------------------------------
+# list_types <label> <env...>: runs list-types --json with the given environment
+# changes; the JSON goes to $work/<label>.json.
+list_types() {
+  local label=$1
+  shift
+  if ! env "$@" "$servoloop_exe" control list-types --json >"$work/$label.json" 2>"$work/$label.err"; then
+    show_log "$work/$label.err"
+    fail "servoloop control list-types --json ($label) failed"
+  fi
+}
+# check_types <label> <example library or ""> : the installed plugins each
+# provide a type; the example type comes from that library (or is absent).
+check_types() {
+  python3 - "$work/$1.json" "$1" "$2" "$example_type" "$build_dir" \
+    "${installed_plugins[@]}" <<'PY'
+import json, os, sys
+path, label, example_library, example_type, build_dir, *installed = sys.argv[1:]
+problems = []
+try:
+    types = json.load(open(path))
+except ValueError as error:
+    sys.exit(f"list-types ({label}) printed no valid JSON: {error}")
+by_library = {}
+for entry in types:
+    by_library.setdefault(os.path.realpath(entry["library"]), []).append(entry["type"])
+    if os.path.realpath(entry["library"]).startswith(build_dir + os.sep):
+        problems.append(f"type {entry['type']} comes from the build folder: {entry['library']}")
+for library in installed:
+    if not by_library.get(os.path.realpath(library)):
+        problems.append(f"installed plugin {os.path.basename(library)} provides no type "
+                        f"(it failed to load: see the warnings above)")
+found = [e for e in types if e["type"] == example_type]
+if example_library:
+    if not found:
+        problems.append(f"{example_type} is not listed (expected from {example_library})")
+    elif os.path.realpath(found[0]["library"]) != os.path.realpath(example_library):
+        problems.append(f"{example_type} comes from {found[0]['library']}, expected {example_library}")
+    elif found[0]["kind"] != "controller":
+        problems.append(f"{example_type} has kind {found[0]['kind']}, expected controller")
+elif found:
+    problems.append(f"{example_type} is listed although nothing puts it on the path: {found[0]['library']}")
+if problems:
+    sys.exit(f"list-types ({label}):\n  " + "\n  ".join(problems))
+print(f"list-types ({label}): {len(types)} types, " +
+      (f"{example_type} from {example_library}"
+       if example_library else f"{example_type} absent as expected"))
+PY
+}
+step "servoloop control list-types --json, installed plugins only (no SERVOLOOP_PLUGIN_PATH)"
+list_types no_path -u SERVOLOOP_PLUGIN_PATH
+check_types no_path "" || { cat "$work/no_path.err" >&2; fail "see above"; }
+step "servoloop control list-types --json with SERVOLOOP_PLUGIN_PATH=<example build folder>"
+list_types plugin_path SERVOLOOP_PLUGIN_PATH="$example_build"
+check_types plugin_path "$example_library" || { cat "$work/plugin_path.err" >&2; fail "see above"; }
+
+# --- 4. the example's gtest ------------------------------------------------------------
+step "running the example's gtest (plugin loader, test RobotHW, hand-computed efforts)"
+if ! env -u SERVOLOOP_PLUGIN_PATH "$example_build/my_controllers_test" >"$work/gtest.log" 2>&1; then
+  show_log "$work/gtest.log"
+  fail "the example's gtest failed (see above)"
+fi
+grep -E '^\[  PASSED  \]' "$work/gtest.log" || fail "the example's gtest ran no test"
+
+# --- 5. install the example next to the installed plugins --------------------------------
+step "installing the example into the package's plugin folder"
+if ! cmake --install "$example_build" >"$work/example-install.log" 2>&1; then
+  show_log "$work/example-install.log"
+  fail "cmake --install of the example failed"
+fi
+[[ -f "$installed_plugin_dir/libmy_controllers.so" ]] ||
+  fail "the example did not install to \${SERVOLOOP_PLUGIN_DIR} ($installed_plugin_dir)"
+list_types installed_example -u SERVOLOOP_PLUGIN_PATH
+check_types installed_example "$installed_plugin_dir/libmy_controllers.so" ||
+  { cat "$work/installed_example.err" >&2; fail "see above"; }
+
+step "OK: servoloop installs, builds an out-of-tree controller and loads it"
