@@ -1,0 +1,36 @@
+#pragma once
+// The ControllerFactory of a running node: controllers come from plugin
+// libraries (kind "controller") found by a PluginLoader. Non-real-time.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "servoloop/controller_manager/controller_factory.hpp"
+#include "servoloop/controller_manager/plugin_loader.hpp"
+
+namespace servoloop::controller_manager::node {
+
+class PluginControllerFactory final : public ControllerFactory {
+ public:
+  // loader must not be null; it is shared with whoever else creates plugins
+  // (the node's backends) and kept alive by every controller made here.
+  explicit PluginControllerFactory(std::shared_ptr<PluginLoader> loader);
+
+  // A new controller of a registered controller type; nullptr when no library
+  // on the plugin path provides `type` as a controller. Throws servoloop::Error
+  // when the type exists under another kind or its constructor throws.
+  ControllerPtr create(const std::string& type) override;
+  // Every controller type on the plugin path, sorted.
+  std::vector<std::string> types() override;
+  // Rescans the plugin path (PluginLoader::reload); the manager calls it once
+  // no controller of it is loaded. Throws servoloop::Error while other objects
+  // from the loader are alive and they would be affected.
+  void reloadLibraries() override;
+
+  PluginLoader& loader() { return *loader_; }
+
+ private:
+  std::shared_ptr<PluginLoader> loader_;
+};
+
+}  // namespace servoloop::controller_manager::node

@@ -1,0 +1,37 @@
+#include "servoloop/controller_manager/node/plugin_controller_factory.hpp"
+
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace servoloop::controller_manager::node {
+
+PluginControllerFactory::PluginControllerFactory(std::shared_ptr<PluginLoader> loader)
+    : loader_(std::move(loader)) {
+  if (!loader_) throw Error("PluginControllerFactory: the plugin loader must not be null");
+}
+
+ControllerPtr PluginControllerFactory::create(const std::string& type) {
+  bool known_controller = false;
+  for (const PluginTypeInfo& info : loader_->listTypes(ControllerBase::kPluginKind)) {
+    known_controller |= (info.type == type);
+  }
+  if (!known_controller) return ControllerPtr();
+  PluginPtr<ControllerBase> created = loader_->create<ControllerBase>(type);
+  // The plugin's deleter (its library's delete, then the library reference)
+  // travels with the controller.
+  PluginDeleter deleter = created.get_deleter();
+  return ControllerPtr(created.release(), [deleter](ControllerBase* controller) { deleter(controller); });
+}
+
+std::vector<std::string> PluginControllerFactory::types() {
+  std::vector<std::string> names;
+  for (const PluginTypeInfo& info : loader_->listTypes(ControllerBase::kPluginKind)) names.push_back(info.type);
+  return names;
+}
+
+void PluginControllerFactory::reloadLibraries() {
+  // Backends made by the same loader stay alive while the node runs: force
+  // keeps their libraries mapped and rescans everything else.
+  loader_->reload(/*force=*/true);
+}
+
+}  // namespace servoloop::controller_manager::node

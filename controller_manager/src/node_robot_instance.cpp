@@ -1,0 +1,283 @@
+// One robot of a node: backend, bus, manager, loop and the loop's thread.
+#include "servoloop/controller_manager/node/robot_instance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "servoloop/controller_manager/node/robot_namespace.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/hardware_interface/joint_interfaces.hpp"
+#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/hardware_interface/robot_model.hpp"
+
+namespace servoloop::controller_manager::node {
+namespace {
+
+// Simulated time between two bus flushes of a free-running loop.
+constexpr double kFreeRunningFlushInterval_s = 0.01;
+
+std::string readTextFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(fmt::format("URDF file '{}' cannot be read; check the path", path.string()));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Writes one world setting to the robot's sim/ parameters, where the backend
+// reads it, warning when a parameter file said otherwise.
+template <class T>
+void setWorldParameter(ParameterStore& store, const std::string& name, const T& value, bool differs_from_file) {
+  if (store.has(name) && differs_from_file) {
+    logger().warn("parameter '{}' ({}) is replaced by the launch file's world setting", name, store.sourceOf(name));
+  }
+  store.set(name, value);
+}
+
+void writeWorldSettings(ParameterStore& store, const std::string& ns, const WorldSettings& world) {
+  const std::string sim = resolveName(ns, "sim");
+  const std::string time_step = sim + "/time_step";
+  const std::string gravity = sim + "/gravity";
+  const std::string ground_plane = sim + "/ground_plane";
+  setWorldParameter(store, time_step, world.time_step_s,
+                    store.get<double>(time_step, world.time_step_s) != world.time_step_s);
+  const std::vector<double> gravity_value(world.gravity.begin(), world.gravity.end());
+  setWorldParameter(store, gravity, gravity_value, store.get<std::vector<double>>(gravity, gravity_value) != gravity_value);
+  setWorldParameter(store, ground_plane, world.ground_plane,
+                    store.get<bool>(ground_plane, world.ground_plane) != world.ground_plane);
+}
+
+}  // namespace
+
+RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
+    : urdf_path_(spec.urdf), backend_name_(world.world.backend), real_time_factor_(world.real_time_factor) {
+  if (!world.plugins || world.parameters == nullptr) {
+    throw Error("RobotInstance: the world's plugin loader and parameter store must be set");
+  }
+  ParameterStore& store = *world.parameters;
+
+  // Robot description and namespace.
+  const std::string xml = readTextFile(spec.urdf);
+  model_ = parseRobotModel(xml, spec.urdf.string());
+  robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
+  namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);
+  writeWorldSettings(store, namespace_, world.world);
+
+  // The simulated hardware, from its backend plugin.
+  try {
+    backend_ = world.plugins->create<hardware_interface::RobotHW>(backend_name_);
+  } catch (const Error& e) {
+    throw ConfigError(fmt::format("backend '{}': {}; choose another with --backend or world.backend", backend_name_, e.what()));
+  }
+  sim_hw_ = dynamic_cast<hardware_interface::SimulatedRobotHW*>(backend_.get());
+  if (sim_hw_ == nullptr) {
+    throw ConfigError(fmt::format(
+        "backend '{}' is a robot_hw plugin but not a simulator (it does not implement SimulatedRobotHW); "
+        "`servoloop launch` needs a simulation backend such as bullet or mock",
+        backend_name_));
+  }
+  hardware_interface::HardwareInfo info;
+  info.urdf_xml = xml;
+  info.urdf_path = spec.urdf.string();
+  info.robot_namespace = namespace_;
+  if (store.has(namespace_)) info.parameters = store.node(namespace_);
+  sim_hw_->init(info);
+
+  // Topics, controllers and the loop.
+  bus_ = std::make_unique<TopicBus>();
+  bus_->start();
+  ControllerContext context;
+  context.robot_namespace = namespace_;
+  context.topics = bus_.get();
+  context.parameters = &store;
+  context.robot_model = model_;
+  const double update_rate_hz =
+      world.update_rate_hz > 0.0 ? world.update_rate_hz : 1.0 / sim_hw_->timeStep().seconds;
+  ParameterStore* store_ptr = &store;
+  const std::string ns = namespace_;
+  auto lookup = [store_ptr, ns](const std::string& controller) {
+    const std::string name = resolveName(ns, controller);
+    return store_ptr->has(name) ? store_ptr->node(name) : YAML::Node();
+  };
+  manager_ = std::make_unique<ControllerManager>(
+      sim_hw_, std::make_shared<PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
+
+  SimulationLoop::Options options;
+  options.topic_bus = bus_.get();
+  options.real_time_factor = real_time_factor_;
+  try {
+    loop_ = std::make_unique<SimulationLoop>(*sim_hw_, *manager_, options);
+  } catch (const ConfigError& e) {
+    throw ConfigError(fmt::format("robot '{}': controller_manager.update_rate {} Hz with world.time_step {} s: {}",
+                                  namespace_, update_rate_hz, sim_hw_->timeStep().seconds, e.what()));
+  }
+  loadControllers(spec);
+}
+
+RobotInstance::~RobotInstance() {
+  stop();
+  try {
+    shutdownControllers();
+  } catch (const std::exception& e) {
+    logger().error("robot '{}': shutting down its controllers failed: {}", namespace_, e.what());
+  }
+  loop_.reset();
+  manager_.reset();
+  if (bus_) bus_->stop();
+}
+
+void RobotInstance::loadControllers(const RobotSpec& spec) {
+  std::vector<std::string> to_start;
+  for (const std::string& name : spec.controllers) {
+    if (manager_->loadController(name)) to_start.push_back(name);
+  }
+  for (const std::string& name : spec.stopped_controllers) manager_->loadController(name);
+  if (to_start.empty()) return;
+  SwitchRequest request;
+  request.start_controllers = to_start;
+  request.strictness = SwitchStrictness::STRICT;
+  // Carried out by the loop's first cycle, so the controllers act from t = 0.
+  if (const ServiceResult result = manager_->requestSwitch(request); !result) {
+    logger().error("robot '{}': starting controllers failed: {}", namespace_, result.message);
+  }
+}
+
+void RobotInstance::addTimedPublication(const TimedPublication& publication) {
+  if (loop_thread_.joinable()) throw Error("RobotInstance: timed publications must be added before start()");
+  publications_.push_back(publication);
+  std::stable_sort(publications_.begin(), publications_.end(),
+                   [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+}
+
+std::uint64_t RobotInstance::stepsAt(double time_s) const {
+  const double steps = std::ceil(time_s / loop_->physicsStep().seconds - 1e-9);
+  return steps <= 0.0 ? 0 : static_cast<std::uint64_t>(steps);
+}
+
+void RobotInstance::publishDue(std::uint64_t steps_taken) {
+  while (next_publication_ < publications_.size() && stepsAt(publications_[next_publication_].time_s) <= steps_taken) {
+    const TimedPublication& publication = publications_[next_publication_++];
+    bus_->setTime(Time(static_cast<double>(steps_taken) * loop_->physicsStep().seconds));
+    try {
+      bus_->publishJson(publication.topic, publication.message, publication.type);
+      logger().debug("published {} on '{}' at t = {} s", publication.message.dump(), publication.topic,
+                     publication.time_s);
+    } catch (const std::exception& e) {
+      logger().error("timed publication on '{}' at t = {} s failed: {}", publication.topic, publication.time_s,
+                     e.what());
+    }
+  }
+}
+
+void RobotInstance::driveLoop(std::optional<double> duration_s) {
+  constexpr std::uint64_t kForever = std::numeric_limits<std::uint64_t>::max();
+  const double dt = loop_->physicsStep().seconds;
+  const bool free_running = real_time_factor_ <= 0.0;
+  const std::uint64_t end_steps = duration_s ? stepsAt(*duration_s) : kForever;
+  const auto flush_steps = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
+
+  // The controllers of the launch file start in the first cycle, and a
+  // controller's starting() forgets commands published before it: so that a
+  // publication at t = 0 is not lost, that cycle runs before any publication.
+  if (manager_->switchPending() && end_steps > 0) loop_->runFor(Duration(dt));
+
+  while (!stop_requested_.load()) {
+    const std::uint64_t taken = loop_->stepsTaken();
+    publishDue(taken);
+    if (taken >= end_steps || loop_->hardwareAskedToStop()) break;
+
+    std::uint64_t target = end_steps;
+    if (next_publication_ < publications_.size()) {
+      target = std::min(target, stepsAt(publications_[next_publication_].time_s));
+    }
+    if (free_running) target = std::min(target, taken + flush_steps);
+
+    if (target == kForever) {
+      loop_->run(stop_requested_);
+    } else {
+      loop_->runFor(Duration(static_cast<double>(target - taken) * dt));
+    }
+    if (free_running) bus_->flush();
+  }
+  bus_->flush();
+  loop_done_.store(true);
+}
+
+void RobotInstance::start(std::optional<double> duration_s) {
+  std::lock_guard lock(lifecycle_mutex_);
+  if (loop_thread_.joinable()) return;
+  loop_thread_ = std::thread([this, duration_s] {
+    try {
+      driveLoop(duration_s);
+    } catch (const std::exception& e) {
+      logger().error("robot '{}': the control loop stopped: {}", namespace_, e.what());
+      loop_done_.store(true);
+    }
+  });
+}
+
+void RobotInstance::stop() {
+  std::lock_guard lock(lifecycle_mutex_);
+  stop_requested_.store(true);
+  if (loop_) loop_->requestStop();
+  if (loop_thread_.joinable()) loop_thread_.join();
+  loop_done_.store(true);
+}
+
+void RobotInstance::shutdownControllers() {
+  if (controllers_shut_down_ || !manager_) return;
+  controllers_shut_down_ = true;
+  SwitchRequest request;
+  request.strictness = SwitchStrictness::BEST_EFFORT;
+  for (const ControllerSpec& controller : manager_->listControllers()) {
+    if (controller.state == ControllerState::running) request.stop_controllers.push_back(controller.name);
+  }
+  const Time now(simTime());
+  if (!request.stop_controllers.empty() && manager_->requestSwitch(request)) {
+    // The loop has ended: this thread is the real-time side now, and one
+    // update carries the switch out (stopping() runs) without stepping physics.
+    manager_->update(now, loop_->controlPeriod());
+  }
+  for (const ControllerSpec& controller : manager_->listControllers()) manager_->unloadController(controller.name);
+}
+
+double RobotInstance::simTime() const {
+  return static_cast<double>(loop_->stepsTaken()) * loop_->physicsStep().seconds;
+}
+
+std::vector<JointReading> RobotInstance::joints() const {
+  std::vector<JointReading> readings;
+  auto* state = sim_hw_->get<hardware_interface::JointStateInterface>();
+  if (state == nullptr) return readings;
+  for (const std::string& name : state->getNames()) {
+    const auto handle = state->getHandle(name);
+    readings.push_back({name, handle.getPosition(), handle.getVelocity(), handle.getEffort()});
+  }
+  return readings;
+}
+
+std::vector<std::pair<std::string, std::vector<std::string>>> RobotInstance::jointInterfaces() const {
+  std::map<std::string, std::vector<std::string>> by_joint;
+  for (const std::string& iface_name : sim_hw_->getNames()) {
+    const bool joint_interface = iface_name == "JointStateInterface" ||
+                                 (iface_name.size() > 14 && iface_name.ends_with("JointInterface"));
+    if (!joint_interface) continue;
+    for (const std::string& joint : sim_hw_->getByName(iface_name)->getNames()) by_joint[joint].push_back(iface_name);
+  }
+  // JointStateInterface first, the command interfaces after it.
+  std::vector<std::pair<std::string, std::vector<std::string>>> joints;
+  for (auto& [joint, interfaces] : by_joint) {
+    std::stable_partition(interfaces.begin(), interfaces.end(),
+                          [](const std::string& name) { return name == "JointStateInterface"; });
+    joints.emplace_back(joint, std::move(interfaces));
+  }
+  return joints;
+}
+
+}  // namespace servoloop::controller_manager::node

@@ -1,0 +1,179 @@
+// `servoloop launch … --duration 2 --json` and `servoloop plot`, run as child
+// processes: the JSON summary, the CSV recordings, the PNG, and the one-line
+// errors of bad flags.
+#include <gtest/gtest.h>
+
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kOneDof = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
+const std::string kSeedLaunch = (kOneDof / "one_dof_w_jnt_ctl.launch.yaml").string();
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+struct CliResult {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+class CliLaunch : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "servoloop-cli-launch-XXXXXX").string();
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+    dir_ = pattern;
+  }
+  void TearDown() override {
+    std::error_code error;
+    fs::remove_all(dir_, error);
+  }
+
+  // Runs `servoloop <args>` in dir_ with a private run directory.
+  CliResult run(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt";
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string command = "cd '" + dir_.string() + "' && env -u SERVOLOOP_PLUGIN_PATH SERVOLOOP_RUN_DIR='" +
+                                dir_.string() + "' '" + SERVOLOOP_CLI_EXE + "' " + args + " >'" + out.string() +
+                                "' 2>'" + err.string() + "'";
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(out), readFile(err)};
+  }
+
+  static int lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+  fs::path dir_;
+};
+
+TEST_F(CliLaunch, HeadlessRunPrintsJsonSummaryRecordsAndPlots) {
+  const CliResult result =
+      run("launch '" + kSeedLaunch +
+          "' --backend mock --duration 2 --json --pub /one_DOF_robot/joint1_position_controller/command:=1.0@0.5"
+          " --record /one_DOF_robot/joint_states=js.csv"
+          " --record /one_DOF_robot/joint1_position_controller/command=cmd.csv --plot out/one_dof.png");
+  ASSERT_EQ(result.status, 0) << result.err;
+
+  // stdout is exactly one JSON object.
+  ASSERT_EQ(lines(result.out), 1) << result.out;
+  const json summary = json::parse(result.out);
+  EXPECT_NEAR(summary["sim_time"].get<double>(), 2.0, 1e-9);
+  EXPECT_EQ(summary["cycles"], 2000);
+  EXPECT_GT(summary["wall_time"].get<double>(), 0.0);
+  EXPECT_GT(summary["real_time_factor"].get<double>(), 1.0);  // free-running by default with --duration
+  ASSERT_EQ(summary["robots"].size(), 1u);
+  const json& robot = summary["robots"][0];
+  EXPECT_EQ(robot["namespace"], "/one_DOF_robot");
+  EXPECT_EQ(robot["backend"], "mock");
+  ASSERT_EQ(robot["controllers"].size(), 2u);
+  EXPECT_EQ(robot["controllers"][0]["name"], "joint_state_controller");
+  EXPECT_EQ(robot["controllers"][0]["state"], "running");
+  EXPECT_EQ(robot["controllers"][1]["name"], "joint1_position_controller");
+  EXPECT_EQ(robot["controllers"][1]["state"], "running");
+  EXPECT_EQ(robot["joints"][0]["name"], "joint1");
+  // Commanded at 0.5 s and held near the URDF's 0.5 rad/s velocity limit (the
+  // effort limiting lets it overshoot a little): in the remaining 1.5 s it has
+  // moved, but got nowhere near the 1.0 rad command (0.75 rad at 0.5 rad/s).
+  const double position = robot["joints"][0]["position"].get<double>();
+  EXPECT_GT(position, 0.1);
+  EXPECT_LT(position, 0.8);
+  EXPECT_EQ(robot["loop"]["cycles"], 2000);
+  EXPECT_GT(robot["loop"]["compute"]["max"].get<double>(), 0.0);
+
+  // Recordings.
+  std::stringstream joint_states(readFile(dir_ / "js.csv"));
+  std::string line;
+  std::getline(joint_states, line);
+  EXPECT_EQ(line, "time,joint1.position,joint1.velocity,joint1.effort");
+  int rows = 0;
+  while (std::getline(joint_states, line)) ++rows;
+  EXPECT_EQ(rows, 100);  // 2 s at 50 Hz: t = 0, 0.02, ..., 1.98
+  EXPECT_EQ(readFile(dir_ / "cmd.csv"), "time,data\n0.5,1.0\n");
+
+  // The plot: a PNG file (its 8-byte signature).
+  const std::string png = readFile(dir_ / "out" / "one_dof.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+}
+
+TEST_F(CliLaunch, TextSummaryByDefault) {
+  const CliResult result = run("launch '" + kSeedLaunch + "' --backend mock --duration 0.5");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("simulated 0.500 s"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("controller joint1_position_controller (effort_controllers/JointPositionController): running"),
+            std::string::npos)
+      << result.out;
+  EXPECT_NE(result.out.find("joint joint1: position"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("500 cycles"), std::string::npos) << result.out;
+  // stderr is not a terminal here: no progress bar.
+  EXPECT_EQ(result.err.find('\r'), std::string::npos);
+}
+
+TEST_F(CliLaunch, PlotCommandDrawsRecordedCsv) {
+  std::ofstream(dir_ / "js.csv") << "time,joint1.position,joint1.velocity,joint1.effort\n"
+                                 << "0.0,0.0,0.0,0.0\n0.02,0.01,0.5,2.0\n0.04,0.02,0.5,1.5\n";
+  std::ofstream(dir_ / "cmd.csv") << "time,data\n0.0,1.0\n";
+  const CliResult result = run("plot js.csv cmd.csv -o plot.png");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(readFile(dir_ / "plot.png").substr(0, 4), "\x89PNG");
+  const CliResult columns = run("plot js.csv -o columns.png --columns joint1.velocity");
+  ASSERT_EQ(columns.status, 0) << columns.err;
+  EXPECT_TRUE(fs::exists(dir_ / "columns.png"));
+}
+
+struct BadFlags {
+  const char* args;
+  const char* expected;  // in the one stderr line
+};
+
+class CliLaunchBadFlags : public CliLaunch, public ::testing::WithParamInterface<BadFlags> {};
+
+TEST_P(CliLaunchBadFlags, ExitNonZeroWithOneLine) {
+  std::string args = GetParam().args;
+  const std::string placeholder = "SEED";
+  if (const auto at = args.find(placeholder); at != std::string::npos) args.replace(at, placeholder.size(), "'" + kSeedLaunch + "'");
+  const CliResult result = run(args);
+  EXPECT_NE(result.status, 0);
+  EXPECT_EQ(lines(result.err), 1) << result.err;
+  EXPECT_NE(result.err.find(GetParam().expected), std::string::npos) << result.err;
+  EXPECT_TRUE(result.out.empty()) << result.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Flags, CliLaunchBadFlags,
+    ::testing::Values(BadFlags{"launch no_such.launch.yaml", "no_such.launch.yaml"},
+                      BadFlags{"launch SEED --duration -1", "--duration"},
+                      BadFlags{"launch SEED --rtf fast", "--rtf"},
+                      BadFlags{"launch SEED --duration 1 --pub /a/command=1.0", "expected TOPIC:=VALUE[@TIME]"},
+                      BadFlags{"launch SEED --duration 1 --record /a/joint_states", "expected TOPIC=FILE.csv"},
+                      BadFlags{"launch SEED --duration 1 --plot x.png", "nothing is recorded"},
+                      BadFlags{"launch SEED --duration 1 --backend warp", "backend 'warp'"},
+                      BadFlags{"plot missing.csv -o x.png", "missing.csv"}));
+
+TEST_F(CliLaunch, BadLaunchFileKeyIsOneLine) {
+  std::ofstream(dir_ / "bad.launch.yaml") << "world:\n  backend: mock\n  timestep: 0.001\n";
+  const CliResult result = run("launch bad.launch.yaml --duration 1");
+  EXPECT_NE(result.status, 0);
+  EXPECT_EQ(lines(result.err), 1) << result.err;
+  EXPECT_NE(result.err.find("bad.launch.yaml:3:3: world.timestep: unknown key 'timestep'"), std::string::npos)
+      << result.err;
+}
+
+}  // namespace

@@ -1,0 +1,223 @@
+// Launch file parsing: the seed's launch files, defaults, the --pub/--record
+// flags, and one test per error (each message names the file, line, key, fix).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "servoloop/controller_manager/node/launch_file.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace servoloop::controller_manager::node;
+
+const fs::path kOneDof = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
+
+LaunchFile parse(const std::string& yaml) { return parseLaunchFile(yaml, "test.launch.yaml", kOneDof); }
+
+// The ConfigError text parse(yaml) throws; fails the test if it does not throw.
+std::string errorOf(const std::string& yaml) {
+  try {
+    parse(yaml);
+  } catch (const servoloop::ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no ConfigError for:\n" << yaml;
+  return "";
+}
+
+std::string flagErrorOf(std::string_view flag, bool record = false) {
+  try {
+    if (record) {
+      parseRecordFlag(flag);
+    } else {
+      parsePubFlag(flag);
+    }
+  } catch (const servoloop::Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no Error for flag " << flag;
+  return "";
+}
+
+TEST(LaunchFile, SeedLaunchFileWithJointController) {
+  const LaunchFile launch = loadLaunchFile(kOneDof / "one_dof_w_jnt_ctl.launch.yaml");
+  EXPECT_EQ(launch.source, fs::absolute(kOneDof / "one_dof_w_jnt_ctl.launch.yaml").lexically_normal());
+  EXPECT_EQ(launch.world.backend, "bullet");
+  EXPECT_DOUBLE_EQ(launch.world.time_step_s, 0.001);
+  EXPECT_DOUBLE_EQ(launch.world.gravity[2], -9.81);
+  EXPECT_FALSE(launch.world.real_time_factor.has_value());
+  EXPECT_DOUBLE_EQ(launch.controller_manager.update_rate_hz, 1000.0);
+  ASSERT_EQ(launch.robots.size(), 1u);
+  const RobotSpec& robot = launch.robots[0];
+  EXPECT_EQ(robot.urdf, (kOneDof / "minimal_robot_description_w_jnt_ctl.urdf").lexically_normal());
+  ASSERT_EQ(robot.params.size(), 1u);
+  EXPECT_EQ(robot.params[0], (kOneDof / "control_config" / "one_dof_ctl_params.yaml").lexically_normal());
+  EXPECT_EQ(robot.controllers, (std::vector<std::string>{"joint_state_controller", "joint1_position_controller"}));
+  EXPECT_TRUE(robot.stopped_controllers.empty());
+  EXPECT_TRUE(robot.robot_namespace.empty());  // the URDF gives it
+}
+
+TEST(LaunchFile, SeedLaunchFileWithRawPd) {
+  const LaunchFile launch = loadLaunchFile(kOneDof / "one_dof_raw_pd.launch.yaml");
+  ASSERT_EQ(launch.robots.size(), 1u);
+  EXPECT_EQ(launch.robots[0].robot_namespace, "/one_DOF_robot");
+  EXPECT_EQ(launch.robots[0].urdf.filename(), "minimal_robot_description.urdf");
+  EXPECT_EQ(launch.robots[0].controllers,
+            (std::vector<std::string>{"joint_state_controller", "minimal_joint_controller"}));
+}
+
+TEST(LaunchFile, EmptyFileGivesDefaults) {
+  const LaunchFile launch = parse("");
+  EXPECT_EQ(launch.world.backend, "bullet");
+  EXPECT_DOUBLE_EQ(launch.world.time_step_s, 0.001);
+  EXPECT_DOUBLE_EQ(launch.controller_manager.update_rate_hz, 0.0);
+  EXPECT_TRUE(launch.robots.empty());
+  EXPECT_TRUE(launch.plot.empty());
+}
+
+TEST(LaunchFile, EverySection) {
+  const LaunchFile launch = parse(R"(
+world: {backend: mock, time_step: 0.002, gravity: [0, 0, -1.62], ground_plane: true, real_time_factor: 0}
+controller_manager: {update_rate: 250}
+robots:
+  - urdf: minimal_robot_description.urdf
+    model: moon_robot
+    namespace: moon
+    params: control_config/one_dof_ctl_params.yaml
+    controllers: joint_state_controller
+    stopped_controllers: [joint1_position_controller]
+publish:
+  - {topic: /moon/joint1_position_controller/command, value: 0.5, time: 1.5}
+  - {topic: /moon/group/command, value: [1, 2.5]}
+record:
+  - {topic: moon/joint_states, file: out/js.csv}
+plot: out/plot.png
+)");
+  EXPECT_EQ(launch.world.backend, "mock");
+  EXPECT_DOUBLE_EQ(launch.world.time_step_s, 0.002);
+  EXPECT_DOUBLE_EQ(launch.world.gravity[2], -1.62);
+  EXPECT_TRUE(launch.world.ground_plane);
+  EXPECT_EQ(launch.world.real_time_factor, 0.0);
+  EXPECT_DOUBLE_EQ(launch.controller_manager.update_rate_hz, 250.0);
+  ASSERT_EQ(launch.robots.size(), 1u);
+  EXPECT_EQ(launch.robots[0].model, "moon_robot");
+  EXPECT_EQ(launch.robots[0].robot_namespace, "/moon");
+  EXPECT_EQ(launch.robots[0].params.size(), 1u);
+  EXPECT_EQ(launch.robots[0].controllers, std::vector<std::string>{"joint_state_controller"});
+  EXPECT_EQ(launch.robots[0].stopped_controllers, std::vector<std::string>{"joint1_position_controller"});
+  ASSERT_EQ(launch.publish.size(), 2u);
+  EXPECT_EQ(launch.publish[0].type, "std_msgs/Float64");
+  EXPECT_DOUBLE_EQ(launch.publish[0].time_s, 1.5);
+  EXPECT_DOUBLE_EQ(launch.publish[0].message.get<double>(), 0.5);
+  EXPECT_EQ(launch.publish[1].type, "std_msgs/Float64MultiArray");
+  EXPECT_DOUBLE_EQ(launch.publish[1].time_s, 0.0);
+  ASSERT_EQ(launch.record.size(), 1u);
+  EXPECT_EQ(launch.record[0].topic, "/moon/joint_states");
+  EXPECT_EQ(launch.record[0].file, kOneDof / "out" / "js.csv");
+  EXPECT_EQ(launch.plot, kOneDof / "out" / "plot.png");
+}
+
+struct ErrorCase {
+  const char* name;
+  const char* yaml;
+  std::vector<const char*> expected;  // substrings of the message
+};
+
+class LaunchFileError : public ::testing::TestWithParam<ErrorCase> {};
+
+TEST_P(LaunchFileError, NamesFileLineKeyAndFix) {
+  const std::string message = errorOf(GetParam().yaml);
+  EXPECT_NE(message.find("test.launch.yaml"), std::string::npos) << message;
+  for (const char* part : GetParam().expected) EXPECT_NE(message.find(part), std::string::npos) << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllErrors, LaunchFileError,
+    ::testing::Values(
+        ErrorCase{"NotYaml", "world: [1, 2", {"not valid YAML"}},
+        ErrorCase{"TopLevelNotMap", "- 1\n- 2", {"expected a map"}},
+        ErrorCase{"UnknownTopKey", "robot: []", {":1:1:", "unknown key 'robot'", "robots", "check the spelling"}},
+        ErrorCase{"UnknownWorldKey", "world:\n  timestep: 0.001", {":2:3:", "world.timestep", "time_step"}},
+        ErrorCase{"WorldNotMap", "world: bullet", {"world", "expected a map"}},
+        ErrorCase{"TimeStepZero", "world: {time_step: 0}", {"world.time_step", "expected a value > 0 s"}},
+        ErrorCase{"TimeStepText", "world: {time_step: fast}", {"world.time_step", "expected a number", "'fast'"}},
+        ErrorCase{"GravityShort", "world: {gravity: [0, -9.81]}", {"world.gravity", "3 numbers"}},
+        ErrorCase{"GravityText", "world: {gravity: [0, 0, down]}", {"world.gravity[2]", "expected a number"}},
+        ErrorCase{"GroundPlaneNotBool", "world: {ground_plane: 2}", {"world.ground_plane", "true or false"}},
+        ErrorCase{"BackendEmpty", "world: {backend: ''}", {"world.backend", "non-empty string"}},
+        ErrorCase{"RtfNegative", "world: {real_time_factor: -1}", {"world.real_time_factor", ">= 0"}},
+        ErrorCase{"UpdateRateZero", "controller_manager: {update_rate: 0}", {"controller_manager.update_rate", "> 0 Hz"}},
+        ErrorCase{"UnknownManagerKey", "controller_manager: {rate: 100}", {"controller_manager.rate", "update_rate"}},
+        ErrorCase{"RobotsNotList", "robots: {urdf: a.urdf}", {"robots", "expected a list"}},
+        ErrorCase{"RobotNoUrdf", "robots:\n  - model: r", {"robots[0]", "missing 'urdf'"}},
+        ErrorCase{"RobotUrdfMissing", "robots:\n  - urdf: nothere.urdf",
+                  {":2:11:", "robots[0].urdf", "nothere.urdf", "does not exist", "relative to the launch file"}},
+        ErrorCase{"RobotUnknownKey", "robots:\n  - {urdf: minimal_robot_description.urdf, controller: [a]}",
+                  {"robots[0].controller", "controllers"}},
+        ErrorCase{"RobotParamsMissing", "robots:\n  - {urdf: minimal_robot_description.urdf, params: [x.yaml]}",
+                  {"robots[0].params[0]", "parameter file 'x.yaml' does not exist"}},
+        ErrorCase{"RobotControllersNotList",
+                  "robots:\n  - {urdf: minimal_robot_description.urdf, controllers: {a: 1}}",
+                  {"robots[0].controllers", "list of names"}},
+        ErrorCase{"RobotBadNamespace", "robots:\n  - {urdf: minimal_robot_description.urdf, namespace: '9lives'}",
+                  {"robots[0].namespace"}},
+        ErrorCase{"PublishNoTopic", "publish:\n  - {value: 1.0}", {"publish[0]", "missing 'topic'"}},
+        ErrorCase{"PublishNoValue", "publish:\n  - {topic: /a/command}", {"publish[0]", "missing 'value'"}},
+        ErrorCase{"PublishBadTopic", "publish:\n  - {topic: '/a b', value: 1}", {"publish[0].topic"}},
+        ErrorCase{"PublishUnknownType", "publish:\n  - {topic: /a, type: std_msgs/String, value: hi}",
+                  {"publish[0].value", "unknown message type 'std_msgs/String'", "std_msgs/Float64"}},
+        ErrorCase{"PublishValueNotNumber", "publish:\n  - {topic: /a, value: {data: high}}",
+                  {"publish[0].value", "std_msgs/Float64", "data"}},
+        ErrorCase{"PublishNegativeTime", "publish:\n  - {topic: /a, value: 1, time: -2}",
+                  {"publish[0].time", ">= 0 s of simulated time"}},
+        ErrorCase{"RecordNoFile", "record:\n  - {topic: /a/joint_states}", {"record[0]", "missing 'file'"}},
+        ErrorCase{"RecordUnknownKey", "record:\n  - {topic: /a, file: a.csv, rate: 10}", {"record[0].rate"}},
+        ErrorCase{"PlotNotString", "plot: [a.png]", {"plot", "non-empty string"}}),
+    [](const ::testing::TestParamInfo<ErrorCase>& info) { return std::string(info.param.name); });
+
+TEST(LaunchFile, MissingFileIsNamed) {
+  try {
+    loadLaunchFile(kOneDof / "no_such.launch.yaml");
+    FAIL() << "no error";
+  } catch (const servoloop::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such.launch.yaml"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos);
+  }
+}
+
+TEST(PubFlag, NumberAtTime) {
+  const TimedPublication publication = parsePubFlag("/one_DOF_robot/joint1_position_controller/command:=1.0@2.5");
+  EXPECT_EQ(publication.topic, "/one_DOF_robot/joint1_position_controller/command");
+  EXPECT_EQ(publication.type, "std_msgs/Float64");
+  EXPECT_DOUBLE_EQ(publication.message.get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(publication.time_s, 2.5);
+}
+
+TEST(PubFlag, ArrayDefaultsToTimeZero) {
+  const TimedPublication publication = parsePubFlag("robot/group/command:=[1, -2.5]");
+  EXPECT_EQ(publication.topic, "/robot/group/command");
+  EXPECT_EQ(publication.type, "std_msgs/Float64MultiArray");
+  EXPECT_EQ(publication.message, nlohmann::json::parse("[1, -2.5]"));
+  EXPECT_DOUBLE_EQ(publication.time_s, 0.0);
+}
+
+TEST(PubFlag, Errors) {
+  EXPECT_NE(flagErrorOf("/a/command=1.0").find("expected TOPIC:=VALUE[@TIME]"), std::string::npos);
+  EXPECT_NE(flagErrorOf(":=1.0").find("expected TOPIC:=VALUE[@TIME]"), std::string::npos);
+  EXPECT_NE(flagErrorOf("/a:=1.0@soon").find("TIME 'soon'"), std::string::npos);
+  EXPECT_NE(flagErrorOf("/a:=1.0@-1").find("TIME '-1'"), std::string::npos);
+  EXPECT_NE(flagErrorOf("/a:={data: x}").find("--pub '/a:={data: x}'"), std::string::npos);
+}
+
+TEST(RecordFlag, TopicAndRelativeFile) {
+  const RecordSpec record = parseRecordFlag("/one_DOF_robot/joint_states=out/js.csv");
+  EXPECT_EQ(record.topic, "/one_DOF_robot/joint_states");
+  EXPECT_EQ(record.file, (fs::current_path() / "out" / "js.csv").lexically_normal());
+  EXPECT_NE(flagErrorOf("/one_DOF_robot/joint_states", true).find("expected TOPIC=FILE.csv"), std::string::npos);
+  EXPECT_NE(flagErrorOf("=a.csv", true).find("expected TOPIC=FILE.csv"), std::string::npos);
+}
+
+}  // namespace

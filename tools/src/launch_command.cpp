@@ -1,0 +1,187 @@
+// `servoloop launch FILE [options]`: runs a world from a launch file, either
+// headless for a --duration of simulated time (then prints the end-of-run
+// summary) or until SIGINT/SIGTERM, serving the other commands over IPC.
+#include <signal.h>
+
+#include <atomic>
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "command_registry.hpp"
+#include "plot_gnuplot.hpp"
+#include "progress_bar.hpp"
+#include "servoloop/controller_manager/node/launch_file.hpp"
+#include "servoloop/controller_manager/node/node.hpp"
+#include "servoloop/controller_manager/node/run_summary.hpp"
+#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/hardware_interface/logging.hpp"
+
+namespace servoloop::cli {
+namespace {
+
+namespace node = servoloop::controller_manager::node;
+namespace fs = std::filesystem;
+
+struct LaunchOptions {
+  std::string file;
+  std::string backend;
+  std::optional<double> duration_s;
+  std::optional<double> real_time_factor;
+  std::vector<std::string> publications;
+  std::vector<std::string> recordings;
+  std::string plot;
+  bool json = false;
+  bool ipc = false;
+  std::vector<std::string> plugin_dirs;
+};
+
+// The node the signal handler stops. requestShutdown is one atomic store, so
+// calling it from a signal handler is safe.
+std::atomic<node::Node*> g_running_node{nullptr};
+
+extern "C" void onShutdownSignal(int /*signal*/) {
+  if (node::Node* running = g_running_node.load()) running->requestShutdown();
+}
+
+class ShutdownSignals {
+ public:
+  explicit ShutdownSignals(node::Node& running) {
+    g_running_node.store(&running);
+    struct sigaction action {};
+    action.sa_handler = onShutdownSignal;
+    sigemptyset(&action.sa_mask);
+    // A second Ctrl-C, while the first is being handled, ends the process.
+    action.sa_flags = SA_RESETHAND;
+    ::sigaction(SIGINT, &action, &previous_int_);
+    ::sigaction(SIGTERM, &action, &previous_term_);
+  }
+  ~ShutdownSignals() {
+    ::sigaction(SIGINT, &previous_int_, nullptr);
+    ::sigaction(SIGTERM, &previous_term_, nullptr);
+    g_running_node.store(nullptr);
+  }
+  ShutdownSignals(const ShutdownSignals&) = delete;
+  ShutdownSignals& operator=(const ShutdownSignals&) = delete;
+
+ private:
+  struct sigaction previous_int_ {};
+  struct sigaction previous_term_ {};
+};
+
+// The launch file with the command line's flags applied on top.
+node::LaunchFile launchFileWithFlags(const LaunchOptions& options) {
+  node::LaunchFile launch = node::loadLaunchFile(options.file);
+  for (const std::string& text : options.publications) launch.publish.push_back(node::parsePubFlag(text));
+  for (const std::string& text : options.recordings) {
+    node::RecordSpec record = node::parseRecordFlag(text);
+    // A --record of a topic the file records already replaces the file's entry.
+    std::erase_if(launch.record, [&](const node::RecordSpec& r) { return r.topic == record.topic; });
+    launch.record.push_back(std::move(record));
+  }
+  if (!options.plot.empty()) launch.plot = fs::absolute(options.plot).lexically_normal();
+  if (!launch.plot.empty() && launch.record.empty()) {
+    throw Error("--plot " + launch.plot.string() +
+                ": nothing is recorded, so there is nothing to plot; add --record TOPIC=FILE.csv");
+  }
+  return launch;
+}
+
+void plotRecordings(const node::LaunchFile& launch) {
+  PlotRequest request;
+  request.png = launch.plot;
+  for (const node::RecordSpec& record : launch.record) {
+    if (fs::exists(record.file) && fs::file_size(record.file) > 0) request.csv_files.push_back(record.file);
+  }
+  if (request.csv_files.empty()) throw Error("--plot: no recorded topic carried any message; nothing to plot");
+  request.title = "servoloop launch " + (launch.source.empty() ? std::string() : launch.source.filename().string());
+  plotToPng(request);
+}
+
+void runLaunch(const LaunchOptions& options) {
+  node::LaunchFile launch = launchFileWithFlags(options);
+  node::NodeOptions node_options;
+  node_options.duration_s = options.duration_s;
+  node_options.real_time_factor = options.real_time_factor;
+  if (!options.backend.empty()) node_options.backend = options.backend;
+  // A batch run serves no socket unless asked: it would otherwise collide
+  // with an interactive node of the same robot namespace.
+  node_options.serve_ipc = !options.duration_s || options.ipc;
+  for (const std::string& dir : options.plugin_dirs) node_options.plugin_directories.emplace_back(dir);
+
+  node::Node world(launch, node_options);
+  {
+    ShutdownSignals signals(world);
+    world.start();
+    if (!options.duration_s) {
+      std::string names;
+      for (const std::string& ns : world.robotNamespaces()) names += (names.empty() ? "" : ", ") + ns;
+      logger().info("world running (robots: {}; real-time factor {}); stop it with Ctrl-C",
+                    names.empty() ? "none yet" : names, world.realTimeFactor());
+    }
+    std::unique_ptr<ProgressBar> progress;
+    // Draws only when stderr is a terminal (ProgressBar checks).
+    if (options.duration_s) progress = std::make_unique<ProgressBar>(*options.duration_s);
+    const auto wall_start = std::chrono::steady_clock::now();
+    world.waitUntilDone([&] {
+      if (!progress) return;
+      const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+      progress->update(world.simTime(), wall_s);
+    });
+    if (progress) progress->finish();
+    world.shutdown();
+  }
+
+  const node::RunSummary summary = world.summary();
+  if (options.json) {
+    std::cout << node::toJson(summary).dump() << std::endl;
+  } else {
+    std::cout << node::toText(summary) << std::flush;
+  }
+  if (!launch.plot.empty()) {
+    plotRecordings(launch);
+    logger().info("plot written to {}", launch.plot.string());
+  }
+}
+
+void addLaunchCommand(CLI::App& root) {
+  auto options = std::make_shared<LaunchOptions>();
+  CLI::App* launch = root.add_subcommand(
+      "launch", "Start a world from a launch file: backend, robots, controllers, timed publications, recordings");
+  launch->add_option("file", options->file, "Launch file (YAML), e.g. robots/one_dof/one_dof_w_jnt_ctl.launch.yaml")
+      ->required()
+      ->check(CLI::ExistingFile);
+  launch->add_option("--backend", options->backend, "Simulation backend (bullet, mock, ...); overrides world.backend")
+      ->type_name("NAME");
+  launch->add_option("--duration", options->duration_s, "Simulated seconds to run, then exit with a summary")
+      ->type_name("SECONDS")
+      ->check(CLI::NonNegativeNumber);
+  launch->add_option("--rtf", options->real_time_factor,
+                     "Real-time factor; 0 = as fast as possible (default 0 with --duration, 1 without)")
+      ->type_name("FACTOR")
+      ->check(CLI::NonNegativeNumber);
+  launch->add_option("--pub", options->publications,
+                     "Publish a std_msgs/Float64 (or a [a, b] array) at simulated TIME s (default 0); repeatable")
+      ->type_name("TOPIC:=VALUE[@TIME]");
+  launch->add_option("--record", options->recordings, "Record a topic to CSV; repeatable")->type_name("TOPIC=FILE.csv");
+  launch->add_option("--plot", options->plot, "After the run, plot what was recorded to this PNG")->type_name("FILE.png");
+  launch->add_flag("--json", options->json, "Print the end-of-run summary as one JSON object");
+  launch->add_flag("--ipc", options->ipc,
+                   "Serve the IPC sockets during a --duration run too (runs without --duration always do)");
+  launch->add_option("--plugin-dir", options->plugin_dirs,
+                     "Search this directory for plugins first (repeatable); SERVOLOOP_PLUGIN_PATH and the "
+                     "installation's plugin folder follow")
+      ->type_name("DIR");
+  launch->callback([options] { runLaunch(*options); });
+}
+
+}  // namespace
+}  // namespace servoloop::cli
+
+SERVOLOOP_CLI_COMMANDS(10, servoloop::cli::addLaunchCommand)
