@@ -6,7 +6,8 @@
 //
 // Integrator: RK4. servoloop robots are open chains whose joint dynamics are
 // smooth between the (rare) contact and stop events, and RK4's fourth-order
-// error keeps an undamped pendulum's energy within ~1e-9 J at 1 ms, where the
+// error keeps the seed pendulum's energy within 1e-6 J over 10 s at 1 ms
+// (tested; its trajectory within 1e-6 rad of a 10 µs reference), where the
 // first-order engines (semi-implicit Euler: bullet, MuJoCo's own Euler) swing
 // by O(dt). MuJoCo's "implicit" integrator would only pay off for damping far
 // beyond URDF values (b·dt/I near 2); at the seed's b·dt/I = 0.003 the
