@@ -22,7 +22,8 @@ class ControlTest : public ::testing::Test {
 json twoControllers() {
   return json::parse(R"([
     {"name": "joint_state_controller", "type": "joint_state_controller/JointStateController",
-     "state": "running", "claimed_resources": []},
+     "state": "running",
+     "claimed_resources": [{"hardware_interface": "JointStateInterface", "resources": []}]},
     {"name": "joint1_position_controller", "type": "effort_controllers/JointPositionController",
      "state": "stopped",
      "claimed_resources": [{"hardware_interface": "EffortJointInterface", "resources": ["joint1"]}]}
@@ -36,6 +37,7 @@ TEST_F(ControlTest, ListPrintsNameTypeStateAndClaims) {
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_EQ(result.out,
             "joint_state_controller - joint_state_controller/JointStateController ( running )\n"
+            "    JointStateInterface: (no resources)\n"
             "joint1_position_controller - effort_controllers/JointPositionController ( stopped )\n"
             "    EffortJointInterface: joint1\n");
 }

@@ -49,7 +49,9 @@ void printControllers(const nlohmann::json& controllers) {
     if (claims == controller.end() || !claims->is_array()) continue;
     for (const auto& claim : *claims) {
       std::cout << "    " << stringField(claim, "hardware_interface") << ":";
-      for (const auto& resource : claim.value("resources", nlohmann::json::array())) {
+      const auto resources = claim.value("resources", nlohmann::json::array());
+      if (resources.empty()) std::cout << " (no resources)";
+      for (const auto& resource : resources) {
         std::cout << " " << (resource.is_string() ? resource.get<std::string>() : resource.dump());
       }
       std::cout << "\n";
