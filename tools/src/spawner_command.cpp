@@ -134,8 +134,7 @@ void runSpawner(const SpawnerOptions& options) {
   }
 
   if (!options.unload_on_kill) {
-    if (names.empty()) return;
-    if (loaded.empty()) throw Error("no controller could be loaded");
+    // Each failure has been reported on its own line already.
     if (!all_loaded || !switch_ok) throw CliExit{1};
     return;
   }
