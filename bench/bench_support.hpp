@@ -1,0 +1,68 @@
+#pragma once
+// What the servoloop benchmarks share: a RobotHW with plain joint storage, a
+// controller factory backed by the build's plugin folder (controllers come to
+// the benchmarks exactly as they come to a node), URDF/YAML helpers and paths.
+// Everything here is set-up code; none of it runs inside a timed region.
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "servoloop/controller_manager/controller_factory.hpp"
+#include "servoloop/controller_manager/plugin_loader.hpp"
+#include "servoloop/hardware_interface/joint_interfaces.hpp"
+#include "servoloop/hardware_interface/robot_hw.hpp"
+
+namespace servoloop::bench {
+
+// Joints with state storage and an effort command each, in joint space.
+// read()/write() do nothing: the benchmark measures the controller manager
+// alone. Storage never moves after construction.
+class BenchJointsHW : public hardware_interface::RobotHW {
+ public:
+  explicit BenchJointsHW(std::vector<std::string> joint_names);
+
+  void init(const hardware_interface::HardwareInfo&) override {}
+  ReturnType read(Time, Duration) override { return ReturnType::ok; }
+  ReturnType write(Time, Duration) override { return ReturnType::ok; }
+
+  const std::vector<std::string>& jointNames() const { return names_; }
+  // Joint state the controllers see (rad, rad/s, N·m) and what they command (N·m).
+  std::vector<double> position, velocity, effort, effort_command;
+
+ private:
+  std::vector<std::string> names_;
+  hardware_interface::JointStateInterface state_interface_;
+  hardware_interface::EffortJointInterface effort_interface_;
+};
+
+// Controllers from the plugin libraries in the build's plugin folder, through
+// the same PluginLoader a node uses.
+class PluginControllerFactory : public controller_manager::ControllerFactory {
+ public:
+  PluginControllerFactory();
+  controller_manager::ControllerPtr create(const std::string& type) override;
+  std::vector<std::string> types() override;
+
+ private:
+  controller_manager::PluginLoader loader_;
+};
+
+// The build's plugin folder (controllers and robot_hw backends).
+std::filesystem::path pluginDirectory();
+// A path inside the source tree, e.g. "robots/chain32/chain32.urdf".
+std::string sourcePath(const std::string& relative);
+std::string readTextFile(const std::string& path);
+
+// "joint_01" ... "joint_<n>" (two digits at least).
+std::vector<std::string> numberedJointNames(std::size_t joints);
+
+// A serial chain of revolute joints named as numberedJointNames, each with
+// limits [-2, 2] rad, 100 N·m, 10 rad/s and a 1 kg link: enough of a robot
+// description for the position controllers' limit and wrapping logic.
+std::string revoluteChainUrdf(std::size_t joints);
+
+}  // namespace servoloop::bench

@@ -1,0 +1,243 @@
+// Benchmark 1: the controller manager's cost per control cycle.
+//
+// ControllerManager::update at 1 kHz on a RobotHW whose read/write do nothing
+// (BenchJointsHW), running a joint_state_controller/JointStateController and
+// effort_controllers position controllers loaded from the build's plugin
+// folder, as a node loads them. The position controllers get a new setpoint
+// every kCyclesPerCommand cycles, published on the topic bus from the
+// benchmark thread with the timer paused (publishing is the non-real-time
+// side's work). The bus's delivery thread is not started: the joint state
+// and controller state publishers then find their queue full and recycle the
+// oldest slot, which costs the same as taking a free one, and the benchmark
+// stays single-threaded.
+//
+// Variants (ns per cycle, against the number of joints N):
+//   manager/empty                         no controller: the manager's own cost
+//   manager/joint_states_only/<rate>      the JointStateController alone
+//   manager/per_joint/<rate>/joints:N     JointStateController + N JointPositionControllers
+//   manager/group/<rate>/joints:N         JointStateController + one JointGroupPositionController
+// <rate> is the JointStateController's publish_rate: jsc_50Hz (the seed's,
+// publishing every 20th cycle) or jsc_every_cycle (1000 Hz).
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <yaml-cpp/yaml.h>
+
+#include "bench_support.hpp"
+#include "median_reporter.hpp"
+#include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/hardware_interface/robot_model.hpp"
+
+namespace servoloop::bench {
+namespace {
+
+namespace cm = controller_manager;
+
+constexpr double kManagerRateHz = 1000.0;
+constexpr std::uint64_t kCyclesPerCommand = 1000;  // one new setpoint per second of control time
+constexpr const char* kNamespace = "/bench";
+
+enum class PositionControllers { none, per_joint, group };
+
+// The seed's PID gains (robots/one_dof/control_config/one_dof_ctl_params.yaml).
+YAML::Node seedPid() { return YAML::Load("{p: 10.0, i: 10.0, d: 10.0, i_clamp_min: -10.0, i_clamp_max: 10.0}"); }
+
+// A controller manager on BenchJointsHW with its controllers loaded and started.
+class ManagerUnderTest {
+ public:
+  ManagerUnderTest(std::size_t joints, PositionControllers layout, double joint_state_rate_hz)
+      : hw_(numberedJointNames(joints)) {
+    YAML::Node params;
+    std::vector<std::string> controllers;
+    if (joint_state_rate_hz > 0.0) {
+      params["joint_state_controller"]["type"] = "joint_state_controller/JointStateController";
+      params["joint_state_controller"]["publish_rate"] = joint_state_rate_hz;
+      controllers.push_back("joint_state_controller");
+    }
+    const auto& names = hw_.jointNames();
+    if (layout == PositionControllers::per_joint) {
+      for (const auto& joint : names) {
+        const std::string name = joint + "_position_controller";
+        params[name]["type"] = "effort_controllers/JointPositionController";
+        params[name]["joint"] = joint;
+        params[name]["pid"] = seedPid();
+        controllers.push_back(name);
+        command_topics_.push_back(std::string(kNamespace) + "/" + name + "/command");
+      }
+    } else if (layout == PositionControllers::group) {
+      const std::string name = "group_position_controller";
+      params[name]["type"] = "effort_controllers/JointGroupPositionController";
+      for (const auto& joint : names) {
+        params[name]["joints"].push_back(joint);
+        params[name][joint]["pid"] = seedPid();
+      }
+      controllers.push_back(name);
+      group_command_topic_ = std::string(kNamespace) + "/" + name + "/command";
+      group_command_.data.assign(names.size(), 0.0);
+    }
+
+    cm::ControllerContext context;
+    context.robot_namespace = kNamespace;
+    context.topics = &bus_;
+    context.robot_model = parseRobotModel(revoluteChainUrdf(joints), "bench_chain.urdf");
+    manager_ = std::make_unique<cm::ControllerManager>(&hw_, std::make_shared<PluginControllerFactory>(),
+                                                       cm::ControllerManager::lookupIn(params), context,
+                                                       kManagerRateHz);
+    for (const auto& name : controllers) {
+      if (auto result = manager_->loadController(name); !result) throw std::runtime_error(result.message);
+    }
+    cm::SwitchRequest request;
+    request.start_controllers = controllers;
+    if (auto result = manager_->requestSwitch(request); !result) throw std::runtime_error(result.message);
+    cycle();  // carries out the switch
+    if (manager_->switchPending()) throw std::runtime_error("the controller switch did not happen");
+  }
+
+  ~ManagerUnderTest() { manager_.reset(); }
+
+  // Real-time: one control cycle.
+  void cycle() noexcept {
+    ++cycles_;
+    manager_->update(Time(static_cast<double>(cycles_) / kManagerRateHz), Duration(1.0 / kManagerRateHz));
+  }
+
+  // Non-real-time: a new setpoint for every position controller.
+  void sendCommands(double setpoint_rad) {
+    for (const auto& topic : command_topics_) bus_.publish(topic, cm::std_msgs::Float64{setpoint_rad});
+    if (!group_command_topic_.empty()) {
+      for (double& value : group_command_.data) value = setpoint_rad;
+      bus_.publish(group_command_topic_, group_command_);
+    }
+  }
+
+  // The effort the first joint is commanded (read after the timed loop).
+  double firstEffortCommand() const { return hw_.effort_command.front(); }
+
+ private:
+  cm::TopicBus bus_;
+  BenchJointsHW hw_;
+  std::unique_ptr<cm::ControllerManager> manager_;
+  std::vector<std::string> command_topics_;
+  std::string group_command_topic_;
+  cm::std_msgs::Float64MultiArray group_command_;
+  std::uint64_t cycles_ = 0;
+};
+
+void managerUpdate(benchmark::State& state, PositionControllers layout, double joint_state_rate_hz) {
+  const auto joints = static_cast<std::size_t>(state.range(0));
+  ManagerUnderTest manager(joints, layout, joint_state_rate_hz);
+  std::uint64_t cycle = 0;
+  for (auto _ : state) {
+    if (++cycle % kCyclesPerCommand == 0) {
+      state.PauseTiming();
+      manager.sendCommands((cycle / kCyclesPerCommand) % 2 == 0 ? 0.5 : -0.5);
+      state.ResumeTiming();
+    }
+    manager.cycle();
+  }
+  benchmark::DoNotOptimize(manager.firstEffortCommand());
+  state.counters["joints"] = static_cast<double>(joints);
+}
+
+struct RateVariant {
+  const char* label;
+  double publish_rate_hz;
+};
+constexpr RateVariant kRates[] = {{"jsc_50Hz", 50.0}, {"jsc_every_cycle", kManagerRateHz}};
+
+void registerAll() {
+  benchmark::RegisterBenchmark("manager/empty", managerUpdate, PositionControllers::none, 0.0)
+      ->Arg(1)
+      ->ArgName("joints");
+  for (const auto& rate : kRates) {
+    const std::string suffix = std::string("/") + rate.label;
+    benchmark::RegisterBenchmark(("manager/joint_states_only" + suffix).c_str(), managerUpdate,
+                                 PositionControllers::none, rate.publish_rate_hz)
+        ->Arg(1)
+        ->Arg(8)
+        ->Arg(64)
+        ->ArgName("joints");
+    auto* per_joint = benchmark::RegisterBenchmark(("manager/per_joint" + suffix).c_str(), managerUpdate,
+                                                   PositionControllers::per_joint, rate.publish_rate_hz);
+    per_joint->Arg(1)->Arg(8)->Arg(64)->ArgName("joints");
+    if (rate.publish_rate_hz == 50.0) per_joint->Arg(2)->Arg(4)->Arg(16)->Arg(32);  // for the slope fit
+    benchmark::RegisterBenchmark(("manager/group" + suffix).c_str(), managerUpdate, PositionControllers::group,
+                                 rate.publish_rate_hz)
+        ->Arg(1)
+        ->Arg(8)
+        ->Arg(64)
+        ->ArgName("joints");
+  }
+}
+
+std::string nameOf(const std::string& family, std::size_t joints) {
+  return family + "/joints:" + std::to_string(joints);
+}
+
+// Least-squares slope and intercept of the median ns/cycle against joints.
+void printFit(std::ostream& out, const MedianTable& table, const std::string& family) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t joints : {1, 2, 4, 8, 16, 32, 64}) {
+    if (!table.has(nameOf(family, joints))) continue;
+    const double x = static_cast<double>(joints);
+    const double y = table.median(nameOf(family, joints), Clock::thread_cpu);
+    n += 1;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  if (n < 2) return;
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  const double intercept = (sy - slope * sx) / n;
+  const double endpoints = (table.median(nameOf(family, 64), Clock::thread_cpu) -
+                            table.median(nameOf(family, 1), Clock::thread_cpu)) /
+                           63.0;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "  %-36s %6.1f ns/joint (least squares over %d sizes), %6.1f ns/joint ((t64 - t1) / 63), "
+                "intercept %6.1f ns\n",
+                family.c_str(), slope, static_cast<int>(n), endpoints, intercept);
+  out << line;
+}
+
+void summary(const MedianTable& table, std::ostream& out) {
+  out << "=== Controller manager cost per cycle (median over repetitions, ns/cycle) ===\n";
+  for (const auto& name : table.names()) printMedianLine(out, table, name, name);
+  out << "\n=== Growth with the number of joints (thread CPU medians) ===\n";
+  for (const auto& rate : kRates) {
+    printFit(out, table, std::string("manager/per_joint/") + rate.label);
+    printFit(out, table, std::string("manager/group/") + rate.label);
+  }
+  out << "\n=== Ratios (same run) ===\n";
+  for (const auto& rate : kRates) {
+    const std::string per_joint = std::string("manager/per_joint/") + rate.label;
+    const std::string group = std::string("manager/group/") + rate.label;
+    printRatioLine(out, table, nameOf(per_joint, 64), nameOf(group, 64),
+                   std::string("64 per-joint / 1 group, ") + rate.label);
+  }
+  printRatioLine(out, table, nameOf("manager/per_joint/jsc_every_cycle", 1), nameOf("manager/per_joint/jsc_50Hz", 1),
+                 "1 joint, publish every cycle / 50 Hz");
+  const std::string target = nameOf("manager/per_joint/jsc_50Hz", 1);
+  const double target_ns = 200.0;
+  out << "\nTarget: one joint (JointStateController at 50 Hz + one JointPositionController) < " << target_ns
+      << " ns/cycle: median " << table.median(target, Clock::wall) << " ns wall, "
+      << table.median(target, Clock::thread_cpu) << " ns thread CPU -> "
+      << (table.median(target, Clock::thread_cpu) < target_ns ? "met" : "NOT met") << "\n";
+}
+
+}  // namespace
+}  // namespace servoloop::bench
+
+int main(int argc, char** argv) {
+  servoloop::bench::registerAll();
+  return servoloop::bench::runWithSummary(argc, argv,
+                                          {"--benchmark_repetitions=15", "--benchmark_enable_random_interleaving=true",
+                                           "--benchmark_min_time=0.05"},
+                                          servoloop::bench::summary);
+}
