@@ -60,12 +60,12 @@ else
 fi
 
 log "1. controller manager cost per cycle"
-"$BIN/servoloop_bench_controller_manager" "${manager_flags[@]}" \
+"$BIN/servoloop_bench_controller_manager" "${manager_flags[@]}" --benchmark_color=false \
   --benchmark_out="$RESULTS_DIR/controller_manager.json" --benchmark_out_format=json \
   | tee "$RESULTS_DIR/controller_manager.txt"
 
 log "2. whole loop vs raw Bullet"
-"$BIN/servoloop_bench_loop_vs_bullet" "${loop_flags[@]}" \
+"$BIN/servoloop_bench_loop_vs_bullet" "${loop_flags[@]}" --benchmark_color=false \
   --benchmark_out="$RESULTS_DIR/loop_vs_bullet.json" --benchmark_out_format=json \
   | tee "$RESULTS_DIR/loop_vs_bullet.txt"
 
