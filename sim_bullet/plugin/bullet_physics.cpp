@@ -1,13 +1,27 @@
 #include "bullet_physics.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include <limits>
 #include <string>
 
 #include "servoloop/hardware_interface/errors.hpp"
 #include "servoloop/hardware_interface/logging.hpp"
 
 namespace servoloop::sim_bullet {
+namespace {
+
+// True when a movable joint lies between `joint`'s parent link and the root:
+// then the rotor inertia added to `joint`'s child body is also felt by that
+// joint (unless the axes are perpendicular).
+bool hasMovableAncestor(const urdf::ModelInterface& model, const urdf::Joint& joint) {
+  urdf::LinkConstSharedPtr link = model.getLink(joint.parent_link_name);
+  while (link && link->parent_joint) {
+    if (link->parent_joint->type != urdf::Joint::FIXED) return true;
+    link = model.getLink(link->parent_joint->parent_link_name);
+  }
+  return false;
+}
+
+}  // namespace
 
 void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                          const std::vector<sim_common::EngineJointConfig>& joints,
@@ -16,10 +30,33 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   world_settings.gravity = settings.gravity;
   world_settings.time_step_s = settings.time_step_s;
   world_settings.ground_plane = settings.ground_plane;
-  world_ = std::make_unique<BulletWorld>(model, world_settings);
+  for (const sim_common::EngineJointConfig& joint : joints) {
+    if (!(joint.reflected_rotor_inertia > 0.0)) continue;
+    const urdf::JointConstSharedPtr urdf_joint = model.getJoint(joint.name);
+    if (urdf_joint && urdf_joint->type == urdf::Joint::PRISMATIC) {
+      logger().warn(
+          "{}: joint '{}': the bullet backend does not model rotor inertia on prismatic joints; the reflected "
+          "{} kg from <ns>/actuators/.../rotor_inertia is ignored",
+          source_name, joint.name, joint.reflected_rotor_inertia);
+      continue;
+    }
+    world_settings.reflected_rotor_inertia[joint.name] = joint.reflected_rotor_inertia;
+    if (urdf_joint && hasMovableAncestor(model, *urdf_joint)) {
+      logger().info(
+          "{}: joint '{}': the bullet backend adds its reflected rotor inertia ({} kg·m²) to the child link "
+          "about the joint axis; the joints above it feel part of it too (see docs/simulation.md)",
+          source_name, joint.name, joint.reflected_rotor_inertia);
+    }
+  }
+  try {
+    world_ = std::make_unique<BulletWorld>(model, world_settings);
+  } catch (const ConfigError& error) {
+    throw ConfigError(source_name + ": " + error.what());
+  }
 
   world_index_.clear();
   initial_positions_.clear();
+  motor_effort_limits_.clear();
   for (const sim_common::EngineJointConfig& joint : joints) {
     try {
       world_index_.push_back(world_->jointIndex(joint.name));
@@ -27,27 +64,18 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
       throw ConfigError(source_name + ": " + error.what());
     }
     initial_positions_.push_back(joint.initial_position);
-
-    const std::size_t index = world_index_.back();
-    if (joint.reflected_rotor_inertia > 0.0) {
-      logger().warn(
-          "{}: joint '{}': the bullet backend does not model rotor inertia yet; the reflected "
-          "{} kg·m² from <ns>/actuators/.../rotor_inertia is ignored",
-          source_name, joint.name, joint.reflected_rotor_inertia);
-    }
-    if (joint.motor_effort_limit < world_->jointEffortLimit(index)) {
-      logger().warn(
-          "{}: joint '{}': velocity and position commands are bounded by the URDF effort limit "
-          "({}), not by the tighter motor limit {} (effort commands honour it)",
-          source_name, joint.name,
-          std::isfinite(world_->jointEffortLimit(index)) ? std::to_string(world_->jointEffortLimit(index))
-                                                          : std::string("none"),
-          joint.motor_effort_limit);
-    }
+    // As in the mujoco backend: a bound that is not > 0 means "none given".
+    motor_effort_limits_.push_back(joint.motor_effort_limit > 0.0 ? joint.motor_effort_limit
+                                                                  : std::numeric_limits<double>::infinity());
   }
-  pending_efforts_.assign(joints.size(), 0.0);
-  applied_efforts_.assign(joints.size(), 0.0);
+  applyMotorEffortLimits();
   placeAtInitialPositions();
+}
+
+void BulletPhysics::applyMotorEffortLimits() {
+  for (std::size_t j = 0; j < world_index_.size(); ++j) {
+    world_->setJointMotorEffortLimit(world_index_[j], motor_effort_limits_[j]);
+  }
 }
 
 void BulletPhysics::placeAtInitialPositions() {
@@ -64,35 +92,27 @@ double BulletPhysics::jointVelocity(std::size_t joint) const noexcept {
   return world_->jointVelocity(world_index_[joint]);
 }
 
+double BulletPhysics::jointEffort(std::size_t joint) const noexcept {
+  return world_->jointAppliedEffort(world_index_[joint]);
+}
+
 void BulletPhysics::setJointEffort(std::size_t joint, double effort) noexcept {
-  const std::size_t index = world_index_[joint];
-  const double limit = world_->jointEffortLimit(index);
-  pending_efforts_[joint] = std::clamp(effort, -limit, limit);
-  world_->setJointEffort(index, effort);
+  world_->setJointEffort(world_index_[joint], effort);
 }
 
 void BulletPhysics::setJointVelocityTarget(std::size_t joint, double velocity) noexcept {
-  pending_efforts_[joint] = 0.0;
   world_->setJointVelocityTarget(world_index_[joint], velocity);
 }
 
 void BulletPhysics::setJointPositionTarget(std::size_t joint, double position) noexcept {
-  pending_efforts_[joint] = 0.0;
   world_->setJointPositionTarget(world_index_[joint], position);
 }
 
-void BulletPhysics::step() noexcept {
-  world_->step();
-  // BulletWorld's effort acts for one step only.
-  std::copy(pending_efforts_.begin(), pending_efforts_.end(), applied_efforts_.begin());
-  std::fill(pending_efforts_.begin(), pending_efforts_.end(), 0.0);
-}
+void BulletPhysics::step() noexcept { world_->step(); }
 
 void BulletPhysics::reset() {
   world_->reset();
   placeAtInitialPositions();
-  std::fill(pending_efforts_.begin(), pending_efforts_.end(), 0.0);
-  std::fill(applied_efforts_.begin(), applied_efforts_.end(), 0.0);
 }
 
 void BulletPhysics::setJointState(std::size_t joint, double position, double velocity) {

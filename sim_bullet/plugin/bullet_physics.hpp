@@ -1,22 +1,21 @@
 #pragma once
 // The Bullet engine behind the "bullet" backend: a BulletWorld (joint-space
 // Featherstone physics from the URDF) driven through SimRobotHW's
-// PhysicsEngine interface. Effort commands are applied for one step; velocity
-// and position commands go to BulletWorld's joint motors, which the URDF
-// <limit effort> bounds.
-//
-// Not modelled yet (each logged as a warning at init when it matters):
-//  - rotor inertia (<ns>/actuators/<name>/rotor_inertia): adding n²·J needs
-//    either a modified link inertia (wrong for the parent joints) or an
-//    -n²·J·q̈ effort from the previous step's acceleration (unstable once n²·J
-//    exceeds the link's own inertia). TODO: add it inside BulletWorld as a
-//    joint-space armature term;
-//  - a motor effort bound tighter than the URDF <limit effort> (from
-//    actuators/<name>/max_effort or joint_limits/<joint>/max_effort) in velocity
-//    and position modes: BulletWorld's motors take the URDF limit. Effort mode
-//    honours every limit (SimRobotHW applies them before the engine);
-//  - the effort of the velocity/position motors: jointEffort() reports 0 in
-//    those modes, as BulletWorld does not expose the motor's impulse.
+// PhysicsEngine interface, with the same parameter semantics as the mujoco
+// backend:
+//  - effort commands are applied for one step as SimRobotHW sends them
+//    (SimRobotHW has applied the URDF/YAML joint limits and the motor limits;
+//    BulletWorld does not clamp a second time);
+//  - velocity and position commands go to BulletWorld's joint motors, bounded
+//    by EngineJointConfig::motor_effort_limit (the smaller of the joint effort
+//    limit and Σ|ratio|·max_effort of its actuators);
+//  - jointEffort() is the effort applied during the last step: the command in
+//    effort mode, the motor's effort (impulse / time step) in motor modes;
+//  - rotor inertia: the reflected n²·J is added to the child body's inertia
+//    about the joint axis. Exact for the joint itself; a joint up the chain
+//    with a non-perpendicular axis feels (a_i·a_j)·n²·J of it as well, which
+//    true armature (mujoco) does not have — see docs/simulation.md. Prismatic
+//    joints: not modelled (a warning is logged at init).
 #include <memory>
 #include <vector>
 
@@ -35,9 +34,9 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
 
   double jointPosition(std::size_t joint) const noexcept override;
   double jointVelocity(std::size_t joint) const noexcept override;
-  // Effort mode: the effort applied during the last step (after BulletWorld's
-  // clamp to the URDF effort limit). Motor modes: 0 (see above).
-  double jointEffort(std::size_t joint) const noexcept override { return applied_efforts_[joint]; }
+  // The effort applied during the last step: the effort command in effort
+  // mode, the motor's effort in velocity/position mode.
+  double jointEffort(std::size_t joint) const noexcept override;
 
   void setJointEffort(std::size_t joint, double effort) noexcept override;
   void setJointVelocityTarget(std::size_t joint, double velocity) noexcept override;
@@ -52,12 +51,12 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
 
  private:
   void placeAtInitialPositions();
+  void applyMotorEffortLimits();
 
   std::unique_ptr<BulletWorld> world_;
   std::vector<std::size_t> world_index_;         // SimRobotHW joint → BulletWorld joint
   std::vector<double> initial_positions_;
-  std::vector<double> pending_efforts_;          // effort for the next step (0 in motor modes)
-  std::vector<double> applied_efforts_;          // effort applied during the last step
+  std::vector<double> motor_effort_limits_;      // per SimRobotHW joint, N·m or N (+inf: none)
 };
 
 }  // namespace servoloop::sim_bullet

@@ -7,6 +7,15 @@
 namespace servoloop::sim_bullet::detail {
 namespace {
 
+void updatePrincipalFrame(Body& body) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(body.inertia_about_com + body.rotor_inertia);
+  Eigen::Matrix3d axes = solver.eigenvectors();
+  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
+  body.principal_in_link.linear() = axes;
+  body.principal_in_link.translation() = body.com;
+  body.principal_moments = solver.eigenvalues();
+}
+
 // One link's inertial expressed in its body's link frame.
 struct PointMass {
   double mass{0.0};
@@ -91,12 +100,7 @@ class TreeBuilder {
       inertia += p.inertia_about_com + p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
     }
     body.inertia_about_com = inertia;
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia);
-    Eigen::Matrix3d axes = solver.eigenvectors();
-    if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
-    body.principal_in_link.linear() = axes;
-    body.principal_in_link.translation() = body.com;
-    body.principal_moments = solver.eigenvalues();
+    updatePrincipalFrame(body);
   }
 
   const urdf::ModelInterface& model_;
@@ -116,5 +120,11 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
 }
 
 BodyTree buildBodyTree(const urdf::ModelInterface& model) { return TreeBuilder(model).build(); }
+
+void addRotorInertia(Body& body, const Eigen::Vector3d& axis_in_link, double inertia) {
+  const Eigen::Vector3d axis = axis_in_link.normalized();
+  body.rotor_inertia += inertia * axis * axis.transpose();
+  updatePrincipalFrame(body);
+}
 
 }  // namespace servoloop::sim_bullet::detail

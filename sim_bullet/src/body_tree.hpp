@@ -27,12 +27,17 @@ struct Body {
   // including any fixed joints between that link and the joint.
   Eigen::Isometry3d joint_in_parent_link{Eigen::Isometry3d::Identity()};
 
-  // Merged mass properties, in this body's link frame.
+  // Merged mass properties from the URDF, in this body's link frame.
   double mass_kg{0.0};
   Eigen::Vector3d com{Eigen::Vector3d::Zero()};
   Eigen::Matrix3d inertia_about_com{Eigen::Matrix3d::Zero()};
-  // Principal frame: origin at the COM, axes the inertia's eigenvectors
-  // (right-handed). Bullet's link frame is this frame.
+  // Reflected rotor inertia of the body's joint, k·a·aᵀ (k = n²·J, a the unit
+  // joint axis), in this body's link frame; zero unless addRotorInertia() was
+  // called. Pure rotational inertia: no mass, so gravity and the centre of
+  // mass are unchanged.
+  Eigen::Matrix3d rotor_inertia{Eigen::Matrix3d::Zero()};
+  // Principal frame of inertia_about_com + rotor_inertia: origin at the COM,
+  // axes the eigenvectors (right-handed). Bullet's link frame is this frame.
   Eigen::Isometry3d principal_in_link{Eigen::Isometry3d::Identity()};
   Eigen::Vector3d principal_moments{Eigen::Vector3d::Zero()};
 
@@ -55,5 +60,10 @@ struct BodyTree {
 BodyTree buildBodyTree(const urdf::ModelInterface& model);
 
 Eigen::Isometry3d toIsometry(const urdf::Pose& pose);
+
+// Adds `inertia` (kg·m², >= 0) about the unit axis `axis_in_link` (body link
+// frame) to the body's rotational inertia and recomputes its principal frame.
+// Must run before the Bullet multibody is built from the tree.
+void addRotorInertia(Body& body, const Eigen::Vector3d& axis_in_link, double inertia);
 
 }  // namespace servoloop::sim_bullet::detail

@@ -63,9 +63,12 @@ enum class CommandMode { effort, velocity, position };
 struct JointData {
   std::string name;
   JointType type{JointType::revolute};
-  double effort_limit{std::numeric_limits<double>::infinity()};
+  double effort_limit{std::numeric_limits<double>::infinity()};        // URDF <limit effort>
+  double motor_effort_limit{std::numeric_limits<double>::infinity()};  // bounds command_motor
+  double rotor_inertia{0.0};  // reflected n²J added to the child body about the axis, kg m²
   double damping{0.0};   // N m s/rad or N s/m
   double pending_effort{0.0};
+  double applied_effort{0.0};  // during the last step (see jointAppliedEffort)
   CommandMode mode{CommandMode::effort};
   btMultiBodyJointMotor* command_motor{nullptr};   // owned by Impl::constraints
   btMultiBodyJointMotor* friction_motor{nullptr};  // null without <dynamics friction>
@@ -195,6 +198,8 @@ struct BulletWorld::Impl {
                           /*disableParentCollision=*/true);
     }
     if (joint.limits && joint.limits->effort > 0.0) data.effort_limit = joint.limits->effort;
+    data.motor_effort_limit = data.effort_limit;
+    data.rotor_inertia = child.rotor_inertia.trace();  // k·a·aᵀ with |a| = 1 has trace k
     if (joint.dynamics) data.damping = joint.dynamics->damping;
     joints.push_back(std::move(data));
     joint_names.push_back(joint.name);
@@ -336,13 +341,37 @@ struct BulletWorld::Impl {
   }
 
   double motorImpulse(const JointData& joint) const {
-    const double effort = std::isfinite(joint.effort_limit) ? joint.effort_limit : kUnlimitedMotorEffort;
+    const double effort =
+        std::isfinite(joint.motor_effort_limit) ? joint.motor_effort_limit : kUnlimitedMotorEffort;
     return effort * settings.time_step_s;
   }
 
   void setMode(JointData& joint, CommandMode mode) {
     joint.mode = mode;
     joint.command_motor->setMaxAppliedImpulse(mode == CommandMode::effort ? 0.0 : motorImpulse(joint));
+  }
+
+  // Rotor inertias into the body tree, before the multibody is built from it.
+  void addRotorInertias(const urdf::ModelInterface& model) {
+    for (const auto& [joint_name, inertia] : settings.reflected_rotor_inertia) {
+      const auto body = std::find_if(tree.bodies.begin() + 1, tree.bodies.end(),
+                                     [&](const detail::Body& b) { return b.joint->name == joint_name; });
+      const std::string where = "robot '" + model.getName() + "': rotor inertia for joint '" + joint_name + "'";
+      if (body == tree.bodies.end()) {
+        throw ConfigError(where + ": the robot has no revolute, continuous or prismatic joint of that name");
+      }
+      if (body->joint->type == urdf::Joint::PRISMATIC) {
+        throw ConfigError(where + ": the Bullet world models rotor inertia on revolute and continuous joints "
+                                  "only (a prismatic joint's reflected mass cannot be added to a link)");
+      }
+      if (!(inertia >= 0.0) || !std::isfinite(inertia)) {
+        throw ConfigError(where + ": " + std::to_string(inertia) + " kg·m² must be a finite number >= 0");
+      }
+      if (inertia == 0.0) continue;
+      const urdf::Vector3& axis = body->joint->axis;
+      // The joint frame is the child link frame at q = 0, so the axis is in the body's link frame.
+      detail::addRotorInertia(*body, Eigen::Vector3d(axis.x, axis.y, axis.z), inertia);
+    }
   }
 
   Eigen::Isometry3d rootPose() const {
@@ -370,6 +399,7 @@ BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings&
     }
   }
   w.decideBase(model);
+  w.addRotorInertias(model);
   w.createWorld();
   w.createMultiBody();
   w.createJointConstraints();
@@ -398,6 +428,17 @@ std::size_t BulletWorld::jointIndex(const std::string& name) const {
 
 JointType BulletWorld::jointType(std::size_t joint) const { return impl_->joints[joint].type; }
 double BulletWorld::jointEffortLimit(std::size_t joint) const { return impl_->joints[joint].effort_limit; }
+double BulletWorld::jointMotorEffortLimit(std::size_t joint) const { return impl_->joints[joint].motor_effort_limit; }
+double BulletWorld::jointRotorInertia(std::size_t joint) const { return impl_->joints[joint].rotor_inertia; }
+double BulletWorld::jointAppliedEffort(std::size_t joint) const { return impl_->joints[joint].applied_effort; }
+
+void BulletWorld::setJointMotorEffortLimit(std::size_t joint, double limit) {
+  assert(joint < impl_->joints.size());
+  JointData& data = impl_->joints[joint];
+  data.motor_effort_limit = limit >= 0.0 ? limit : 0.0;  // NaN or negative: the motor cannot push
+  impl_->setMode(data, data.mode);                        // a running motor takes the new bound now
+}
+
 double BulletWorld::jointPosition(std::size_t joint) const { return impl_->body->getJointPos(int(joint)); }
 double BulletWorld::jointVelocity(std::size_t joint) const { return impl_->body->getJointVel(int(joint)); }
 
@@ -405,7 +446,7 @@ void BulletWorld::setJointEffort(std::size_t joint, double effort) {
   assert(joint < impl_->joints.size());
   JointData& data = impl_->joints[joint];
   if (data.mode != CommandMode::effort) impl_->setMode(data, CommandMode::effort);
-  data.pending_effort = std::clamp(effort, -data.effort_limit, data.effort_limit);
+  data.pending_effort = effort;
 }
 
 void BulletWorld::setJointVelocityTarget(std::size_t joint, double velocity) {
@@ -448,11 +489,20 @@ void BulletWorld::step() {
     JointData& joint = w.joints[j];
     const double damping_effort = -joint.damping * mb.getJointVel(int(j));
     mb.addJointTorque(int(j), joint.pending_effort + damping_effort);
-    joint.pending_effort = 0.0;
   }
   // maxSubSteps = 0: exactly one step of time_step_s, no interpolation.
   w.world->stepSimulation(w.settings.time_step_s, 0, w.settings.time_step_s);
   mb.clearForcesAndTorques();
+  // What each joint's actuator applied: a motor's effort is its constraint
+  // impulse of this step (the solver writes it back per constraint row) over dt.
+  for (JointData& joint : w.joints) {
+    if (joint.mode == CommandMode::effort) {
+      joint.applied_effort = joint.pending_effort;
+    } else {
+      joint.applied_effort = joint.command_motor->getAppliedImpulse(0) / w.settings.time_step_s;
+    }
+    joint.pending_effort = 0.0;
+  }
   ++w.steps;
 }
 
@@ -467,6 +517,7 @@ void BulletWorld::reset() {
     mb.setJointVel(int(j), 0.0);
     w.setMode(w.joints[j], CommandMode::effort);
     w.joints[j].pending_effort = 0.0;
+    w.joints[j].applied_effort = 0.0;
   }
   mb.setBaseWorldTransform(toBt(w.initial_root_pose * w.tree.bodies.front().principal_in_link));
   mb.setBaseVel(btVector3(0, 0, 0));

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "reference_ode.hpp"
@@ -187,16 +188,19 @@ TEST(BulletWorldJoint, LimitHoldsAgainstFullEffort) {
   EXPECT_NEAR(world.jointVelocity(0), 0.0, 0.01);
 }
 
-TEST(BulletWorldJoint, EffortIsSaturatedAtTheUrdfLimit) {
+TEST(BulletWorldJoint, EffortIsAppliedAsGivenBeyondTheUrdfLimit) {
+  // Limits are SimRobotHW's (URDF + YAML, which may be looser than the URDF);
+  // the world must not clamp a second time at <limit effort> = 10 N m.
   BulletWorld world(*seedWithControl(), noGravity());
   world.setJointState(0, 0.2, 0.0);
   for (int k = 0; k < 100; ++k) {
-    world.setJointEffort(0, 100.0);  // 10x the limit
+    world.setJointEffort(0, 20.0);  // 2x the URDF limit
     world.step();
+    ASSERT_EQ(world.jointAppliedEffort(0), 20.0);
   }
-  // Saturated at 10 N m, damped by -1 * v: v(t) = (tau/b)(1 - exp(-b t / I)) = 2.485 rad/s at
-  // 0.1 s (24.85 unsaturated). Discretisation error of the damping: well under 1 %.
-  const double expected = 10.0 * (1.0 - std::exp(-0.1 / kSeedInertiaAboutJoint));
+  // 20 N m damped by -1 * v: v(t) = (tau/b)(1 - exp(-b t / I)) = 4.97 rad/s at
+  // 0.1 s (2.49 if clamped at 10). Discretisation error of the damping: well under 1 %.
+  const double expected = 20.0 * (1.0 - std::exp(-0.1 / kSeedInertiaAboutJoint));
   EXPECT_NEAR(world.jointVelocity(0), expected, 0.01 * expected);
 }
 
@@ -218,13 +222,18 @@ TEST(BulletWorldJoint, OffDiagonalRotatedInertiaSwingsAsTheProjectedTensorSays) 
   const Eigen::Vector3d rpy(0.4, -0.3, 0.7);
   Eigen::Matrix3d inertia;
   inertia << 0.20, 0.03, 0.02,  //
-      0.03, 0.05, -0.04,        //
+      0.03, 0.12, -0.04,        //
       0.02, -0.04, 0.15;
+  // A physically possible body: positive principal moments with A + B >= C
+  // for every ordering (MuJoCo refuses anything else; a real body cannot have it).
+  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+  ASSERT_GT(moments.minCoeff(), 0.0);
+  ASSERT_GE(moments[0] + moments[1], moments[2]) << "principal moments " << moments.transpose();
   const std::string xml = R"(<robot name="tumbler"><link name="world"/>
     <joint name="hinge" type="continuous"><parent link="world"/><child link="body"/>
       <origin xyz="0 0 2"/><axis xyz="0 1 0"/></joint>
     <link name="body"><inertial><origin xyz="0.1 0.05 -0.2" rpy="0.4 -0.3 0.7"/><mass value="1.5"/>
-      <inertia ixx="0.20" ixy="0.03" ixz="0.02" iyy="0.05" iyz="-0.04" izz="0.15"/></inertial></link></robot>)";
+      <inertia ixx="0.20" ixy="0.03" ixz="0.02" iyy="0.12" iyz="-0.04" izz="0.15"/></inertial></link></robot>)";
   // URDF rpy: R = Rz(yaw) Ry(pitch) Rx(roll).
   const Eigen::Matrix3d r = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
                              Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *

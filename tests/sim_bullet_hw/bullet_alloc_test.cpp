@@ -37,7 +37,7 @@ TEST(BulletRobotHWAllocation, HundredThousandCyclesAllocateNothing) {
       R"(<limit lower="-1" upper="1" effort="10" velocity="1"/>
          <safety_controller soft_lower_limit="-0.5" soft_upper_limit="0.5" k_position="10" k_velocity="2"/>)";
   hw.init(sim_testing::makeInfo(sim_testing::armUrdf(50.0, sim_testing::kAllJointInterfaces, "revolute", limits),
-                                "{sim: {ground_plane: true}, actuators: {arm_motor: {max_effort: 0.2}}}"));
+                                "{sim: {ground_plane: true}, actuators: {arm_motor: {max_effort: 0.2, rotor_inertia: 1.0e-4}}}"));
   const std::vector<hi::ControllerInfo> effort = {
       sim_testing::controllerClaiming("e", "EffortJointInterface", {"arm_joint"})};
   const std::vector<hi::ControllerInfo> velocity = {

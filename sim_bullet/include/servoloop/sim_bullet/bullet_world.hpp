@@ -3,6 +3,7 @@
 // model, driven in joint space. The Bullet RobotHW backend wraps it; tests use
 // it directly. No Bullet type appears here (pimpl).
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,13 @@ struct WorldSettings {
   // Ignored when the root link is "world" (the root then is the world frame).
   Eigen::Vector3d initial_base_position{Eigen::Vector3d::Zero()};
   Eigen::Quaterniond initial_base_orientation{Eigen::Quaterniond::Identity()};
+  // Rotor inertia reflected to a joint (n²·J for a reduction n, kg·m²), by
+  // revolute or continuous joint name. Added to the inertia of the joint's
+  // child body about the joint axis (a pure rotational inertia, no mass):
+  // exactly n²·J more inertia for the joint itself; joints further up the
+  // chain whose axes are not perpendicular feel it too (see
+  // docs/simulation.md, the bullet section). Prismatic joints are rejected.
+  std::map<std::string, double> reflected_rotor_inertia;
 };
 
 enum class JointType { revolute, continuous, prismatic };
@@ -63,9 +71,12 @@ struct BodyMassProperties {
 // Physics is what the URDF says and nothing more: Bullet's default link
 // damping is off, its velocity clamp is raised out of reach, <dynamics damping>
 // is a viscous joint torque -b*qdot and <dynamics friction> a Coulomb friction
-// bounded by `friction` (a velocity motor with target 0), finite revolute and
-// prismatic limits are physical stops, and <limit effort> saturates every
-// commanded effort (and bounds the velocity/position motors).
+// bounded by `friction` (a velocity motor with target 0), and finite revolute
+// and prismatic limits are physical stops. Effort commands are applied as
+// given: limiting them is the caller's job (SimRobotHW enforces the URDF and
+// YAML limits), so no second, possibly different limit applies here. The
+// velocity/position motors are bounded by the joint's motor effort limit,
+// <limit effort> unless setJointMotorEffortLimit() says otherwise.
 //
 // Joint order (indices 0..numJoints()-1): the non-fixed joints depth-first from
 // the root link, children of a link in urdfdom's order (sorted by joint name).
@@ -91,13 +102,27 @@ class BulletWorld {
   double jointPosition(std::size_t joint) const;  // rad or m
   double jointVelocity(std::size_t joint) const;  // rad/s or m/s
 
-  // Effort mode: `effort` (N m or N), clamped to +-effort limit, acts during the
-  // next step() only. Turns off the joint's velocity/position motor.
+  // Bound on the effort of the joint's velocity/position motor (N m or N,
+  // >= 0; +infinity: unbounded). Defaults to jointEffortLimit(). Takes effect
+  // at once, also for a motor already running. Real-time safe.
+  void setJointMotorEffortLimit(std::size_t joint, double limit);
+  double jointMotorEffortLimit(std::size_t joint) const;
+  // Reflected rotor inertia added to the joint (kg m²), from WorldSettings.
+  double jointRotorInertia(std::size_t joint) const;
+
+  // Effort mode: `effort` (N m or N), applied as given (no clamp), acts during
+  // the next step() only. Turns off the joint's velocity/position motor.
   void setJointEffort(std::size_t joint, double effort);
   // Motor modes (stay in force until another command): a Bullet joint motor
-  // reaching the target as fast as the effort limit allows.
+  // reaching the target as fast as the motor effort limit allows.
   void setJointVelocityTarget(std::size_t joint, double velocity);
   void setJointPositionTarget(std::size_t joint, double position);
+  // The effort the joint's actuator applied during the last step (N m or N):
+  // the effort command in effort mode; in velocity/position mode the motor's
+  // effort, its constraint impulse over the step divided by the time step
+  // (within +-jointMotorEffortLimit()). Damping, friction, stops and contacts
+  // are not included. 0 before the first step and after reset().
+  double jointAppliedEffort(std::size_t joint) const;
   // Teleports the joint (no dynamics); link poses are updated at once.
   void setJointState(std::size_t joint, double position, double velocity);
 
@@ -118,7 +143,8 @@ class BulletWorld {
   // throws servoloop::Error for an unknown link. Not for the real-time path.
   Eigen::Vector3d linkWorldPosition(const std::string& link_name) const;
   // Mass properties of the body that `link_name` moves with, expressed in the
-  // frame of that body's first link (the one its joint moves).
+  // frame of that body's first link (the one its joint moves). The URDF's:
+  // without the rotor inertia added for the body's joint.
   BodyMassProperties bodyMassProperties(const std::string& link_name) const;
 
   // Checks on Bullet's settings, for tests: true when btScalar is double.
