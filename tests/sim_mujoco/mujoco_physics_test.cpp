@@ -222,7 +222,7 @@ TEST(MujocoPhysics, OffDiagonalRotatedInertiaSwingsAsTheProjectedTensorSays) {
       0.03, 0.12, -0.04,        //
       0.02, -0.04, 0.15;
   // A physical tensor: principal moments obey the triangle inequality, which
-  // MuJoCo checks (the bullet test's iyy = 0.05 tensor breaks it).
+  // MuJoCo checks.
   const Eigen::Vector3d principal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
   ASSERT_GE(principal[0] + principal[1], principal[2]);
   const std::string xml = R"(<robot name="tumbler"><link name="world"/>

@@ -134,8 +134,7 @@ TEST(MujocoRobotHW, VelocityAndPositionCommandsGoThroughTheMotors) {
 
 TEST(MujocoRobotHW, PositionMotorIsBoundedByTheMotorLimitThroughTheGear) {
   // Holding the horizontal arm needs 9.81 N·m. A 0.2 N·m motor behind 50:1
-  // gives 10 N·m: it holds. A 0.19 N·m one gives 9.5 N·m: the arm sags
-  // (the bullet backend bounds its motors by the URDF effort limit instead).
+  // gives 10 N·m: it holds. A 0.19 N·m one gives 9.5 N·m: the arm sags.
   const auto hold = [](double motor_max_effort) {
     MujocoRobotHW hw;
     hw.init(makeInfo(armUrdf(50.0, sim_testing::kAllJointInterfaces),

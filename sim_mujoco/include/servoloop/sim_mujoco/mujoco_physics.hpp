@@ -26,7 +26,7 @@
 //  The motor effort is solved per step from the joint-space inverse inertia
 //  (mass matrix with armature), the acceleration every other force gives, and
 //  the effort bounds, jointly for all motor-driven joints (projected
-//  Gauss-Seidel). Unlike the bullet backend, the bound is motor_effort_limit
+//  Gauss-Seidel). As in the bullet backend, the bound is motor_effort_limit
 //  (URDF effort limit and actuators' max_effort through the transmission),
 //  and jointEffort() reports the motor's effort.
 //
