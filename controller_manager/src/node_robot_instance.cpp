@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "servoloop/controller_manager/node/robot_namespace.hpp"
+#include "servoloop/controller_manager/node/step_time.hpp"
 #include "servoloop/hardware_interface/errors.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/logging.hpp"
@@ -133,18 +135,51 @@ RobotInstance::~RobotInstance() {
 }
 
 void RobotInstance::loadControllers(const RobotSpec& spec) {
-  std::vector<std::string> to_start;
   for (const std::string& name : spec.controllers) {
-    if (manager_->loadController(name)) to_start.push_back(name);
+    if (manager_->loadController(name)) launch_controllers_.push_back(name);
   }
   for (const std::string& name : spec.stopped_controllers) manager_->loadController(name);
-  if (to_start.empty()) return;
-  SwitchRequest request;
-  request.start_controllers = to_start;
-  request.strictness = SwitchStrictness::STRICT;
-  // Carried out by the loop's first cycle, so the controllers act from t = 0.
-  if (const ServiceResult result = manager_->requestSwitch(request); !result) {
-    logger().error("robot '{}': starting controllers failed: {}", namespace_, result.message);
+}
+
+// Loop thread, before the first physics step. In the manager, a controller
+// started in cycle c first updates in cycle c + d (d: its rate divisor) with
+// the period since its start. So each controller is started d control
+// periods before t = 0, in manager updates that step no physics and update
+// no running controller (every one started is still short of its first d
+// cycles): all of them first update at t = 0 with their nominal period, then
+// every d cycles (a 100 Hz controller at 0, 10 ms, 20 ms, ...). The hardware
+// is read first, so starting() sees the measured state. Controllers with
+// different divisors start in separate STRICT switches, largest divisor
+// first; one that cannot start is reported and the others run.
+void RobotInstance::startLaunchControllers() {
+  if (launch_controllers_.empty()) return;
+  std::map<std::uint32_t, std::vector<std::string>, std::greater<>> by_divisor;
+  for (const ControllerSpec& controller : manager_->listControllers()) {
+    if (std::find(launch_controllers_.begin(), launch_controllers_.end(), controller.name) !=
+        launch_controllers_.end()) {
+      by_divisor[std::max<std::uint32_t>(controller.update_divisor, 1)].push_back(controller.name);
+    }
+  }
+  if (by_divisor.empty()) return;
+
+  const Duration period = loop_->controlPeriod();
+  if (sim_hw_->read(Time(0.0), loop_->physicsStep()) != ReturnType::ok) {
+    logger().warn("robot '{}': reading the hardware before starting the controllers failed", namespace_);
+  }
+  for (std::uint32_t cycles_before = by_divisor.begin()->first; cycles_before >= 1; --cycles_before) {
+    const Time time(-static_cast<double>(cycles_before) * period.seconds);
+    if (const auto group = by_divisor.find(cycles_before); group != by_divisor.end()) {
+      SwitchRequest request;
+      request.start_controllers = group->second;
+      request.strictness = SwitchStrictness::STRICT;
+      // A client's switch that got in first is carried out by this cycle's
+      // update; ours follows in the next one.
+      if (manager_->switchPending()) manager_->update(time, period);
+      if (const ServiceResult result = manager_->requestSwitch(request); !result) {
+        logger().error("robot '{}': starting controllers failed: {}", namespace_, result.message);
+      }
+    }
+    manager_->update(time, period);
   }
 }
 
@@ -163,7 +198,7 @@ std::uint64_t RobotInstance::stepsAt(double time_s) const {
 void RobotInstance::publishDue(std::uint64_t steps_taken) {
   while (next_publication_ < publications_.size() && stepsAt(publications_[next_publication_].time_s) <= steps_taken) {
     const TimedPublication& publication = publications_[next_publication_++];
-    bus_->setTime(Time(static_cast<double>(steps_taken) * loop_->physicsStep().seconds));
+    bus_->setTime(Time(stepsToSeconds(steps_taken, loop_->physicsStep().seconds)));
     try {
       bus_->publishJson(publication.topic, publication.message, publication.type);
       logger().debug("published {} on '{}' at t = {} s", publication.message.dump(), publication.topic,
@@ -182,10 +217,9 @@ void RobotInstance::driveLoop(std::optional<double> duration_s) {
   const std::uint64_t end_steps = duration_s ? stepsAt(*duration_s) : kForever;
   const auto flush_steps = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
 
-  // The controllers of the launch file start in the first cycle, and a
-  // controller's starting() forgets commands published before it: so that a
-  // publication at t = 0 is not lost, that cycle runs before any publication.
-  if (manager_->switchPending() && end_steps > 0) loop_->runFor(Duration(dt));
+  // Before any publication: a controller's starting() forgets commands
+  // published before it.
+  startLaunchControllers();
 
   while (!stop_requested_.load()) {
     const std::uint64_t taken = loop_->stepsTaken();
@@ -248,7 +282,7 @@ void RobotInstance::shutdownControllers() {
 }
 
 double RobotInstance::simTime() const {
-  return static_cast<double>(loop_->stepsTaken()) * loop_->physicsStep().seconds;
+  return stepsToSeconds(loop_->stepsTaken(), loop_->physicsStep().seconds);
 }
 
 std::vector<JointReading> RobotInstance::joints() const {

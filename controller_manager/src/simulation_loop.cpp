@@ -8,6 +8,7 @@
 
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/controller_manager/loop_clock.hpp"
+#include "servoloop/controller_manager/node/step_time.hpp"
 #include "servoloop/hardware_interface/errors.hpp"
 
 namespace servoloop::controller_manager {
@@ -92,7 +93,9 @@ SimulationLoop::SimulationLoop(hardware_interface::SimulatedRobotHW& hw, Control
 
 ReturnType SimulationLoop::runCycle(bool* control_updated) noexcept {
   const std::uint64_t step = steps_taken_.load(std::memory_order_relaxed);
-  const Time time = hw_.simTime();
+  // The hardware's steps × dt, put on the decimal step grid so stamps read
+  // 3.131, not 3.1310000000000002 (node/step_time.hpp).
+  const Time time(node::snapToStepGrid(hw_.simTime().seconds, physics_step_.seconds));
   setBusTime(time);
 
   const ReturnType read_result = readHardware(time, physics_step_, step);
@@ -129,7 +132,7 @@ ReturnType SimulationLoop::runCycle(bool* control_updated) noexcept {
 
 void SimulationLoop::publishElapsed() noexcept {
   const double sim_time_s =
-      static_cast<double>(steps_taken_.load(std::memory_order_relaxed)) * physics_step_.seconds;
+      node::stepsToSeconds(steps_taken_.load(std::memory_order_relaxed), physics_step_.seconds);
   mutableStatistics().setElapsed(sim_time_s, wall_time_ns_);
 }
 

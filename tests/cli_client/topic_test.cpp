@@ -3,6 +3,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -181,7 +182,71 @@ TEST_F(TopicTest, ListTextAndJson) {
             "/one_DOF_robot/c/command     std_msgs/Float64\n");
   result = runCli({"topic", "list", "--json"}, run_dir_.scratch());
   ASSERT_EQ(result.status, 0) << result.err;
-  EXPECT_EQ(json::parse(result.out), topics);
+  json tagged = topics;
+  for (auto& topic : tagged) topic["node"] = "/one_DOF_robot";
+  EXPECT_EQ(json::parse(result.out), tagged);
+}
+
+// Answers topic.list with one topic per name given.
+void serveTopicList(FakeNode& node, const std::vector<std::string>& names) {
+  json topics = json::array();
+  for (const auto& name : names) {
+    topics.push_back({{"name", name}, {"type", "std_msgs/Float64"}, {"publishers", 1}, {"subscribers", 0}});
+  }
+  node.on("topic.list", [topics](const json&, auto&) -> json { return {{"topics", topics}}; });
+}
+
+TEST_F(TopicTest, ListWithoutNamespaceShowsTheTopicsOfEveryRunningNode) {
+  FakeNode left("/arm/left");
+  FakeNode right("/arm/right");
+  serveTopicList(left, {"/arm/left/c/command"});
+  serveTopicList(right, {"/arm/right/c/command", "/arm/right/joint_states"});
+  CliResult result = runCli({"topic", "list"}, run_dir_.scratch());
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "/arm/left/c/command      std_msgs/Float64  node /arm/left\n"
+            "/arm/right/c/command     std_msgs/Float64  node /arm/right\n"
+            "/arm/right/joint_states  std_msgs/Float64  node /arm/right\n");
+
+  result = runCli({"topic", "list", "--json"}, run_dir_.scratch());
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json listed = json::parse(result.out);
+  ASSERT_EQ(listed.size(), 3u);
+  EXPECT_EQ(listed[0]["name"], "/arm/left/c/command");
+  EXPECT_EQ(listed[0]["node"], "/arm/left");
+  EXPECT_EQ(listed[2]["name"], "/arm/right/joint_states");
+  EXPECT_EQ(listed[2]["node"], "/arm/right");
+
+  // --namespace asks that node only.
+  result = runCli({"topic", "list", "-N", "/arm/right"}, run_dir_.scratch());
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "/arm/right/c/command     std_msgs/Float64\n"
+            "/arm/right/joint_states  std_msgs/Float64\n");
+  EXPECT_EQ(left.requestsFor("topic.list").size(), 2u);  // the two runs without -N
+}
+
+TEST_F(TopicTest, ListLeavesOutAWorldSocketWithNoRobot) {
+  FakeNode world("/");
+  world.on("topic.list", [](const json&, auto&) -> json {
+    return {{"ok", false}, {"error", "'topic.list': this world has no robot yet"}};
+  });
+  FakeNode robot("/one_DOF_robot");
+  serveTopicList(robot, {"/one_DOF_robot/joint_states"});
+  CliResult result = runCli({"topic", "list"}, run_dir_.scratch());
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(result.out, "/one_DOF_robot/joint_states  std_msgs/Float64\n");
+}
+
+TEST_F(TopicTest, ListFailsWithTheNodesErrorWhenNoNodeAnswers) {
+  FakeNode world("/");
+  world.on("topic.list", [](const json&, auto&) -> json {
+    return {{"ok", false}, {"error", "'topic.list': this world has no robot yet"}};
+  });
+  const CliResult result = runCli({"topic", "list"}, run_dir_.scratch());
+  EXPECT_EQ(result.status, 1);
+  EXPECT_THAT(result.err, HasSubstr("this world has no robot yet"));
+  EXPECT_EQ(lineCount(result.err), 1) << result.err;
 }
 
 TEST_F(TopicTest, HzReportsTheSimRateFromStamps) {

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -111,6 +112,25 @@ TEST_F(CliLaunch, HeadlessRunPrintsJsonSummaryRecordsAndPlots) {
   const std::string png = readFile(dir_ / "out" / "one_dof.png");
   ASSERT_GT(png.size(), 8u);
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+}
+
+TEST_F(CliLaunch, PublicationAtTimeZeroIsRecordedAtZeroAndActsFromTheFirstStep) {
+  const CliResult result =
+      run("launch '" + kSeedLaunch +
+          "' --backend mock --duration 0.1 --pub /one_DOF_robot/joint1_position_controller/command:=1.0"
+          " --record /one_DOF_robot/joint1_position_controller/command=cmd.csv"
+          " --record /one_DOF_robot/joint_states=js.csv");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(readFile(dir_ / "cmd.csv"), "time,data\n0.0,1.0\n");
+  // Joint states from t = 0 (the start position, before any physics step),
+  // then every 20 ms, stamps printed as the decimals they are.
+  std::stringstream joint_states(readFile(dir_ / "js.csv"));
+  std::string line;
+  std::getline(joint_states, line);
+  std::vector<std::string> times;
+  while (std::getline(joint_states, line)) times.push_back(line.substr(0, line.find(',')));
+  EXPECT_EQ(times, (std::vector<std::string>{"0.0", "0.02", "0.04", "0.06", "0.08"}));
+  EXPECT_EQ(readFile(dir_ / "js.csv").find("\n0.0,0.0,0.0,"), readFile(dir_ / "js.csv").find('\n'));
 }
 
 TEST_F(CliLaunch, TextSummaryByDefault) {

@@ -120,6 +120,12 @@ cm::IpcClient connectToRobotNode(const std::string& ns_option, double wait_s, bo
     try {
       return cm::IpcClient::connectToNode(ns);
     } catch (const Error& error) {
+      // With no node at all, say so plainly: files a node left behind (its
+      // .lock, a socket nobody accepts on) are not worth the user's attention.
+      if (std::string_view(error.what()).starts_with("no servoloop node") && acceptingNodes().empty()) {
+        throw Error("no servoloop node is running (looked for namespace '" + ns + "' in run directory " +
+                    cm::ipcRunDirectory().string() + "); " + kStartHint);
+      }
       throw Error(std::string(error.what()) + " (" + describeRunningNodes() + ")");
     }
   }
@@ -167,6 +173,39 @@ cm::IpcClient connectToWorld() {
   throw Error("several servoloop nodes are running (" + joinNames(accepting) +
               ") and none serves the world's socket (default.sock); stop the others or "
               "launch a world");
+}
+
+std::vector<std::string> runningNodeNames() {
+  std::vector<std::string> names;
+  for (const auto& node : acceptingNodes()) names.push_back(node.node_name);
+  return names;
+}
+
+cm::IpcClient connectToNodeNamed(const std::string& node_name) {
+  for (const auto& node : acceptingNodes()) {
+    if (node.node_name == node_name) return connectTo(node);
+  }
+  throw Error("the servoloop node '" + node_name + "' is no longer running (" + describeRunningNodes() + ")");
+}
+
+StreamMessage parseStreamMessage(const nlohmann::json& stream) {
+  StreamMessage message;
+  message.topic = stream.value("stream", "");
+  message.type = stream.value("type", "");
+  if (stream.contains("stamp") && stream["stamp"].is_number()) {
+    message.stamp = stream["stamp"].get<double>();
+  }
+  if (stream.contains("msg")) {
+    message.msg = stream["msg"];
+  } else {
+    message.msg = stream;
+    for (const char* key : {"stream", "type"}) message.msg.erase(key);
+  }
+  if (!message.stamp && message.msg.is_object() && message.msg.contains("stamp") &&
+      message.msg["stamp"].is_number()) {
+    message.stamp = message.msg["stamp"].get<double>();
+  }
+  return message;
 }
 
 void installStopSignalHandlers() {

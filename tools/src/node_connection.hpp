@@ -9,11 +9,13 @@
 //   - otherwise the only robot node running (or the world's socket if that is
 //     all there is).
 // Every failure names what was looked for and lists the nodes that are running.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "servoloop/controller_manager/ipc_client.hpp"
 
@@ -47,6 +49,24 @@ controller_manager::IpcClient connectForName(const std::string& name, const std:
 
 // Connects to the world: default.sock if it is served, else the only node.
 controller_manager::IpcClient connectToWorld();
+
+// The name of every node accepting connections now, sorted (e.g. "/arm/left",
+// "/one_DOF_robot"; "/" for a world's socket).
+std::vector<std::string> runningNodeNames();
+
+// Connects to the running node of that exact name (as runningNodeNames gives it).
+controller_manager::IpcClient connectToNodeNamed(const std::string& node_name);
+
+// One message a node pushed on a `topic.subscribe` stream. The node sends
+// {"stream": TOPIC, "type": T, "stamp": S, "msg": {...}}; fields given inline
+// (no "msg") are accepted too, and a missing "stamp" is taken from the message.
+struct StreamMessage {
+  std::string topic;
+  std::string type;
+  std::optional<double> stamp;  // simulated seconds
+  nlohmann::json msg;
+};
+StreamMessage parseStreamMessage(const nlohmann::json& stream);
 
 // Installs handlers so SIGINT and SIGTERM set a flag instead of killing the
 // process; stopRequested() reads it. Idempotent.

@@ -1,6 +1,7 @@
 // `servoloop topic pub|echo|list|hz`: rostopic for a running node's topic bus.
 // A topic is served by the node whose robot namespace prefixes it (or the one
-// chosen with --namespace, or the only node running).
+// chosen with --namespace, or the only node running); `list` without
+// --namespace shows the topics of every running node.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -82,33 +83,6 @@ std::string dumpSpaced(const nlohmann::ordered_json& value) {
     return text + "]";
   }
   return value.dump();
-}
-
-// One pushed message: its type, stamp and fields. The node sends
-// {"stream", "type", "stamp", "msg": {...}}; fields given inline are accepted too.
-struct StreamMessage {
-  std::string type;
-  std::optional<double> stamp;
-  nlohmann::json msg;
-};
-
-StreamMessage parseStreamMessage(const nlohmann::json& stream) {
-  StreamMessage message;
-  message.type = stream.value("type", "");
-  if (stream.contains("stamp") && stream["stamp"].is_number()) {
-    message.stamp = stream["stamp"].get<double>();
-  }
-  if (stream.contains("msg")) {
-    message.msg = stream["msg"];
-  } else {
-    message.msg = stream;
-    for (const char* key : {"stream", "type"}) message.msg.erase(key);
-  }
-  if (!message.stamp && message.msg.is_object() && message.msg.contains("stamp") &&
-      message.msg["stamp"].is_number()) {
-    message.stamp = message.msg["stamp"].get<double>();
-  }
-  return message;
 }
 
 // `echo --json` line: a JointState as {"stamp", "name", "position", "velocity",
@@ -205,19 +179,64 @@ void runEcho(const TopicOptions& options) {
   });
 }
 
+// One node's topics, each tagged with the node ({name, type, publishers,
+// subscribers, node}).
+nlohmann::json nodeTopics(cm::IpcClient& client, const std::string& node_name) {
+  nlohmann::json topics = client.call("topic.list").value("topics", nlohmann::json::array());
+  for (auto& topic : topics) topic["node"] = node_name;
+  return topics;
+}
+
+// With --namespace: that node's topics. Without: every running node's, merged
+// in node order (as rostopic list shows every topic of the ROS graph). A
+// world's socket with no robot yet has no topics and is left out; a node that
+// goes away while it is asked is skipped. Fails only when no node answered.
+nlohmann::json listTopics(const std::string& ns_option) {
+  if (!normalizeNamespace(ns_option).empty()) {
+    cm::IpcClient client = connectToRobotNode(ns_option);
+    return nodeTopics(client, normalizeNamespace(ns_option));
+  }
+  const std::vector<std::string> nodes = runningNodeNames();
+  if (nodes.empty()) connectToRobotNode("");  // throws the "no servoloop node is running" error
+  nlohmann::json topics = nlohmann::json::array();
+  std::optional<std::string> first_error;
+  bool answered = false;
+  for (const std::string& node_name : nodes) {
+    try {
+      cm::IpcClient client = connectToNodeNamed(node_name);
+      for (auto& topic : nodeTopics(client, node_name)) topics.push_back(std::move(topic));
+      answered = true;
+    } catch (const Error& error) {
+      if (!first_error) first_error = node_name + ": " + error.what();
+    }
+  }
+  if (!answered) throw Error(first_error.value_or("no servoloop node answered"));
+  return topics;
+}
+
 void runList(const TopicOptions& options) {
-  cm::IpcClient client = connectToRobotNode(options.ns);
-  auto topics = client.call("topic.list").value("topics", nlohmann::json::array());
+  const nlohmann::json topics = listTopics(options.ns);
   if (options.json) {
     std::cout << topics.dump(2) << "\n";
     return;
   }
-  std::size_t width = 0;
-  for (const auto& topic : topics) width = std::max(width, topic.value("name", "").size());
+  // The node column only when the topics come from more than one node.
+  std::size_t name_width = 0;
+  std::size_t type_width = 0;
+  bool several_nodes = false;
+  for (const auto& topic : topics) {
+    name_width = std::max(name_width, topic.value("name", "").size());
+    type_width = std::max(type_width, topic.value("type", "").size());
+    several_nodes |= topic.value("node", "") != topics.front().value("node", "");
+  }
   for (const auto& topic : topics) {
     const std::string name = topic.value("name", "");
-    std::cout << name << std::string(width - name.size() + 2, ' ') << topic.value("type", "")
-              << "\n";
+    const std::string type = topic.value("type", "");
+    std::cout << name << std::string(name_width - name.size() + 2, ' ') << type;
+    if (several_nodes) {
+      std::cout << std::string(type_width - type.size() + 2, ' ') << "node " << topic.value("node", "");
+    }
+    std::cout << "\n";
   }
 }
 
@@ -350,10 +369,15 @@ void addTopicCommands(CLI::App& root) {
   }
   {
     auto options = std::make_shared<TopicOptions>();
-    CLI::App* list = topic.add_subcommand("list", "List the node's topics with their types");
-    addNamespaceOption(*list, options->ns);
+    CLI::App* list = topic.add_subcommand(
+        "list",
+        "List the topics of every running node with their types (with --namespace: that node's)");
+    list->add_option("-N,--namespace", options->ns,
+                     "Robot namespace of the node to list, e.g. /one_DOF_robot (default: every "
+                     "running node)")
+        ->type_name("NS");
     list->add_flag("--json", options->json,
-                   "Print a JSON array of {name, type, publishers, subscribers}");
+                   "Print a JSON array of {name, type, publishers, subscribers, node}");
     list->callback([options] { runList(*options); });
   }
   {

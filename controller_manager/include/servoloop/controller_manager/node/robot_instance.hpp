@@ -10,10 +10,12 @@
 //   - timed publications: a publication at time T is published after the last
 //     physics step before T, so the first control update at a simulated time
 //     >= T sees it (exact to the control cycle; the loop thread pauses for the
-//     microseconds a publish takes, between cycles, never inside one). The
-//     first cycle, in which the launch file's controllers start (and their
-//     starting() forgets earlier commands), always runs first: publications at
-//     t = 0 are seen from the second control update on;
+//     microseconds a publish takes, between cycles, never inside one);
+//   - before the first physics step, the launch file's controllers are
+//     started (see startLaunchControllers), so that their starting(), which
+//     resets a controller's command to the measured state as in ros_control,
+//     comes before the publications at t = 0: those are seen by the first
+//     control update, at t = 0, and stamped 0;
 //   - when free-running (real-time factor 0), the bus is flushed every 10 ms
 //     of simulated time, so subscribers (recorders, `topic echo`) get every
 //     message even when the loop runs a thousand times faster than the bus's
@@ -71,8 +73,8 @@ class RobotInstance {
   // initialises the backend, the bus (delivery started), the manager and the
   // loop, and loads spec's controllers and stopped_controllers (a controller
   // that fails to load is logged and left out; the robot carries on). The
-  // controllers to start are handed to the loop, which starts them in its
-  // first cycle. Throws ConfigError naming the URDF, backend or setting at fault.
+  // loop thread starts the controllers before its first physics step. Throws
+  // ConfigError naming the URDF, backend or setting at fault.
   RobotInstance(const RobotSpec& spec, const RobotWorld& world);
   // stop(), then stops and unloads every controller.
   ~RobotInstance();
@@ -118,6 +120,7 @@ class RobotInstance {
   std::uint64_t stepsAt(double time_s) const;
   void publishDue(std::uint64_t steps_taken);
   void loadControllers(const RobotSpec& spec);
+  void startLaunchControllers();
 
   std::string namespace_;
   std::string robot_name_;
@@ -133,6 +136,9 @@ class RobotInstance {
   std::unique_ptr<ControllerManager> manager_;
   std::unique_ptr<SimulationLoop> loop_;
 
+  // Loaded controllers of spec.controllers, started by the loop thread before
+  // its first physics step.
+  std::vector<std::string> launch_controllers_;
   std::vector<TimedPublication> publications_;  // sorted by time before start
   std::size_t next_publication_ = 0;            // loop thread only
 

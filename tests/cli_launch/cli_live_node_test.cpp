@@ -1,0 +1,106 @@
+// The client commands against a real node: `servoloop launch` of the seed on
+// the mock backend in real time (serving its socket), then `servoloop plot
+// --topic`, `topic list` and, once it has ended, the "no node" error — each
+// bounded in time, on a private SERVOLOOP_RUN_DIR.
+#include <csignal>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli_client_support.hpp"
+
+namespace servoloop::cli::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const std::string kSeedLaunch =
+    (fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof" / "one_dof_w_jnt_ctl.launch.yaml").string();
+const char* const kJointStates = "/one_DOF_robot/joint_states";
+
+// Waits until the node answers `topic list` (it serves its socket once its
+// robot is spawned); false after timeout_s.
+bool waitForNode(const fs::path& scratch, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (runCli({"topic", "list"}, scratch, 10.0).status == 0) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
+// Milliseconds as the shortest decimal text: 20 -> "0.02", 3000 -> "3.0".
+std::string millisecondsText(long long ms) {
+  std::string fraction = std::to_string(ms % 1000);
+  fraction.insert(0, 3 - fraction.size(), '0');
+  while (fraction.size() > 1 && fraction.back() == '0') fraction.pop_back();
+  return std::to_string(ms / 1000) + "." + fraction;
+}
+
+TEST(CliLiveNode, PlotOfALiveTopicThenTopicListThenNoNodeAfterSigint) {
+  ScopedRunDir run_dir;
+  const fs::path& scratch = run_dir.scratch();
+  CliProcess launch({"launch", kSeedLaunch, "--backend", "mock"}, scratch);
+  ASSERT_TRUE(waitForNode(scratch, 60.0)) << launch.currentOut();
+
+  // One wall second of joint states at 50 Hz of simulated time, paced at
+  // real time: about 50 rows (a loaded machine may lag behind).
+  const fs::path png = scratch / "live.png";
+  const fs::path csv_dir = scratch / "recorded";
+  const CliResult plot = runCli({"plot", "--topic", kJointStates, "--duration", "1", "-o", png.string(),
+                                 "--save-csv", csv_dir.string()},
+                                scratch, 30.0);
+  ASSERT_EQ(plot.status, 0) << plot.err;
+  EXPECT_EQ(readFile(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  std::istringstream csv(readFile(csv_dir / "one_DOF_robot_joint_states.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "time,joint1.position,joint1.velocity,joint1.effort");
+  std::vector<double> stamps;
+  while (std::getline(csv, line)) {
+    const std::string time_text = line.substr(0, line.find(','));
+    const double time_s = std::stod(time_text);
+    // A multiple of 20 ms, printed as that decimal.
+    const long long ms = std::llround(time_s * 1000.0);
+    EXPECT_EQ(ms % 20, 0) << line;
+    EXPECT_EQ(time_text, millisecondsText(ms)) << line;
+    if (!stamps.empty()) {
+      EXPECT_NEAR(time_s - stamps.back(), 0.02, 1e-12) << "lost a message before " << line;
+    }
+    stamps.push_back(time_s);
+  }
+  EXPECT_GE(stamps.size(), 10u);
+  EXPECT_LE(stamps.size(), 80u);
+
+  // One node: its topics, without a node column.
+  const CliResult list = runCli({"topic", "list"}, scratch, 30.0);
+  ASSERT_EQ(list.status, 0) << list.err;
+  EXPECT_THAT(list.out, HasSubstr("/one_DOF_robot/joint_states  "));
+  EXPECT_THAT(list.out, HasSubstr("sensor_msgs/JointState\n"));
+  EXPECT_THAT(list.out, ::testing::Not(HasSubstr("node /one_DOF_robot")));
+
+  launch.signal(SIGINT);
+  const CliResult launched = launch.wait(30.0);
+  ASSERT_FALSE(launched.timed_out);
+  EXPECT_EQ(launched.status, 0) << launched.err;
+
+  // The node left its lock file; the commands still say plainly that no node runs.
+  EXPECT_TRUE(fs::exists(run_dir.runDir() / "one_DOF_robot.lock"));
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"topic", "list"}, std::vector<std::string>{"control", "list"}}) {
+    const CliResult result = runCli(command, scratch, 30.0);
+    EXPECT_EQ(result.status, 1);
+    EXPECT_EQ(lineCount(result.err), 1) << result.err;
+    EXPECT_THAT(result.err, HasSubstr("error: no servoloop node is running"));
+  }
+}
+
+}  // namespace
+}  // namespace servoloop::cli::testing
