@@ -15,5 +15,10 @@ function(servoloop_add_plugin target)
     if(NOT ARG_NO_INSTALL)
       install(TARGETS ${target} LIBRARY DESTINATION ${SERVOLOOP_PLUGIN_SUBDIR})
     endif()
+  else()
+    # Out of tree: keep the path to the servoloop libraries it links in the
+    # installed plugin, so it loads from any prefix (servoloop itself does not
+    # load sim_common or transmissions for a plugin).
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH_USE_LINK_PATH TRUE)
   endif()
 endfunction()
