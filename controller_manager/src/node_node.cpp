@@ -117,8 +117,9 @@ void Node::startServer(const std::string& socket_namespace, RobotInstance* robot
 }
 
 void Node::startRobotLocked(RobotInstance& robot) {
-  if (options_.serve_ipc) startServer(robot.robotNamespace(), &robot);
+  // The socket opens once the launch file's controllers run (start() waits for them).
   robot.start(options_.duration_s);
+  if (options_.serve_ipc) startServer(robot.robotNamespace(), &robot);
 }
 
 void Node::start() {

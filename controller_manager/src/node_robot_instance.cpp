@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <future>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -217,10 +218,6 @@ void RobotInstance::driveLoop(std::optional<double> duration_s) {
   const std::uint64_t end_steps = duration_s ? stepsAt(*duration_s) : kForever;
   const auto flush_steps = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
 
-  // Before any publication: a controller's starting() forgets commands
-  // published before it.
-  startLaunchControllers();
-
   while (!stop_requested_.load()) {
     const std::uint64_t taken = loop_->stepsTaken();
     publishDue(taken);
@@ -246,14 +243,26 @@ void RobotInstance::driveLoop(std::optional<double> duration_s) {
 void RobotInstance::start(std::optional<double> duration_s) {
   std::lock_guard lock(lifecycle_mutex_);
   if (loop_thread_.joinable()) return;
-  loop_thread_ = std::thread([this, duration_s] {
+  // start() returns once the launch file's controllers are running, so that
+  // nobody (an IPC client, a test) sees the robot before its controllers.
+  std::promise<void> launch_controllers_started;
+  std::future<void> ready = launch_controllers_started.get_future();
+  loop_thread_ = std::thread([this, duration_s, started = std::move(launch_controllers_started)]() mutable {
+    bool started_set = false;
     try {
+      // Before any publication: a controller's starting() forgets commands
+      // published before it.
+      startLaunchControllers();
+      started.set_value();
+      started_set = true;
       driveLoop(duration_s);
     } catch (const std::exception& e) {
+      if (!started_set) started.set_value();
       logger().error("robot '{}': the control loop stopped: {}", namespace_, e.what());
       loop_done_.store(true);
     }
   });
+  ready.wait();
 }
 
 void RobotInstance::stop() {
