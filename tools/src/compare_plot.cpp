@@ -1,4 +1,5 @@
 #include "compare_plot.hpp"
+#include "plot_gnuplot.hpp"
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -75,16 +76,6 @@ std::string plotCommand(const std::vector<Line>& lines) {
   return command + "\n";
 }
 
-bool gnuplotInstalled() {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "/usr/bin:/bin");
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    if (!dir.empty() && ::access((fs::path(dir) / "gnuplot").c_str(), X_OK) == 0) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 std::string makeComparisonScript(const ComparisonPlot& plot) {
@@ -137,48 +128,7 @@ std::string makeComparisonScript(const ComparisonPlot& plot) {
 
 void plotComparison(const ComparisonPlot& plot) {
   if (plot.png.empty()) throw Error("no PNG file to plot to: give --plot FILE.png");
-  const std::string script = makeComparisonScript(plot);
-  if (!gnuplotInstalled()) {
-    throw Error("gnuplot is not installed, so no plot can be drawn; install the Debian package gnuplot-nox "
-                "(sudo apt-get install gnuplot-nox)");
-  }
-  std::error_code error;
-  if (plot.png.has_parent_path()) fs::create_directories(plot.png.parent_path(), error);
-  fs::remove(plot.png, error);
-
-  char errors_path[] = "/tmp/servoloop-compare-gnuplot-XXXXXX";
-  const int errors_fd = ::mkstemp(errors_path);
-  if (errors_fd < 0) throw Error("cannot create a temporary file for gnuplot's messages in /tmp");
-  ::close(errors_fd);
-  // mkstemp's name holds no quote, so single quotes protect it from the shell.
-  FILE* pipe = ::popen(("gnuplot 2>'" + std::string(errors_path) + "'").c_str(), "w");
-  if (pipe == nullptr) {
-    ::unlink(errors_path);
-    throw Error("cannot start gnuplot");
-  }
-  // A gnuplot that dies early must not take this process down with SIGPIPE.
-  struct sigaction ignore {}, previous {};
-  ignore.sa_handler = SIG_IGN;
-  ::sigaction(SIGPIPE, &ignore, &previous);
-  std::fwrite(script.data(), 1, script.size(), pipe);
-  const int status = ::pclose(pipe);
-  ::sigaction(SIGPIPE, &previous, nullptr);
-
-  std::ifstream messages(errors_path);
-  std::string first_error;
-  for (std::string line; std::getline(messages, line);) {
-    if (line.find_first_not_of(" \t^") == std::string::npos) continue;
-    if (first_error.empty() || line.find("error") != std::string::npos) {
-      first_error = line;
-      if (line.find("error") != std::string::npos) break;
-    }
-  }
-  ::unlink(errors_path);
-  const bool exited_ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  if (!exited_ok || !fs::exists(plot.png) || fs::file_size(plot.png, error) == 0) {
-    throw Error("gnuplot failed to draw '" + plot.png.string() + "'" +
-                (first_error.empty() ? std::string() : ": " + first_error));
-  }
+  runGnuplotScript(makeComparisonScript(plot), plot.png);
 }
 
 }  // namespace servoloop::cli

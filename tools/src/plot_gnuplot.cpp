@@ -182,16 +182,14 @@ std::string makeGnuplotScript(const PlotRequest& request) {
   return script.str();
 }
 
-void plotToPng(const PlotRequest& request) {
-  if (request.png.empty()) throw Error("no PNG file to plot to: give -o FILE.png");
-  const std::string script = makeGnuplotScript(request);
+void runGnuplotScript(const std::string& script, const fs::path& png) {
   if (!gnuplotInstalled()) {
     throw Error("gnuplot is not installed, so no plot can be drawn; install the Debian package gnuplot-nox "
                 "(sudo apt-get install gnuplot-nox)");
   }
   std::error_code error;
-  if (request.png.has_parent_path()) fs::create_directories(request.png.parent_path(), error);
-  fs::remove(request.png, error);
+  if (png.has_parent_path()) fs::create_directories(png.parent_path(), error);
+  fs::remove(png, error);
 
   char errors_path[] = "/tmp/servoloop-gnuplot-XXXXXX";
   const int errors_fd = ::mkstemp(errors_path);
@@ -222,10 +220,15 @@ void plotToPng(const PlotRequest& request) {
   }
   ::unlink(errors_path);
   const bool exited_ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  if (!exited_ok || !fs::exists(request.png) || fs::file_size(request.png, error) == 0) {
-    throw Error("gnuplot failed to draw '" + request.png.string() + "'" +
+  if (!exited_ok || !fs::exists(png) || fs::file_size(png, error) == 0) {
+    throw Error("gnuplot failed to draw '" + png.string() + "'" +
                 (first_error.empty() ? std::string() : ": " + first_error));
   }
+}
+
+void plotToPng(const PlotRequest& request) {
+  if (request.png.empty()) throw Error("no PNG file to plot to: give -o FILE.png");
+  runGnuplotScript(makeGnuplotScript(request), request.png);
 }
 
 }  // namespace servoloop::cli

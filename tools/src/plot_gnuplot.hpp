@@ -33,4 +33,8 @@ std::string makeGnuplotScript(const PlotRequest& request);
 // (with its first error line).
 void plotToPng(const PlotRequest& request);
 
+// Runs gnuplot on any script that writes png (the script sets the terminal
+// and output), with the same checks and errors as plotToPng.
+void runGnuplotScript(const std::string& script, const std::filesystem::path& png);
+
 }  // namespace servoloop::cli
