@@ -68,6 +68,7 @@ log "2. whole loop vs raw Bullet"
 "$BIN/servoloop_bench_loop_vs_bullet" "${loop_flags[@]}" --benchmark_color=false \
   --benchmark_out="$RESULTS_DIR/loop_vs_bullet.json" --benchmark_out_format=json \
   | tee "$RESULTS_DIR/loop_vs_bullet.txt"
+[[ -x "$BIN/servoloop_bench_loop_vs_mujoco" ]] && { log "5. whole loop vs raw MuJoCo, raw Bullet vs raw MuJoCo"; "$BIN/servoloop_bench_loop_vs_mujoco" "${loop_flags[@]}" --benchmark_color=false --benchmark_out="$RESULTS_DIR/loop_vs_mujoco.json" --benchmark_out_format=json | tee "$RESULTS_DIR/loop_vs_mujoco.txt"; }
 
 # --- 3: headless real-time factor of the seed run -------------------------------------------
 duration=30

@@ -1,0 +1,106 @@
+// Benchmark 5: the backends. For one robot, the same number of 1 ms physics
+// steps from the same start, three ways:
+//   loop/<robot>/raw_mujoco        servoloop's MuJoCo engine (MujocoPhysics) stepped
+//                                  by hand with a PD written inline,
+//                                  effort = kp·(q_ref − q) − kd·q̇ → setJointEffort →
+//                                  step() (qfrc_applied, then one mj_step, RK4)
+//   loop/<robot>/servoloop_mujoco  SimulationLoop::runFor on the "mujoco" robot_hw
+//                                  plugin, with the robot's JointPositionController(s)
+//                                  and a JointStateController at 50 Hz loaded from the
+//                                  build's plugin folder, the topic bus delivering:
+//                                  exactly benchmark 2's servoloop_bullet on MuJoCo
+//   loop/<robot>/raw_bullet        benchmark 2's raw Bullet PD (BulletWorld by hand)
+// and the summary prints, from medians of the same run:
+//   (a) servoloop_mujoco / raw_mujoco — what the framework adds to MuJoCo;
+//   (b) raw_bullet / raw_mujoco       — the two engines' own stepping cost.
+// The PD gains are the p and d of the robot's controller YAML in both raw loops.
+//
+// Robots: "seed" (the seed's one_dof robot with transmission, setpoint 1.0 rad,
+// 10,000 steps) and "chain32" (robots/chain32, one position controller per
+// joint, setpoints 0.2·sin(2π·i/16) rad, 2,000 steps), as in benchmark 2.
+// One benchmark iteration is one whole episode on a fresh robot, repeated and
+// interleaved at random with the other variants.
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "loop_fixtures.hpp"
+#include "median_reporter.hpp"
+#include "raw_mujoco_pd.hpp"
+
+namespace servoloop::bench {
+namespace {
+
+const std::vector<RobotCase>& robots() {
+  static const std::vector<RobotCase> all = {seedRobot(), chainRobot(false)};
+  return all;
+}
+
+// Raw PD loops: one step before timing, as the servoloop loop's switch cycle.
+template <typename RawPd>
+void rawLoop(benchmark::State& state, const RobotCase* robot) {
+  RawPd raw(*robot);
+  raw.step();
+  for (auto _ : state) {
+    for (std::uint64_t k = 0; k < robot->steps_per_episode; ++k) raw.step();
+  }
+  state.counters[kUnitsPerIterationCounter] = static_cast<double>(robot->steps_per_episode);
+  state.counters["q_first_end"] = raw.jointPosition(0);
+  state.counters["max_abs_q_end"] = raw.maxAbsJointPosition();
+}
+
+void servoloopMujoco(benchmark::State& state, const RobotCase* robot) {
+  ServoloopSimulation simulation(*robot, "mujoco");
+  for (auto _ : state) simulation.runSteps(robot->steps_per_episode);
+  if (simulation.stepsTaken() != robot->steps_per_episode + 1) state.SkipWithError("wrong number of steps");
+  if (simulation.hardwareErrors() != 0) state.SkipWithError("hardware errors during the run");
+  state.counters[kUnitsPerIterationCounter] = static_cast<double>(robot->steps_per_episode);
+  state.counters["q_first_end"] = simulation.firstJointPosition();
+}
+
+std::string nameOf(const std::string& robot, const std::string& variant) { return "loop/" + robot + "/" + variant; }
+
+void registerAll() {
+  for (const RobotCase& robot : robots()) {
+    benchmark::RegisterBenchmark(nameOf(robot.label, "raw_mujoco").c_str(), rawLoop<RawMujocoPd>, &robot)
+        ->Iterations(1);
+    benchmark::RegisterBenchmark(nameOf(robot.label, "servoloop_mujoco").c_str(), servoloopMujoco, &robot)
+        ->Iterations(1);
+    benchmark::RegisterBenchmark(nameOf(robot.label, "raw_bullet").c_str(), rawLoop<RawBulletPd>, &robot)
+        ->Iterations(1);
+  }
+}
+
+void summary(const MedianTable& table, std::ostream& out) {
+  out << "=== Cost per 1 ms physics step (median over repetitions) ===\n";
+  for (const auto& name : table.names()) printMedianLine(out, table, name, name);
+  out << "\n=== Ratios (same run, medians) ===\n";
+  for (const RobotCase& robot : robots()) {
+    const std::string raw_mujoco = nameOf(robot.label, "raw_mujoco");
+    const std::string full = nameOf(robot.label, "servoloop_mujoco");
+    const std::string raw_bullet = nameOf(robot.label, "raw_bullet");
+    if (!table.has(raw_mujoco) || !table.has(full) || !table.has(raw_bullet)) continue;
+    printRatioLine(out, table, full, raw_mujoco, robot.label + ": (a) servoloop+mujoco / raw mujoco");
+    printRatioLine(out, table, raw_bullet, raw_mujoco, robot.label + ": (b) raw bullet / raw mujoco");
+    const double overhead_ns =
+        table.median(full, Clock::thread_cpu) - table.median(raw_mujoco, Clock::thread_cpu);
+    char line[256];
+    std::snprintf(line, sizeof line, "  %-44s %8.0f ns/step over raw mujoco (thread CPU); free-running RTF %.0f\n",
+                  (robot.label + ": framework overhead").c_str(), overhead_ns,
+                  kTimeStepS / (table.median(full, Clock::wall) * 1e-9));
+    out << line;
+  }
+}
+
+}  // namespace
+}  // namespace servoloop::bench
+
+int main(int argc, char** argv) {
+  servoloop::bench::registerAll();
+  return servoloop::bench::runWithSummary(
+      argc, argv, {"--benchmark_repetitions=21", "--benchmark_enable_random_interleaving=true"},
+      servoloop::bench::summary);
+}
