@@ -201,7 +201,9 @@ ServiceResult ControllerManager::unloadController(const std::string& name) {
   return unloadLocked(name);
 }
 
-ServiceResult ControllerManager::unloadLocked(const std::string& name) {
+ServiceResult ControllerManager::unloadLocked(const std::string& name_ref) {
+  // A copy: callers may pass a reference to the name of the entry destroyed below.
+  const std::string name = name_ref;
   finishDoneSwitchLocked();
   detail::ControllerEntry* entry = findEntry(name);
   if (entry == nullptr) {
