@@ -22,40 +22,16 @@
 # to keep the temporary folder for inspection.
 set -euo pipefail
 
-fail() {
-  echo "check_backend_example: FAILED: $*" >&2
-  exit 1
-}
-step() { echo "== check_backend_example: $*"; }
-# Prints the last lines of a log file to stderr (for a failed step).
-show_log() { echo "--- last lines of $1:" >&2; tail -n 40 "$1" >&2; }
+check_name=check_backend_example
+# shellcheck source=lib/installed_package.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib/installed_package.sh"
 
-[[ $# -eq 1 ]] || fail "usage: $0 BUILD_DIR (a configured and fully built servoloop build folder)"
-[[ -f "$1/CMakeCache.txt" ]] || fail "'$1' is not a CMake build folder (no CMakeCache.txt)"
-build_dir=$(cd "$1" && pwd)
-source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+begin_check "$@"
 example_source=$source_dir/examples/custom_backend
 example_type=first_order
 
-work=$(mktemp -d "${TMPDIR:-/tmp}/servoloop-check-backend.XXXXXX")
-if [[ "${CHECK_INSTALL_KEEP:-0}" == 1 ]]; then
-  echo "check_backend_example: keeping $work"
-else
-  trap 'rm -rf "$work"' EXIT
-fi
-prefix=$work/prefix
-example_build=$work/example-build
-
-cache_value() { sed -n "s/^$1:[A-Z]*=//p" "$build_dir/CMakeCache.txt"; }
-
 # --- 1. install -----------------------------------------------------------------------
-step "installing $build_dir into a temporary prefix"
-if ! cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" 2>&1; then
-  show_log "$work/install.log"
-  fail "cmake --install $build_dir failed; build it completely first (cmake --build $build_dir)"
-fi
-servoloop_exe=$prefix/bin/servoloop
-[[ -x "$servoloop_exe" ]] || fail "the install has no bin/servoloop"
+install_build_into_prefix
 targets_file=$(find "$prefix" -name servoloopTargets.cmake -print -quit)
 [[ -n "$targets_file" ]] || fail "the install has no servoloopTargets.cmake (find_package(servoloop) cannot work)"
 grep -q 'add_library(servoloop::sim_common ' "$targets_file" ||
@@ -67,36 +43,10 @@ for header in sim_common/sim_robot_hw.hpp sim_common/physics_engine.hpp sim_comm
               controller_manager/wall_clock_loop.hpp; do
   [[ -f "$prefix/include/servoloop/$header" ]] || fail "the install lacks the header include/servoloop/$header"
 done
-libdir=$(cache_value CMAKE_INSTALL_LIBDIR)
-installed_plugin_dir=$prefix/${libdir:-lib}/servoloop/plugins
 
 # --- 2. build the example against the prefix -------------------------------------------
-# A sanitized servoloop can only be linked into sanitized programs: build the
-# example the same way.
-cmake_args=(-G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DMY_BACKENDS_BUILD_TESTS=ON
-            -DMY_BACKENDS_SEED_URDF="$source_dir/robots/one_dof/minimal_robot_description.urdf"
-            -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
-build_type=$(cache_value CMAKE_BUILD_TYPE)
-[[ -n "$build_type" ]] && cmake_args+=(-DCMAKE_BUILD_TYPE="$build_type")
-if [[ "$(cache_value SERVOLOOP_SANITIZE)" == ON ]]; then
-  sanitize="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
-  cmake_args+=(-DCMAKE_CXX_FLAGS="$sanitize" -DCMAKE_EXE_LINKER_FLAGS="$sanitize"
-               -DCMAKE_MODULE_LINKER_FLAGS="$sanitize")
-fi
-step "configuring examples/custom_backend with find_package(servoloop) from the prefix"
-if ! cmake -S "$example_source" -B "$example_build" "${cmake_args[@]}" >"$work/configure.log" 2>&1; then
-  show_log "$work/configure.log"
-  fail "configuring the example against the installed package failed (see above)"
-fi
-found_dir=$(sed -n 's/^servoloop_DIR:PATH=//p' "$example_build/CMakeCache.txt")
-[[ "$found_dir" == "$prefix"/* ]] || fail "the example found servoloop in '$found_dir', not in the install"
-step "building the example"
-if ! cmake --build "$example_build" --parallel 2 >"$work/build.log" 2>&1; then
-  show_log "$work/build.log"
-  fail "building the example against the installed package failed (see above)"
-fi
-example_library=$example_build/libmy_backends.so
-[[ -f "$example_library" ]] || fail "the example build made no libmy_backends.so"
+build_example_against_prefix examples/custom_backend libmy_backends.so -DMY_BACKENDS_BUILD_TESTS=ON \
+  -DMY_BACKENDS_SEED_URDF="$source_dir/robots/one_dof/minimal_robot_description.urdf"
 
 # --- 3. list-types --kind robot_hw -------------------------------------------------------
 # list_backends <label> <env...>: list-types --json --kind robot_hw with the
