@@ -229,6 +229,9 @@ urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std
 // ---------------------------------------------------------------------------
 // Model-level checks.
 
+// Relative slack of the principal-moment triangle inequality (of the largest moment).
+constexpr double kInertiaTriangleTolerance = 1e-9;
+
 void checkInertial(const urdf::Link& link, const std::string& source_name) {
   const urdf::JointConstSharedPtr& joint = link.parent_joint;
   const bool moving = joint && joint->type != urdf::Joint::FIXED;
@@ -256,6 +259,22 @@ void checkInertial(const urdf::Link& link, const std::string& source_name) {
     std::ostringstream m;
     m << where << " <inertial><inertia> is not positive definite (principal moments " << moments(0) << ", "
       << moments(1) << ", " << moments(2) << "); give ixx, iyy, izz > 0 and small enough products of inertia";
+    fail(source_name, m.str());
+  }
+  // Triangle inequality: with I_x = ∫(y² + z²) dm etc. about the principal
+  // axes, I_x + I_y − I_z = 2∫z² dm ≥ 0, so the largest moment is at most the
+  // sum of the other two, equal for a flat body (a thin disc or plate); a thin
+  // rod (ε, I, I) passes too. MuJoCo refuses a body that breaks it. The
+  // relative tolerance accepts flat bodies whose moments were rounded.
+  const double largest = moments(2);  // eigenvalues() is in increasing order
+  if (largest > moments(0) + moments(1) + kInertiaTriangleTolerance * largest) {
+    std::ostringstream m;
+    m << where << " <inertial><inertia> breaks the triangle inequality (principal moments " << moments(0) << ", "
+      << moments(1) << ", " << largest << ": the largest is more than the sum of the other two, "
+      << moments(0) + moments(1)
+      << "); no rigid body has such moments; correct ixx, iyy, izz so that each principal moment is at most "
+         "the sum of the other two (e.g. a solid box of mass m and sides a, b, c: ixx = m(b² + c²)/12, "
+         "iyy = m(a² + c²)/12, izz = m(a² + b²)/12)";
     fail(source_name, m.str());
   }
 }

@@ -170,6 +170,75 @@ TEST(RobotModel, NonPositiveDefiniteInertiaIsRejected) {
   EXPECT_CONTAINS(message, "bad.urdf: link 'arm' (moved by joint 'j1') <inertial><inertia> is not positive definite");
 }
 
+// A moving link "arm" whose <inertia> is `inertia` (the attributes).
+std::string armWithInertia(const std::string& inertia) {
+  return robot(kGoodJoint, armLink(R"(<inertial><origin xyz="0 0 0.5"/><mass value="1"/><inertia )" + inertia +
+                                   "/></inertial>"));
+}
+
+TEST(RobotModel, InertiaBreakingTheTriangleInequalityIsRejected) {
+  // Positive definite, but 3 > 1 + 1: izz = ∫(x² + y²) dm cannot exceed
+  // ixx + iyy = ∫(x² + y² + 2z²) dm.
+  const std::string message =
+      errorOf(armWithInertia(R"(ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="3")"));
+  EXPECT_CONTAINS(message,
+                  "bad.urdf: link 'arm' (moved by joint 'j1') <inertial><inertia> breaks the triangle inequality "
+                  "(principal moments 1, 1, 3: the largest is more than the sum of the other two, 2)");
+  EXPECT_CONTAINS(message, "correct ixx, iyy, izz so that each principal moment is at most the sum of the other two");
+}
+
+TEST(RobotModel, TriangleInequalityIsCheckedOnThePrincipalMoments) {
+  // The moments (1, 1, 3) above, turned 45° about x: the diagonal (1, 2, 2)
+  // alone would pass; the principal moments do not.
+  const std::string message =
+      errorOf(armWithInertia(R"(ixx="1" ixy="0" ixz="0" iyy="2" iyz="-1" izz="2")"));
+  EXPECT_CONTAINS(message, "bad.urdf: link 'arm' (moved by joint 'j1') <inertial><inertia> breaks the triangle "
+                           "inequality (principal moments 1, 1, 3");
+}
+
+TEST(RobotModel, FlatBodiesAtTheTriangleLimitAreAccepted) {
+  // A thin disc about its axis: izz = ixx + iyy exactly.
+  EXPECT_EQ(errorOf(armWithInertia(R"(ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="2")")), "");
+  // The same disc turned 45° about x (principal moments 1, 1, 2 up to rounding
+  // in the eigen-decomposition).
+  EXPECT_EQ(errorOf(armWithInertia(R"(ixx="1" ixy="0" ixz="0" iyy="1.5" iyz="-0.5" izz="1.5")")), "");
+  // Moments rounded in the file: 5e-10 of the largest above the limit, inside
+  // the 1e-9 relative tolerance ...
+  EXPECT_EQ(errorOf(armWithInertia(R"(ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="2.000000001")")), "");
+  // ... but 1e-6 above it is not.
+  EXPECT_CONTAINS(errorOf(armWithInertia(R"(ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="2.000002")")),
+                  "breaks the triangle inequality");
+  // A thin rod along z: two equal moments and a small one.
+  EXPECT_EQ(errorOf(armWithInertia(R"(ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="1e-6")")), "");
+}
+
+void expectLoads(const std::string& path) {
+  try {
+    loadRobotModelFile(path);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what();
+  }
+}
+
+TEST(RobotModel, EveryUrdfOfTheProjectLoads) {
+  // The robots, test assets and examples: each one passes every check
+  // (positive mass, positive-definite inertia obeying the triangle inequality, ...).
+  int files = 0;
+  for (const char* folder : {"robots", "tests", "examples"}) {
+    for (const auto& entry :
+         std::filesystem::recursive_directory_iterator(std::filesystem::path(SERVOLOOP_SOURCE_DIR) / folder)) {
+      if (entry.path().extension() != ".urdf") continue;
+      ++files;
+      expectLoads(entry.path().string());
+    }
+  }
+  for (const char* seed : {"minimal_robot_description.urdf", "minimal_robot_description_w_jnt_ctl.urdf"}) {
+    ++files;
+    expectLoads(kSeedDir + seed);
+  }
+  EXPECT_GE(files, 10);
+}
+
 TEST(RobotModel, NanOriginIsRejected) {
   std::string joint = kGoodJoint;
   joint.replace(joint.find("xyz=\"0 0 1\""), 11, "xyz=\"0 nan 1\"");
