@@ -19,15 +19,10 @@ bool ControlLoop::logHardwareErrorReport() {
   return true;
 }
 
-void ControlLoop::recordResult(HardwareCall call, ReturnType result, Time time,
-                               std::uint64_t cycle) noexcept {
+void ControlLoop::recordFailure(HardwareCall call, ReturnType result, Time time,
+                                std::uint64_t cycle) noexcept {
   if (hardware_errors_.record(call, result, time, cycle)) statistics_.recordHardwareError();
   if (result == ReturnType::deactivate) deactivate_this_cycle_ = true;
-}
-
-void ControlLoop::recordHardwareResult(HardwareCall call, ReturnType result, Time time,
-                                       std::uint64_t cycle) noexcept {
-  recordResult(call, result, time, cycle);
 }
 
 ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t cycle) noexcept {

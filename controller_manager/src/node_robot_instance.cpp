@@ -13,7 +13,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "servoloop/controller_manager/node/robot_namespace.hpp"
-#include "servoloop/controller_manager/node/step_time.hpp"
+#include "servoloop/hardware_interface/step_grid.hpp"
 #include "servoloop/hardware_interface/errors.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/logging.hpp"

@@ -8,8 +8,8 @@
 
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/controller_manager/loop_clock.hpp"
-#include "servoloop/controller_manager/node/step_time.hpp"
 #include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/hardware_interface/step_grid.hpp"
 
 namespace servoloop::controller_manager {
 
@@ -81,6 +81,7 @@ SimulationLoop::SimulationLoop(hardware_interface::SimulatedRobotHW& hw, Control
                   chooseControlPeriod(options, manager, checkedPhysicsStep(hw))),
       hw_(hw),
       physics_step_(checkedPhysicsStep(hw)),
+      step_grid_(physics_step_.seconds),
       real_time_factor_(options.real_time_factor),
       max_catch_up_steps_(options.max_catch_up_steps) {
   steps_per_update_ = stepsPerUpdate(controlPeriod(), physics_step_);
@@ -94,8 +95,8 @@ SimulationLoop::SimulationLoop(hardware_interface::SimulatedRobotHW& hw, Control
 ReturnType SimulationLoop::runCycle(bool* control_updated) noexcept {
   const std::uint64_t step = steps_taken_.load(std::memory_order_relaxed);
   // The hardware's steps × dt, put on the decimal step grid so stamps read
-  // 3.131, not 3.1310000000000002 (node/step_time.hpp).
-  const Time time(node::snapToStepGrid(hw_.simTime().seconds, physics_step_.seconds));
+  // 3.131, not 3.1310000000000002 (hardware_interface/step_grid.hpp).
+  const Time time(step_grid_.snap(hw_.simTime().seconds));
   setBusTime(time);
 
   const ReturnType read_result = readHardware(time, physics_step_, step);
@@ -121,18 +122,19 @@ ReturnType SimulationLoop::runCycle(bool* control_updated) noexcept {
   steps_taken_.store(step + 1, std::memory_order_release);
   finishCycle();
 
-  for (const ReturnType result : {read_result, write_result, step_result}) {
-    if (result == ReturnType::error) return ReturnType::error;
+  // error wins over deactivate, deactivate over ok.
+  if (read_result == ReturnType::error || write_result == ReturnType::error || step_result == ReturnType::error) {
+    return ReturnType::error;
   }
-  for (const ReturnType result : {read_result, write_result, step_result}) {
-    if (result == ReturnType::deactivate) return ReturnType::deactivate;
+  if (read_result == ReturnType::deactivate || write_result == ReturnType::deactivate ||
+      step_result == ReturnType::deactivate) {
+    return ReturnType::deactivate;
   }
   return ReturnType::ok;
 }
 
 void SimulationLoop::publishElapsed() noexcept {
-  const double sim_time_s =
-      node::stepsToSeconds(steps_taken_.load(std::memory_order_relaxed), physics_step_.seconds);
+  const double sim_time_s = step_grid_.seconds(steps_taken_.load(std::memory_order_relaxed));
   mutableStatistics().setElapsed(sim_time_s, wall_time_ns_);
 }
 
@@ -160,12 +162,14 @@ void SimulationLoop::runCycles(std::uint64_t max_cycles, const std::atomic<bool>
   std::int64_t anchor_ns = run_start_ns;
   std::uint64_t anchor_cycle = 0;
 
+  // One clock read per cycle: the end of one cycle is the start of the next,
+  // so a cycle's compute time includes the loop's own bookkeeping.
+  std::int64_t cycle_start_ns = run_start_ns;
   for (std::uint64_t n = 0; n < max_cycles && !shouldStop(external_stop); ++n) {
-    const std::int64_t start_ns = loop_clock::nowNs();
     bool control_updated = false;
     runCycle(&control_updated);
     std::int64_t end_ns = loop_clock::nowNs();
-    mutableStatistics().recordCycle(end_ns - start_ns, control_updated);
+    mutableStatistics().recordCycle(end_ns - cycle_start_ns, control_updated);
 
     if (paced) {
       const std::int64_t deadline_ns =
@@ -185,6 +189,7 @@ void SimulationLoop::runCycles(std::uint64_t max_cycles, const std::atomic<bool>
     }
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
     publishElapsed();
+    cycle_start_ns = end_ns;
   }
   consumeStopRequest();
 }

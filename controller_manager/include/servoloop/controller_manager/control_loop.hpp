@@ -108,7 +108,9 @@ class ControlLoop {
   ReturnType readHardware(Time time, Duration period, std::uint64_t cycle) noexcept;
   ReturnType writeHardware(Time time, Duration period, std::uint64_t cycle) noexcept;
   // Records the result of a hardware call made by the subclass (e.g. step()).
-  void recordHardwareResult(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept;
+  void recordHardwareResult(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept {
+    recordResult(call, result, time, cycle);
+  }
   // Sets the topic bus clock (if any) to time.
   void setBusTime(Time time) noexcept;
   // ControllerManager::update, then the cycle hook.
@@ -125,7 +127,11 @@ class ControlLoop {
   LoopStatistics& mutableStatistics() noexcept { return statistics_; }
 
  private:
-  void recordResult(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept;
+  // ok needs no bookkeeping; the rest goes to recordFailure().
+  void recordResult(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept {
+    if (result != ReturnType::ok) recordFailure(call, result, time, cycle);
+  }
+  void recordFailure(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept;
 
   hardware_interface::RobotHW& robot_hw_;
   ControllerManager& manager_;

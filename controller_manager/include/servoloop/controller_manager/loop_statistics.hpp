@@ -24,8 +24,9 @@ struct LoopStatisticsSnapshot {
   double wall_time_s = 0.0;           // wall time spent running, pacing sleeps included
   double real_time_factor = 0.0;      // sim_time_s / wall_time_s; 0 before any wall time passed
 
-  // Per-cycle compute cost: wall time from the start of read() to the end of
-  // the cycle's last hardware call, sleeps excluded. All 0 before the first cycle.
+  // Per-cycle compute cost: wall time of the cycle's work (read, update,
+  // write, step, and the loop's bookkeeping since the previous cycle), sleeps
+  // excluded. All 0 before the first cycle.
   double compute_min_s = 0.0;
   double compute_mean_s = 0.0;
   double compute_max_s = 0.0;

@@ -28,6 +28,7 @@
 
 #include "servoloop/controller_manager/control_loop.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
+#include "servoloop/hardware_interface/step_grid.hpp"
 
 namespace servoloop::controller_manager {
 
@@ -80,6 +81,7 @@ class SimulationLoop final : public ControlLoop {
 
   hardware_interface::SimulatedRobotHW& hw_;
   Duration physics_step_;
+  StepGrid step_grid_;  // simulated time exactly on the decimal step grid
   std::uint64_t steps_per_update_ = 1;
   double real_time_factor_ = 0.0;
   std::uint32_t max_catch_up_steps_ = 10;

@@ -1,4 +1,4 @@
-// Simulated time on the step grid (node/step_time.hpp) against an independent
+// Simulated time on the step grid (hardware_interface/step_grid.hpp) against an independent
 // reference: the decimal text of steps × step, written with integer
 // arithmetic and read back by strtod (the double nearest to that decimal).
 #include <gtest/gtest.h>
@@ -7,12 +7,13 @@
 #include <cstdlib>
 #include <string>
 
-#include "servoloop/controller_manager/node/step_time.hpp"
+#include "servoloop/hardware_interface/step_grid.hpp"
 
 namespace {
 
-using servoloop::controller_manager::node::snapToStepGrid;
-using servoloop::controller_manager::node::stepsToSeconds;
+using servoloop::snapToStepGrid;
+using servoloop::stepsToSeconds;
+using servoloop::StepGrid;
 
 // steps × (step_units / 10^digits) as decimal text, e.g. (3131, 1, 3) -> "3.131".
 std::string decimalText(std::uint64_t steps, std::uint64_t step_units, int digits) {
