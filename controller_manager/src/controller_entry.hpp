@@ -39,7 +39,9 @@ struct ControllerEntry {
   UpdateRateChoice rate;
 
   // Real-time thread only.
-  std::uint64_t start_cycle = 0;  // manager cycle in which starting() ran
+  // The manager cycle of the next update(): the cycle in which starting() ran
+  // plus k·rate.divisor.
+  std::uint64_t next_update_cycle = 0;
   Time last_update_time;          // control time of starting() or the last update()
 
   FaultRecord fault;

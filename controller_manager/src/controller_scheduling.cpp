@@ -81,7 +81,9 @@ void ControllerManager::update(const Time& time, const Duration& /*period*/) noe
   for (detail::ControllerEntry* entry : realtime_lists_[list_index]) {
     updateController(*entry, time);
   }
-  realtime_reading_list_.store(-1);
+  // Release is enough here: a publisher waiting for this list sees the -1
+  // only after every read of the list above.
+  realtime_reading_list_.store(-1, std::memory_order_release);
 }
 
 void ControllerManager::executeSwitch(const Time& time) noexcept {
@@ -107,7 +109,7 @@ void ControllerManager::executeSwitch(const Time& time) noexcept {
   // Then the start list. Their first update comes in the next cycle.
   for (std::size_t i = 0; i < switch_plan_.start.size(); ++i) {
     detail::ControllerEntry& entry = *switch_plan_.start[i];
-    entry.start_cycle = cycle_;
+    entry.next_update_cycle = cycle_ + entry.rate.divisor;
     entry.last_update_time = time;
     bool failed = false;
     try {
@@ -135,8 +137,10 @@ void ControllerManager::executeSwitch(const Time& time) noexcept {
 void ControllerManager::updateController(detail::ControllerEntry& entry, const Time& time) noexcept {
   ControllerBase& controller = *entry.controller;
   if (!controller.isRunning()) return;
-  const std::uint64_t cycles_since_start = cycle_ - entry.start_cycle;
-  if (cycles_since_start == 0 || cycles_since_start % entry.rate.divisor != 0) return;
+  // Every rate.divisor-th cycle after the one that started it (a comparison
+  // rather than a modulo: this runs for every controller in every cycle).
+  if (cycle_ < entry.next_update_cycle) return;
+  entry.next_update_cycle = cycle_ + entry.rate.divisor;
 
   const Duration period = time - entry.last_update_time;
   entry.last_update_time = time;
