@@ -177,6 +177,60 @@ TEST(RobotTransmissions, FiftyToOneScalesEffortAndMotion) {
   EXPECT_EQ(rt->actuator(motor).velocity_command, 0.0);
 }
 
+TEST(RobotTransmissions, ReversedSimpleTransmissionWithOffsetMapsEveryDirection) {
+  // n = -4 (the motor turns the other way), joint offset o = 0.3 rad:
+  //   joint position = actuator position / n + o, joint velocity = actuator
+  //   velocity / n, joint effort = n · actuator effort (by hand below).
+  const char* urdf = R"(<?xml version="1.0"?>
+<robot name="r">
+  <link name="base"/><link name="arm"/>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/></joint>
+  <transmission name="t">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j"><offset>0.3</offset>
+      <hardwareInterface>EffortJointInterface</hardwareInterface>
+      <hardwareInterface>VelocityJointInterface</hardwareInterface>
+      <hardwareInterface>PositionJointInterface</hardwareInterface></joint>
+    <actuator name="m"><mechanicalReduction>-4</mechanicalReduction></actuator>
+  </transmission>
+</robot>)";
+  const auto rt = fromUrdf(urdf);
+  const JointIndex j = rt->jointIndex("j");
+  const ActuatorIndex m = rt->actuatorIndex("m");
+
+  rt->actuator(m).position = 2.0;
+  rt->actuator(m).velocity = -8.0;
+  rt->actuator(m).effort = 0.5;
+  rt->actuatorStateToJointState();
+  EXPECT_NEAR(rt->joint(j).position, 2.0 / -4.0 + 0.3, kTol);  // -0.2
+  EXPECT_NEAR(rt->joint(j).velocity, 2.0, kTol);
+  EXPECT_NEAR(rt->joint(j).effort, -2.0, kTol);
+
+  rt->joint(j).position = 1.3;
+  rt->joint(j).velocity = 0.25;
+  rt->joint(j).effort = 6.0;
+  rt->jointStateToActuatorState();
+  EXPECT_NEAR(rt->actuator(m).position, -4.0, kTol);  // -4 · (1.3 - 0.3)
+  EXPECT_NEAR(rt->actuator(m).velocity, -1.0, kTol);
+  EXPECT_NEAR(rt->actuator(m).effort, -1.5, kTol);
+
+  rt->joint(j).effort_command = 6.0;
+  rt->joint(j).velocity_command = 0.25;
+  rt->joint(j).position_command = 1.3;
+  rt->jointCommandToActuatorCommand();
+  EXPECT_NEAR(rt->actuator(m).effort_command, -1.5, kTol);
+  EXPECT_NEAR(rt->actuator(m).velocity_command, -1.0, kTol);
+  EXPECT_NEAR(rt->actuator(m).position_command, -4.0, kTol);
+
+  rt->actuator(m).effort_command = 0.5;
+  rt->actuator(m).velocity_command = -8.0;
+  rt->actuator(m).position_command = 2.0;
+  rt->actuatorCommandToJointCommand();
+  EXPECT_NEAR(rt->joint(j).effort_command, -2.0, kTol);
+  EXPECT_NEAR(rt->joint(j).velocity_command, 2.0, kTol);
+  EXPECT_NEAR(rt->joint(j).position_command, -0.2, kTol);
+}
+
 TEST(RobotTransmissions, ArmRegistersOnlyNamedCommandInterfaces) {
   const auto rt = fromUrdf(kArm);
   EXPECT_EQ(rt->numJoints(), 3u);

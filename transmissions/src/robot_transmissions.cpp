@@ -145,6 +145,13 @@ void RobotTransmissions::addTransmission(const TransmissionInfo& info,
 void RobotTransmissions::bindStorage() {
   for (std::size_t b = 0; b < bindings_.size(); ++b) {
     Binding& binding = bindings_[b];
+    const auto* simple = dynamic_cast<const SimpleTransmission*>(binding.transmission.get());
+    if (simple != nullptr && binding_joints_[b].size() == 1 && binding_actuators_[b].size() == 1) {
+      simple_bindings_.push_back(SimpleBinding{binding_joints_[b][0], binding_actuators_[b][0], simple->reduction(),
+                                               simple->jointOffset(), binding.commands});
+    } else {
+      general_bindings_.push_back(&binding);
+    }
     for (const std::size_t j : binding_joints_[b]) {
       JointValues& values = joints_[j];
       binding.joint_state.position.push_back(&values.position);
@@ -226,61 +233,100 @@ void RobotTransmissions::registerInterfaces(hardware_interface::InterfaceManager
 }
 
 void RobotTransmissions::actuatorStateToJointState() noexcept {
-  for (Binding& b : bindings_) {
-    b.transmission->actuatorToJointPosition(b.actuator_state, b.joint_state);
-    b.transmission->actuatorToJointVelocity(b.actuator_state, b.joint_state);
-    b.transmission->actuatorToJointEffort(b.actuator_state, b.joint_state);
+  for (const SimpleBinding& b : simple_bindings_) {
+    const ActuatorValues& actuator = actuators_[b.actuator];
+    JointValues& joint = joints_[b.joint];
+    joint.position = SimpleTransmission::jointPosition(actuator.position, b.reduction, b.joint_offset);
+    joint.velocity = SimpleTransmission::jointVelocity(actuator.velocity, b.reduction);
+    joint.effort = SimpleTransmission::jointEffort(actuator.effort, b.reduction);
+  }
+  for (Binding* b : general_bindings_) {
+    b->transmission->actuatorToJointPosition(b->actuator_state, b->joint_state);
+    b->transmission->actuatorToJointVelocity(b->actuator_state, b->joint_state);
+    b->transmission->actuatorToJointEffort(b->actuator_state, b->joint_state);
   }
 }
 
 void RobotTransmissions::jointCommandToActuatorCommand() noexcept {
-  for (Binding& b : bindings_) {
-    if (b.commands.effort)
-      b.transmission->jointToActuatorEffort(b.joint_command, b.actuator_command);
+  for (const SimpleBinding& b : simple_bindings_) {
+    const JointValues& joint = joints_[b.joint];
+    ActuatorValues& actuator = actuators_[b.actuator];
+    if (b.commands.effort) actuator.effort_command = SimpleTransmission::actuatorEffort(joint.effort_command, b.reduction);
     if (b.commands.velocity) {
-      b.transmission->jointToActuatorVelocity(b.joint_command, b.actuator_command);
+      actuator.velocity_command = SimpleTransmission::actuatorVelocity(joint.velocity_command, b.reduction);
     }
     if (b.commands.position) {
-      b.transmission->jointToActuatorPosition(b.joint_command, b.actuator_command);
+      actuator.position_command =
+          SimpleTransmission::actuatorPosition(joint.position_command, b.reduction, b.joint_offset);
     }
+  }
+  for (Binding* b : general_bindings_) {
+    if (b->commands.effort) b->transmission->jointToActuatorEffort(b->joint_command, b->actuator_command);
+    if (b->commands.velocity) b->transmission->jointToActuatorVelocity(b->joint_command, b->actuator_command);
+    if (b->commands.position) b->transmission->jointToActuatorPosition(b->joint_command, b->actuator_command);
   }
 }
 
 void RobotTransmissions::jointStateToActuatorState() noexcept {
-  for (Binding& b : bindings_) {
-    b.transmission->jointToActuatorPosition(b.joint_state, b.actuator_state);
-    b.transmission->jointToActuatorVelocity(b.joint_state, b.actuator_state);
-    b.transmission->jointToActuatorEffort(b.joint_state, b.actuator_state);
+  for (const SimpleBinding& b : simple_bindings_) {
+    const JointValues& joint = joints_[b.joint];
+    ActuatorValues& actuator = actuators_[b.actuator];
+    actuator.position = SimpleTransmission::actuatorPosition(joint.position, b.reduction, b.joint_offset);
+    actuator.velocity = SimpleTransmission::actuatorVelocity(joint.velocity, b.reduction);
+    actuator.effort = SimpleTransmission::actuatorEffort(joint.effort, b.reduction);
+  }
+  for (Binding* b : general_bindings_) {
+    b->transmission->jointToActuatorPosition(b->joint_state, b->actuator_state);
+    b->transmission->jointToActuatorVelocity(b->joint_state, b->actuator_state);
+    b->transmission->jointToActuatorEffort(b->joint_state, b->actuator_state);
   }
 }
 
 void RobotTransmissions::actuatorEffortToJointEffort() noexcept {
-  for (Binding& b : bindings_)
-    b.transmission->actuatorToJointEffort(b.actuator_command, b.joint_command);
+  for (const SimpleBinding& b : simple_bindings_) {
+    joints_[b.joint].effort_command =
+        SimpleTransmission::jointEffort(actuators_[b.actuator].effort_command, b.reduction);
+  }
+  for (Binding* b : general_bindings_) b->transmission->actuatorToJointEffort(b->actuator_command, b->joint_command);
 }
 
 void RobotTransmissions::actuatorVelocityToJointVelocity() noexcept {
-  for (Binding& b : bindings_) {
-    b.transmission->actuatorToJointVelocity(b.actuator_command, b.joint_command);
+  for (const SimpleBinding& b : simple_bindings_) {
+    joints_[b.joint].velocity_command =
+        SimpleTransmission::jointVelocity(actuators_[b.actuator].velocity_command, b.reduction);
+  }
+  for (Binding* b : general_bindings_) {
+    b->transmission->actuatorToJointVelocity(b->actuator_command, b->joint_command);
   }
 }
 
 void RobotTransmissions::actuatorPositionToJointPosition() noexcept {
-  for (Binding& b : bindings_) {
-    b.transmission->actuatorToJointPosition(b.actuator_command, b.joint_command);
+  for (const SimpleBinding& b : simple_bindings_) {
+    joints_[b.joint].position_command =
+        SimpleTransmission::jointPosition(actuators_[b.actuator].position_command, b.reduction, b.joint_offset);
+  }
+  for (Binding* b : general_bindings_) {
+    b->transmission->actuatorToJointPosition(b->actuator_command, b->joint_command);
   }
 }
 
 void RobotTransmissions::actuatorCommandToJointCommand() noexcept {
-  for (Binding& b : bindings_) {
-    if (b.commands.effort)
-      b.transmission->actuatorToJointEffort(b.actuator_command, b.joint_command);
+  for (const SimpleBinding& b : simple_bindings_) {
+    const ActuatorValues& actuator = actuators_[b.actuator];
+    JointValues& joint = joints_[b.joint];
+    if (b.commands.effort) joint.effort_command = SimpleTransmission::jointEffort(actuator.effort_command, b.reduction);
     if (b.commands.velocity) {
-      b.transmission->actuatorToJointVelocity(b.actuator_command, b.joint_command);
+      joint.velocity_command = SimpleTransmission::jointVelocity(actuator.velocity_command, b.reduction);
     }
     if (b.commands.position) {
-      b.transmission->actuatorToJointPosition(b.actuator_command, b.joint_command);
+      joint.position_command =
+          SimpleTransmission::jointPosition(actuator.position_command, b.reduction, b.joint_offset);
     }
+  }
+  for (Binding* b : general_bindings_) {
+    if (b->commands.effort) b->transmission->actuatorToJointEffort(b->actuator_command, b->joint_command);
+    if (b->commands.velocity) b->transmission->actuatorToJointVelocity(b->actuator_command, b->joint_command);
+    if (b->commands.position) b->transmission->actuatorToJointPosition(b->actuator_command, b->joint_command);
   }
 }
 

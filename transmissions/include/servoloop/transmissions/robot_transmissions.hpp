@@ -26,8 +26,11 @@
 // and offsets are honoured for commands written in actuator space.
 //
 // Every propagation method runs on the real-time thread: it only walks
-// pre-built pointer tables and calls the transmissions' maps (no allocation,
-// no locks, no logging, no exceptions). Everything else is non-real-time.
+// pre-built tables and calls the transmissions' maps (no allocation, no locks,
+// no logging, no exceptions). SimpleTransmissions, the common case, are kept
+// in a flat table of (joint, actuator, n, o) and mapped inline with
+// SimpleTransmission's own formulas; the others through their virtual maps.
+// Everything else is non-real-time.
 #include <urdf_model/model.h>
 
 #include <memory>
@@ -175,6 +178,16 @@ class RobotTransmissions {
     JointCommandInterfaces commands;  // union over the transmission's joints
   };
 
+  // A SimpleTransmission's binding, flattened: indices into joints_ and
+  // actuators_, its reduction and offset.
+  struct SimpleBinding {
+    std::size_t joint = 0;
+    std::size_t actuator = 0;
+    double reduction = 1.0;
+    double joint_offset = 0.0;
+    JointCommandInterfaces commands;
+  };
+
   void addTransmission(const TransmissionInfo& info, const urdf::ModelInterface& robot,
                        const Options& options);
   void bindStorage();
@@ -189,6 +202,8 @@ class RobotTransmissions {
   std::unordered_map<std::string, std::size_t> actuator_index_;
   std::vector<std::string> implicit_joints_;
   std::vector<Binding> bindings_;
+  std::vector<SimpleBinding> simple_bindings_;  // the SimpleTransmissions among bindings_
+  std::vector<Binding*> general_bindings_;       // all the others
   // Per binding, the joint and actuator indices it covers (in its order).
   std::vector<std::vector<std::size_t>> binding_joints_;
   std::vector<std::vector<std::size_t>> binding_actuators_;

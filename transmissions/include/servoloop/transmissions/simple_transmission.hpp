@@ -33,6 +33,19 @@ class SimpleTransmission final : public Transmission {
   double reduction() const noexcept { return reduction_; }
   double jointOffset() const noexcept { return joint_offset_; }
 
+  // The maps on plain numbers, for callers that keep n and o themselves
+  // (RobotTransmissions' fast path); the members above use them too.
+  static double jointEffort(double actuator_effort, double n) noexcept { return n * actuator_effort; }
+  static double jointVelocity(double actuator_velocity, double n) noexcept { return actuator_velocity / n; }
+  static double jointPosition(double actuator_position, double n, double o) noexcept {
+    return actuator_position / n + o;
+  }
+  static double actuatorEffort(double joint_effort, double n) noexcept { return joint_effort / n; }
+  static double actuatorVelocity(double joint_velocity, double n) noexcept { return n * joint_velocity; }
+  static double actuatorPosition(double joint_position, double n, double o) noexcept {
+    return n * (joint_position - o);
+  }
+
  private:
   double reduction_;
   double joint_offset_;  // rad or m, in joint space
