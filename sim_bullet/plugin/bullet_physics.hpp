@@ -41,6 +41,9 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
   void setJointEffort(std::size_t joint, double effort) noexcept override;
   void setJointVelocityTarget(std::size_t joint, double velocity) noexcept override;
   void setJointPositionTarget(std::size_t joint, double position) noexcept override;
+  // All joints in one call each (what SimRobotHW uses every cycle).
+  void readJointStates(std::span<sim_common::EngineJointState> states) const noexcept override;
+  void applyJointCommands(std::span<const sim_common::AppliedJointCommand> commands) noexcept override;
   void step() noexcept override;
 
   void reset() override;

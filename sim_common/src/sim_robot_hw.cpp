@@ -97,6 +97,7 @@ void SimRobotHW::init(const hi::HardwareInfo& info) {
   modes_.assign(joint_count, JointCommandMode::none);
   applied_.assign(joint_count, AppliedJointCommand{});
   estop_positions_.assign(joint_count, 0.0);
+  engine_states_.assign(joint_count, EngineJointState{});
   limiters_.clear();
   limiters_.reserve(joint_count);
   for (std::size_t j = 0; j < joint_count; ++j) {
@@ -142,6 +143,8 @@ void SimRobotHW::configureActuators(const std::string& ns, const YAML::Node& par
   const auto by_name = parseActuatorParameters(parameters, actuator_names, ns);
   actuator_parameters_.clear();
   for (const std::string& name : actuator_names) actuator_parameters_.push_back(by_name.at(name));
+  any_motor_limit_ = std::any_of(actuator_parameters_.begin(), actuator_parameters_.end(),
+                                 [](const ActuatorParameters& p) { return std::isfinite(p.max_effort); });
 }
 
 // The transmissions are linear in velocity: actuator velocity = T · joint
@@ -185,16 +188,18 @@ void SimRobotHW::configureEngineJoints() {
 
 void SimRobotHW::readEngineState() noexcept {
   transmissions::RobotTransmissions& tr = *transmissions_;
-  for (std::size_t j = 0; j < applied_.size(); ++j) {
+  engine_->readJointStates(engine_states_);
+  for (std::size_t j = 0; j < engine_states_.size(); ++j) {
+    const EngineJointState& state = engine_states_[j];
     transmissions::JointValues& joint = tr.joint(JointIndex(j));
-    joint.position = engine_->jointPosition(j);
-    joint.velocity = engine_->jointVelocity(j);
-    joint.effort = engine_->jointEffort(j);
+    joint.position = state.position;
+    joint.velocity = state.velocity;
+    joint.effort = state.effort;
   }
-  // The motors measure the joints through the transmissions; controllers see
-  // the joint state the motors' readings give.
+  // The motors measure the joints through the transmissions. Mapping their
+  // readings back would give the same joint state (the maps are invertible),
+  // so controllers see the engine's joint state directly.
   tr.jointStateToActuatorState();
-  tr.actuatorStateToJointState();
 }
 
 ReturnType SimRobotHW::read(Time /*time*/, Duration /*period*/) {
@@ -219,16 +224,20 @@ ReturnType SimRobotHW::write(Time /*time*/, Duration period) {
   // Joint limits on the commands controllers wrote, before anything else sees them.
   for (std::size_t j = 0; j < joint_count; ++j) limiters_[j].enforce(modes_[j], period);
 
-  // Through the motors: joint → actuator, motor effort limits, actuator → joint.
+  // Through the motors: joint → actuator, motor effort limits, actuator →
+  // joint. Without motor limits the way back would return the joint commands
+  // unchanged, so it is only taken when a limit may have cut an actuator's.
   tr.jointCommandToActuatorCommand();
-  for (std::size_t a = 0; a < actuator_parameters_.size(); ++a) {
-    const double max_effort = actuator_parameters_[a].max_effort;
-    double& effort_command = tr.actuator(ActuatorIndex(a)).effort_command;
-    if (std::isfinite(max_effort) && std::isfinite(effort_command)) {
-      effort_command = std::clamp(effort_command, -max_effort, max_effort);
+  if (any_motor_limit_) {
+    for (std::size_t a = 0; a < actuator_parameters_.size(); ++a) {
+      const double max_effort = actuator_parameters_[a].max_effort;
+      double& effort_command = tr.actuator(ActuatorIndex(a)).effort_command;
+      if (std::isfinite(max_effort) && std::isfinite(effort_command)) {
+        effort_command = std::clamp(effort_command, -max_effort, max_effort);
+      }
     }
+    tr.actuatorCommandToJointCommand();
   }
-  tr.actuatorCommandToJointCommand();
 
   // What the engine applies at the next step. Non-finite commands (from a
   // joint without limit handles) become harmless: no effort, no motion.
@@ -258,21 +267,7 @@ ReturnType SimRobotHW::write(Time /*time*/, Duration period) {
 }
 
 ReturnType SimRobotHW::step() {
-  for (std::size_t j = 0; j < applied_.size(); ++j) {
-    const AppliedJointCommand& applied = applied_[j];
-    switch (applied.mode) {
-      case JointCommandMode::none:
-      case JointCommandMode::effort:
-        engine_->setJointEffort(j, applied.value);
-        break;
-      case JointCommandMode::velocity:
-        engine_->setJointVelocityTarget(j, applied.value);
-        break;
-      case JointCommandMode::position:
-        engine_->setJointPositionTarget(j, applied.value);
-        break;
-    }
-  }
+  engine_->applyJointCommands(applied_);
   engine_->step();
   ++steps_;
   return ReturnType::ok;

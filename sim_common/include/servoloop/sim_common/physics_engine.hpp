@@ -5,6 +5,7 @@
 // backend is one PhysicsEngine plus a three-line RobotHW class.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,22 @@ enum class JointCommandMode : std::uint8_t { none, effort, velocity, position };
 
 // "none", "effort", "velocity" or "position".
 const char* toString(JointCommandMode mode) noexcept;
+
+// What the engine gets for one joint on the next step.
+struct AppliedJointCommand {
+  JointCommandMode mode = JointCommandMode::none;
+  // Effort (N·m or N) for none/effort, velocity target for velocity, position
+  // target for position; joint space, after limits, motor limits and the
+  // emergency stop.
+  double value = 0.0;
+};
+
+// One joint's state as the engine reports it (rad or m, rad/s or m/s, N·m or N).
+struct EngineJointState {
+  double position = 0.0;
+  double velocity = 0.0;
+  double effort = 0.0;
+};
 
 // One joint the engine simulates for SimRobotHW, in joint space.
 struct EngineJointConfig {
@@ -70,6 +87,16 @@ class PhysicsEngine {
   virtual void setJointEffort(std::size_t joint, double effort) noexcept = 0;
   virtual void setJointVelocityTarget(std::size_t joint, double velocity) noexcept = 0;
   virtual void setJointPositionTarget(std::size_t joint, double position) noexcept = 0;
+
+  // Real-time. Every joint's state at once, `states[j]` for joint j, as the
+  // getters above give it; `states` holds one entry per joint of init()'s
+  // list. SimRobotHW reads through this each cycle. The default calls the
+  // getters; an engine may override it to read all joints in one pass.
+  virtual void readJointStates(std::span<EngineJointState> states) const noexcept;
+  // Real-time. The commands of every joint for the next step() at once:
+  // mode none and effort set the effort, velocity and position the motor
+  // target, as the setters above do. The default calls the setters.
+  virtual void applyJointCommands(std::span<const AppliedJointCommand> commands) noexcept;
 
   // Real-time. Advances the world by one settings.time_step_s.
   virtual void step() noexcept = 0;

@@ -3,11 +3,19 @@
 // PhysicsEngine handed to this class; this class turns it into a RobotHW that
 // controllers cannot tell from real hardware ("hardware is actuators"):
 //
-//   read():  engine joint state ─▶ jointStateToActuatorState (what the motors
-//            measure) ─▶ actuatorStateToJointState (what controllers see)
+//   read():  engine joint state ─▶ joint state (what controllers see) and,
+//            through jointStateToActuatorState, the actuator state (what the
+//            motors measure)
 //   write(): joint limits on the active command interfaces ─▶ emergency stop
 //            ─▶ jointCommandToActuatorCommand ─▶ motor limits (actuators/<name>/
 //            max_effort) ─▶ actuatorCommandToJointCommand ─▶ applied commands
+//
+// Every transmission map is linear and invertible, so the round trips
+// joint → actuator → joint give back the same values (up to rounding); they
+// are taken only where something happens in actuator space: the motor effort
+// limits. Without any max_effort, write() maps the joint commands to the
+// actuators (for actuator-space readers) and applies the joint commands as
+// they are; read() never maps back.
 //   step():  applied commands ─▶ engine, one physics step
 //
 // Joints without a <transmission> get an implicit SimpleTransmission
@@ -35,15 +43,6 @@
 #include "servoloop/transmissions/robot_transmissions.hpp"
 
 namespace servoloop::sim_common {
-
-// What the engine gets for one joint on the next step.
-struct AppliedJointCommand {
-  JointCommandMode mode = JointCommandMode::none;
-  // Effort (N·m or N) for none/effort, velocity target for velocity, position
-  // target for position; joint space, after limits, motor limits and the
-  // emergency stop.
-  double value = 0.0;
-};
 
 class SimRobotHW : public hardware_interface::SimulatedRobotHW {
  public:
@@ -137,9 +136,12 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   std::vector<JointCommandMode> modes_;
   std::vector<AppliedJointCommand> applied_;
   std::vector<double> estop_positions_;  // measured when the stop was engaged
+  std::vector<EngineJointState> engine_states_;  // read() buffer
 
   // Per actuator (RobotTransmissions' actuator order).
   std::vector<ActuatorParameters> actuator_parameters_;
+
+  bool any_motor_limit_ = false;  // some actuator has a finite max_effort
 
   std::atomic<bool> estop_requested_{false};
   bool estop_active_ = false;
