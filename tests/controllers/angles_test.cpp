@@ -67,6 +67,34 @@ TEST(JointPositionErrorTest, ByJointTypeFromTheUrdf) {
   EXPECT_NEAR(wide.error(-3.0, 3.0), 2.0 * kPi - 6.0, 1e-12);
 }
 
+TEST(JointPositionErrorTest, RevoluteErrorAgreesWithTheLimitAwareDistanceEverywhere) {
+  // "rev" spans [0, 2] (less than a turn) and "wide" more than a turn; the
+  // error takes a shortcut when no wrapping can apply. Over a grid of setpoints
+  // and positions inside, at and outside the limits (and past ±π), it must
+  // equal the limit-aware shortest distance to the clamped setpoint exactly.
+  const auto model = testing::testRobotModel();
+  for (const char* joint : {"rev", "wide"}) {
+    const auto error = JointPositionError::fromModel(*model, joint, "c");
+    for (int i = -40; i <= 40; ++i) {
+      for (int k = -40; k <= 40; ++k) {
+        const double setpoint = error.clampSetpoint(0.1 * i + 0.013);
+        const double position = 0.1 * k - 0.007;
+        const double expected = shortestAngularDistanceWithinLimits(position, setpoint, error.lowerLimit(),
+                                                                    error.upperLimit());
+        ASSERT_EQ(error.error(setpoint, position), expected) << joint << " setpoint " << setpoint
+                                                             << " position " << position;
+      }
+    }
+    // At the limits themselves.
+    EXPECT_EQ(error.error(error.upperLimit(), error.lowerLimit()),
+              shortestAngularDistanceWithinLimits(error.lowerLimit(), error.upperLimit(), error.lowerLimit(),
+                                                  error.upperLimit()));
+  }
+  // A narrow joint's error is the plain difference while both are inside.
+  const auto narrow = JointPositionError::fromModel(*model, "rev", "c");
+  EXPECT_EQ(narrow.error(1.9, 0.1), 1.9 - 0.1);
+}
+
 TEST(JointPositionErrorTest, UnknownJointNamesControllerAndJoint) {
   const auto model = testing::testRobotModel();
   try {

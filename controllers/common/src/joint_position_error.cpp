@@ -1,6 +1,7 @@
 #include "servoloop/controllers/common/joint_position_error.hpp"
 
 #include <algorithm>
+#include <numbers>
 
 #include "servoloop/controllers/common/angles.hpp"
 #include "servoloop/hardware_interface/errors.hpp"
@@ -35,15 +36,13 @@ JointPositionError JointPositionError::fromModel(const urdf::ModelInterface& mod
     result.lower_ = limits.min_position;
     result.upper_ = limits.max_position;
   }
+  result.plain_difference_ = result.kind_ == Kind::prismatic;
+  result.within_one_turn_ = result.kind_ == Kind::revolute && result.has_position_limits_ &&
+                            result.upper_ - result.lower_ < 2.0 * std::numbers::pi;
   return result;
 }
 
-double JointPositionError::clampSetpoint(double setpoint) const noexcept {
-  if (!has_position_limits_) return setpoint;
-  return std::min(std::max(setpoint, lower_), upper_);  // no UB if a model had lower > upper
-}
-
-double JointPositionError::error(double setpoint, double position) const noexcept {
+double JointPositionError::wrappedError(double setpoint, double position) const noexcept {
   switch (kind_) {
     case Kind::revolute:
       if (has_position_limits_) {

@@ -5,6 +5,7 @@
 //                distance that stays inside the limits;
 //   continuous - no clamping; error = shortest angular distance in [-π, π];
 //   prismatic  - setpoint clamped to [lower, upper]; error = difference.
+#include <algorithm>
 #include <string>
 
 #include <urdf_model/model.h>
@@ -27,9 +28,23 @@ class JointPositionError {
 
   // Real-time. The setpoint inside the joint's position limits (unchanged for
   // joints without them).
-  double clampSetpoint(double setpoint) const noexcept;
+  double clampSetpoint(double setpoint) const noexcept {
+    if (!has_position_limits_) return setpoint;
+    return std::min(std::max(setpoint, lower_), upper_);  // no UB if a model had lower > upper
+  }
   // Real-time. setpoint - position, in the sense of the joint type above.
-  double error(double setpoint, double position) const noexcept;
+  // Inline for the common cases, which need no wrapping: prismatic joints,
+  // and revolute joints whose limits span less than one turn while both
+  // angles are inside them (then the only path that stays inside the limits
+  // is the direct one).
+  double error(double setpoint, double position) const noexcept {
+    if (plain_difference_) return setpoint - position;
+    if (within_one_turn_ && position >= lower_ && position <= upper_ && setpoint >= lower_ &&
+        setpoint <= upper_) {
+      return setpoint - position;
+    }
+    return wrappedError(setpoint, position);
+  }
 
   Kind kind() const noexcept { return kind_; }
   bool hasPositionLimits() const noexcept { return has_position_limits_; }
@@ -37,7 +52,12 @@ class JointPositionError {
   double upperLimit() const noexcept { return upper_; }
 
  private:
+  // The general case: shortest angular distance, within the limits if any.
+  double wrappedError(double setpoint, double position) const noexcept;
+
   Kind kind_ = Kind::unknown;
+  bool plain_difference_ = true;   // prismatic or unknown: no wrapping ever
+  bool within_one_turn_ = false;   // revolute with limits spanning less than 2π
   bool has_position_limits_ = false;
   double lower_ = 0.0;  // rad or m
   double upper_ = 0.0;
