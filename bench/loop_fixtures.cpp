@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "bench_support.hpp"
@@ -12,6 +13,8 @@
 namespace servoloop::bench {
 
 namespace cm = controller_manager;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 namespace hi = hardware_interface;
 
 YAML::Node RobotCase::namespaceParams() const { return YAML::LoadFile(sourcePath(params))[params_key]; }
@@ -54,19 +57,52 @@ RawBulletPd::RawBulletPd(const RobotCase& robot) : model_(loadRobotModelFile(sou
     const YAML::Node pid = robot.group_controller.empty()
                                ? params[robot.position_controllers[i]]["pid"]
                                : params[robot.group_controller][robot.joints[i]]["pid"];
-    joints_.push_back({world_->jointIndex(robot.joints[i]), robot.setpoints_rad[i], pid["p"].as<double>(),
-                       pid["d"] ? pid["d"].as<double>() : 0.0});
+    const auto gain = [&pid](const char* key) { return pid[key] ? pid[key].as<double>() : 0.0; };
+    Joint joint{};
+    joint.index = world_->jointIndex(robot.joints[i]);
+    joint.setpoint_rad = robot.setpoints_rad[i];
+    joint.kp = gain("p");
+    joint.ki = gain("i");
+    joint.kd = gain("d");
+    // As the PID reads them: i_clamp sets both bounds, the one-sided keys win.
+    joint.i_min = -std::abs(gain("i_clamp"));
+    joint.i_max = std::abs(gain("i_clamp"));
+    if (pid["i_clamp_min"]) joint.i_min = -std::abs(gain("i_clamp_min"));
+    if (pid["i_clamp_max"]) joint.i_max = std::abs(gain("i_clamp_max"));
+    joint.effort_limit = world_->jointEffortLimit(joint.index);
+    const urdf::JointConstSharedPtr urdf_joint = model_->getJoint(robot.joints[i]);
+    const bool bounded = urdf_joint->type != urdf::Joint::CONTINUOUS && urdf_joint->limits;
+    joint.lower = bounded ? urdf_joint->limits->lower : -kInfinity;
+    joint.upper = bounded ? urdf_joint->limits->upper : kInfinity;
+    joint.velocity_limit =
+        urdf_joint->limits && urdf_joint->limits->velocity > 0.0 ? urdf_joint->limits->velocity : kInfinity;
+    joints_.push_back(joint);
   }
 }
 
 void RawBulletPd::step() noexcept {
   sim_bullet::BulletWorld& world = *world_;
-  for (const Joint& joint : joints_) {
-    const double q = world.jointPosition(joint.index);
-    const double qdot = world.jointVelocity(joint.index);
-    world.setJointEffort(joint.index, joint.kp * (joint.setpoint_rad - q) - joint.kd * qdot);
+  for (Joint& joint : joints_) {
+    const double position = world.jointPosition(joint.index);
+    const double velocity = world.jointVelocity(joint.index);
+    const double error = joint.setpoint_rad - position;
+    const double error_rate = (error - joint.error_before) / kTimeStepS;
+    joint.error_before = error;
+    joint.error_integral += kTimeStepS * error;
+    const double i_term = std::clamp(joint.ki * joint.error_integral, joint.i_min, joint.i_max);
+    const double effort = joint.kp * error + i_term + joint.kd * error_rate;
+    double min_effort = -joint.effort_limit;
+    double max_effort = joint.effort_limit;
+    if (position < joint.lower || velocity < -joint.velocity_limit) min_effort = 0.0;
+    if (position > joint.upper || velocity > joint.velocity_limit) max_effort = 0.0;
+    world.setJointEffort(joint.index, std::clamp(effort, min_effort, max_effort));
   }
   world.step();
+}
+
+void RawBulletPd::stepWithoutControl() noexcept {
+  for (const Joint& joint : joints_) world_->setJointEffort(joint.index, 0.0);
+  world_->step();
 }
 
 double RawBulletPd::maxAbsJointPosition() const {
@@ -126,6 +162,7 @@ ServoloopSimulation::ServoloopSimulation(const RobotCase& robot, const std::stri
   } else {
     bus_.publish(prefix + robot.group_controller + "/command", cm::std_msgs::Float64MultiArray{robot.setpoints_rad});
   }
+  bus_.flush();  // the setpoints reach the controllers before the first timed cycle, as in the raw loop
   first_joint_ = hw_->get<hi::JointStateInterface>()->getHandle(robot.joints.front());
   bus_.start();
 }

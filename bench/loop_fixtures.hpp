@@ -47,13 +47,23 @@ RobotCase seedRobot();
 // JointGroupPositionController; setpoints 0.2·sin(2π·i/16) rad; 2,000 steps.
 RobotCase chainRobot(bool group);
 
-// (a) BulletWorld stepped by hand: effort = kp·(q_ref − q) − kd·q̇ →
-// setJointEffort → step(), with kp and kd the p and d of the robot's YAML.
+// (a) BulletWorld stepped by hand, with the control law of the robot's
+// position controllers written inline: per joint, with e = q_ref − q,
+//   effort = p·e + clamp(i·∫e dt, i_clamp_min, i_clamp_max) + d·(e − e_prev)/dt,
+// saturated as ros_control's effort saturation does it (to ± the URDF effort
+// limit, with the bound on the side that pushes further out set to 0 beyond a
+// position limit or the velocity limit), → setJointEffort → step(); p, i, d
+// and i_clamp from the robot's YAML. Running the same law and limits as the
+// servoloop controllers keeps both runs on the same trajectory, so Bullet
+// does the same work in both and the ratio shows the framework's cost alone.
 class RawBulletPd {
  public:
   explicit RawBulletPd(const RobotCase& robot);
   // Real-time: one control computation and one physics step.
   void step() noexcept;
+  // One physics step with no effort, as the servoloop loop's first cycle (in
+  // which the controllers are started and command nothing yet).
+  void stepWithoutControl() noexcept;
   double jointPosition(std::size_t controlled_joint) const;
   // Largest |q| over the controlled joints (rad): shows a robot that went unstable.
   double maxAbsJointPosition() const;
@@ -63,7 +73,16 @@ class RawBulletPd {
     std::size_t index;  // BulletWorld's joint index
     double setpoint_rad;
     double kp;
+    double ki;
     double kd;
+    double i_min;
+    double i_max;
+    double effort_limit;  // N·m; +infinity without one
+    double lower;         // position limits (rad); ±infinity without
+    double upper;
+    double velocity_limit;  // rad/s; +infinity without one
+    double error_before = 0.0;
+    double error_integral = 0.0;
   };
   std::shared_ptr<const urdf::ModelInterface> model_;
   std::unique_ptr<sim_bullet::BulletWorld> world_;

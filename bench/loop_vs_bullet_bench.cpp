@@ -46,7 +46,7 @@ const std::vector<RobotCase>& robots() {
 
 void rawBullet(benchmark::State& state, const RobotCase* robot) {
   RawBulletPd raw(*robot);
-  raw.step();  // as the servoloop loop's switch cycle
+  raw.stepWithoutControl();  // as the servoloop loop's switch cycle
   for (auto _ : state) {
     for (std::uint64_t k = 0; k < robot->steps_per_episode; ++k) raw.step();
   }
