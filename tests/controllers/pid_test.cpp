@@ -273,13 +273,20 @@ TEST(PidRealTime, ComputeCommandDoesNotAllocate) {
 TEST(PidRealTime, GainsFromAnotherThreadArriveWhole) {
   Pid pid(0.0, 0.0, 0.0, 0.0, 0.0);
   std::atomic<bool> stop{false};
+  std::atomic<int> writes{0};
+  std::atomic<int> last_written{0};
   std::thread writer([&] {
     for (int x = 1; !stop.load(); x = x % 1000 + 1) {
       pid.setGains(x, x, x, x, -x, x % 2 == 1);
+      last_written.store(x);
+      writes.fetch_add(1);
+      std::this_thread::yield();  // a service thread sets gains now and then, not back to back
     }
   });
   int torn = 0;
-  for (int k = 0; k < 200000; ++k) {
+  // At least 200,000 reads, and on until the writer has written 1,000 sets
+  // (on a loaded machine the writer thread may start late).
+  for (int k = 0; k < 200000 || writes.load() < 1000; ++k) {
     pid.computeCommand(1.0, 0.0, 1.0);
     const Pid::Gains& active = pid.getActiveGains();
     const Pid::Gains seen = pid.getGains();
@@ -293,5 +300,8 @@ TEST(PidRealTime, GainsFromAnotherThreadArriveWhole) {
   stop = true;
   writer.join();
   EXPECT_EQ(torn, 0);
-  EXPECT_GT(pid.getActiveGains().p_gain, 0.0);  // the writer's gains did arrive
+  // Once the writer is done, the next computeCommand takes its last set.
+  pid.computeCommand(1.0, 0.0, 1.0);
+  EXPECT_EQ(pid.getActiveGains().p_gain, static_cast<double>(last_written.load()));
+  EXPECT_GT(pid.getActiveGains().p_gain, 0.0);
 }

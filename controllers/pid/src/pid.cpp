@@ -180,8 +180,10 @@ double Pid::computeCommand(double error, double error_dot, double dt) noexcept {
   if (dt == 0.0 || !std::isfinite(dt) || !std::isfinite(error) || !std::isfinite(error_dot)) {
     return 0.0;
   }
-  // New gains take effect here; a write in progress leaves the previous ones.
-  tryReadGains(active_gains_);
+  // New gains take effect here; a write in progress leaves the previous ones
+  // (and they are read again next time).
+  const std::uint64_t sequence = gains_sequence_.load(std::memory_order_acquire);
+  if (sequence != active_sequence_ && tryReadGains(active_gains_)) active_sequence_ = sequence;
   const Gains& gains = active_gains_;
 
   p_error_ = error;

@@ -115,6 +115,9 @@ class Pid {
 
   // Controller-thread state.
   Gains active_gains_;
+  // The sequence active_gains_ were read at (odd: none yet, as no writer
+  // leaves an odd one behind), so the shared gains are only read after a change.
+  std::uint64_t active_sequence_ = ~std::uint64_t{0};
   double p_error_last_ = 0.0;  // error of the previous computeCommand(e, dt)
   double p_error_ = 0.0;
   double i_error_ = 0.0;
