@@ -48,54 +48,47 @@ RobotCase chainRobot(bool group) {
   return robot;
 }
 
+HandWrittenPositionLaw HandWrittenPositionLaw::forJoint(const RobotCase& robot, std::size_t i,
+                                                        const urdf::ModelInterface& model) {
+  const YAML::Node params = robot.namespaceParams();
+  const YAML::Node pid = robot.group_controller.empty() ? params[robot.position_controllers[i]]["pid"]
+                                                        : params[robot.group_controller][robot.joints[i]]["pid"];
+  const auto gain = [&pid](const char* key) { return pid[key] ? pid[key].as<double>() : 0.0; };
+  HandWrittenPositionLaw law;
+  law.setpoint_rad = robot.setpoints_rad[i];
+  law.kp = gain("p");
+  law.ki = gain("i");
+  law.kd = gain("d");
+  // As the PID reads them: i_clamp sets both bounds, the one-sided keys win.
+  law.i_min = -std::abs(gain("i_clamp"));
+  law.i_max = std::abs(gain("i_clamp"));
+  if (pid["i_clamp_min"]) law.i_min = -std::abs(gain("i_clamp_min"));
+  if (pid["i_clamp_max"]) law.i_max = std::abs(gain("i_clamp_max"));
+  const urdf::JointConstSharedPtr joint = model.getJoint(robot.joints[i]);
+  if (!joint) throw std::runtime_error("no joint '" + robot.joints[i] + "' in " + robot.urdf);
+  const urdf::JointLimitsSharedPtr& limits = joint->limits;
+  law.effort_limit = limits && limits->effort > 0.0 ? limits->effort : kInfinity;
+  const bool bounded = joint->type != urdf::Joint::CONTINUOUS && limits;
+  law.lower = bounded ? limits->lower : -kInfinity;
+  law.upper = bounded ? limits->upper : kInfinity;
+  law.velocity_limit = limits && limits->velocity > 0.0 ? limits->velocity : kInfinity;
+  return law;
+}
+
 RawBulletPd::RawBulletPd(const RobotCase& robot) : model_(loadRobotModelFile(sourcePath(robot.urdf))) {
   sim_bullet::WorldSettings settings;
   settings.time_step_s = kTimeStepS;
   world_ = std::make_unique<sim_bullet::BulletWorld>(*model_, settings);
-  const YAML::Node params = robot.namespaceParams();
   for (std::size_t i = 0; i < robot.joints.size(); ++i) {
-    const YAML::Node pid = robot.group_controller.empty()
-                               ? params[robot.position_controllers[i]]["pid"]
-                               : params[robot.group_controller][robot.joints[i]]["pid"];
-    const auto gain = [&pid](const char* key) { return pid[key] ? pid[key].as<double>() : 0.0; };
-    Joint joint{};
-    joint.index = world_->jointIndex(robot.joints[i]);
-    joint.setpoint_rad = robot.setpoints_rad[i];
-    joint.kp = gain("p");
-    joint.ki = gain("i");
-    joint.kd = gain("d");
-    // As the PID reads them: i_clamp sets both bounds, the one-sided keys win.
-    joint.i_min = -std::abs(gain("i_clamp"));
-    joint.i_max = std::abs(gain("i_clamp"));
-    if (pid["i_clamp_min"]) joint.i_min = -std::abs(gain("i_clamp_min"));
-    if (pid["i_clamp_max"]) joint.i_max = std::abs(gain("i_clamp_max"));
-    joint.effort_limit = world_->jointEffortLimit(joint.index);
-    const urdf::JointConstSharedPtr urdf_joint = model_->getJoint(robot.joints[i]);
-    const bool bounded = urdf_joint->type != urdf::Joint::CONTINUOUS && urdf_joint->limits;
-    joint.lower = bounded ? urdf_joint->limits->lower : -kInfinity;
-    joint.upper = bounded ? urdf_joint->limits->upper : kInfinity;
-    joint.velocity_limit =
-        urdf_joint->limits && urdf_joint->limits->velocity > 0.0 ? urdf_joint->limits->velocity : kInfinity;
-    joints_.push_back(joint);
+    joints_.push_back({world_->jointIndex(robot.joints[i]), HandWrittenPositionLaw::forJoint(robot, i, *model_)});
   }
 }
 
 void RawBulletPd::step() noexcept {
   sim_bullet::BulletWorld& world = *world_;
   for (Joint& joint : joints_) {
-    const double position = world.jointPosition(joint.index);
-    const double velocity = world.jointVelocity(joint.index);
-    const double error = joint.setpoint_rad - position;
-    const double error_rate = (error - joint.error_before) / kTimeStepS;
-    joint.error_before = error;
-    joint.error_integral += kTimeStepS * error;
-    const double i_term = std::clamp(joint.ki * joint.error_integral, joint.i_min, joint.i_max);
-    const double effort = joint.kp * error + i_term + joint.kd * error_rate;
-    double min_effort = -joint.effort_limit;
-    double max_effort = joint.effort_limit;
-    if (position < joint.lower || velocity < -joint.velocity_limit) min_effort = 0.0;
-    if (position > joint.upper || velocity > joint.velocity_limit) max_effort = 0.0;
-    world.setJointEffort(joint.index, std::clamp(effort, min_effort, max_effort));
+    const double effort = joint.law.effort(world.jointPosition(joint.index), world.jointVelocity(joint.index));
+    world.setJointEffort(joint.index, effort);
   }
   world.step();
 }

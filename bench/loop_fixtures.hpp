@@ -3,6 +3,7 @@
 // PD written inline, and the whole servoloop loop on a robot_hw backend
 // plugin. Construction is set-up (allocates, loads plugins, throws); the
 // stepping calls are what the benchmarks time.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -47,15 +48,46 @@ RobotCase seedRobot();
 // JointGroupPositionController; setpoints 0.2·sin(2π·i/16) rad; 2,000 steps.
 RobotCase chainRobot(bool group);
 
-// (a) BulletWorld stepped by hand, with the control law of the robot's
-// position controllers written inline: per joint, with e = q_ref − q,
+// The control law of the robot's position controllers, written out by hand
+// for the raw loops, per joint, with e = q_ref − q:
 //   effort = p·e + clamp(i·∫e dt, i_clamp_min, i_clamp_max) + d·(e − e_prev)/dt,
-// saturated as ros_control's effort saturation does it (to ± the URDF effort
+// saturated as ros_control's effort saturation does it: to ± the URDF effort
 // limit, with the bound on the side that pushes further out set to 0 beyond a
-// position limit or the velocity limit), → setJointEffort → step(); p, i, d
-// and i_clamp from the robot's YAML. Running the same law and limits as the
-// servoloop controllers keeps both runs on the same trajectory, so Bullet
-// does the same work in both and the ratio shows the framework's cost alone.
+// position limit or the velocity limit. p, i, d and i_clamp come from the
+// robot's YAML. Running the servoloop controllers' law and limits keeps the
+// raw and servoloop runs on the same trajectory, so the engine does the same
+// work in both and the ratio shows the framework's cost alone.
+struct HandWrittenPositionLaw {
+  double setpoint_rad = 0.0;
+  double kp = 0.0, ki = 0.0, kd = 0.0;
+  double i_min = 0.0, i_max = 0.0;
+  double effort_limit = 0.0;    // N·m; +infinity without one
+  double lower = 0.0, upper = 0.0;  // position limits (rad); ±infinity without
+  double velocity_limit = 0.0;  // rad/s; +infinity without one
+  double error_before = 0.0;
+  double error_integral = 0.0;
+
+  // Non-real-time: controlled joint i of `robot`, gains from its YAML, limits from `model`.
+  static HandWrittenPositionLaw forJoint(const RobotCase& robot, std::size_t i, const urdf::ModelInterface& model);
+
+  // Real-time: the effort for this step.
+  double effort(double position, double velocity) noexcept {
+    const double error = setpoint_rad - position;
+    const double error_rate = (error - error_before) / kTimeStepS;
+    error_before = error;
+    error_integral += kTimeStepS * error;
+    const double i_term = std::min(std::max(ki * error_integral, i_min), i_max);
+    const double unlimited = kp * error + i_term + kd * error_rate;
+    double min_effort = -effort_limit;
+    double max_effort = effort_limit;
+    if (position < lower || velocity < -velocity_limit) min_effort = 0.0;
+    if (position > upper || velocity > velocity_limit) max_effort = 0.0;
+    return std::min(std::max(unlimited, min_effort), max_effort);
+  }
+};
+
+// (a) BulletWorld stepped by hand with HandWrittenPositionLaw →
+// setJointEffort → step().
 class RawBulletPd {
  public:
   explicit RawBulletPd(const RobotCase& robot);
@@ -71,18 +103,7 @@ class RawBulletPd {
  private:
   struct Joint {
     std::size_t index;  // BulletWorld's joint index
-    double setpoint_rad;
-    double kp;
-    double ki;
-    double kd;
-    double i_min;
-    double i_max;
-    double effort_limit;  // N·m; +infinity without one
-    double lower;         // position limits (rad); ±infinity without
-    double upper;
-    double velocity_limit;  // rad/s; +infinity without one
-    double error_before = 0.0;
-    double error_integral = 0.0;
+    HandWrittenPositionLaw law;
   };
   std::shared_ptr<const urdf::ModelInterface> model_;
   std::unique_ptr<sim_bullet::BulletWorld> world_;

@@ -2,11 +2,13 @@
 //
 // For one robot, the same number of 1 ms physics steps from the same initial
 // state, three ways:
-//   loop/<robot>/raw_bullet       BulletWorld alone; a PD written inline,
-//                                 effort = kp·(q_ref − q) − kd·q̇ → setJointEffort → step()
+//   loop/<robot>/raw_bullet       BulletWorld alone, with the robot's position
+//                                 controllers' law written inline
+//                                 (HandWrittenPositionLaw: PID + ros_control effort
+//                                 saturation) → setJointEffort → step()
 //   loop/<robot>/servoloop_bullet SimulationLoop::runFor on the "bullet" robot_hw plugin:
-//                                 read (physics → actuators → joints through the URDF
-//                                 transmissions), ControllerManager::update with the robot's
+//                                 read (engine joint state; the actuator state through
+//                                 the URDF transmissions), ControllerManager::update with the robot's
 //                                 effort_controllers/JointPositionController(s) and a
 //                                 JointStateController at 50 Hz (plugins from the build),
 //                                 write (joint limits, joints → actuators → applied
@@ -14,9 +16,9 @@
 //                                 running, as in a node
 //   loop/<robot>/servoloop_mock   the same on the "mock" backend (no physics engine):
 //                                 the framework's own cost, for reference
-// The gains of the raw PD are the p and d of the robot's controller YAML, so
-// both drive the robot the same way (the servoloop PID adds the YAML's i term
-// and the URDF limits, which the raw loop does not have).
+// The raw loop runs the law and limits of the servoloop controllers with the
+// same gains, so both follow the same trajectory and Bullet does the same
+// work; the ratio is the framework's cost.
 //
 // Robots: "seed" — the seed's one_dof robot with its controller YAML, setpoint
 // 1.0 rad; "chain32" — robots/chain32 with one position controller per joint,

@@ -1,19 +1,20 @@
 // Benchmark 5: the backends. For one robot, the same number of 1 ms physics
 // steps from the same start, three ways:
 //   loop/<robot>/raw_mujoco        servoloop's MuJoCo engine (MujocoPhysics) stepped
-//                                  by hand with a PD written inline,
-//                                  effort = kp·(q_ref − q) − kd·q̇ → setJointEffort →
+//                                  by hand with the controllers' law written inline
+//                                  (HandWrittenPositionLaw) → setJointEffort →
 //                                  step() (qfrc_applied, then one mj_step, RK4)
 //   loop/<robot>/servoloop_mujoco  SimulationLoop::runFor on the "mujoco" robot_hw
 //                                  plugin, with the robot's JointPositionController(s)
 //                                  and a JointStateController at 50 Hz loaded from the
 //                                  build's plugin folder, the topic bus delivering:
 //                                  exactly benchmark 2's servoloop_bullet on MuJoCo
-//   loop/<robot>/raw_bullet        benchmark 2's raw Bullet PD (BulletWorld by hand)
+//   loop/<robot>/raw_bullet        benchmark 2's raw Bullet loop (BulletWorld by hand)
 // and the summary prints, from medians of the same run:
 //   (a) servoloop_mujoco / raw_mujoco — what the framework adds to MuJoCo;
 //   (b) raw_bullet / raw_mujoco       — the two engines' own stepping cost.
-// The PD gains are the p and d of the robot's controller YAML in both raw loops.
+// Both raw loops run the same hand-written law (loop_fixtures.hpp), with the
+// gains of the robot's controller YAML and the URDF's limits.
 //
 // Robots: "seed" (the seed's one_dof robot with transmission, setpoint 1.0 rad,
 // 10,000 steps) and "chain32" (robots/chain32, one position controller per
@@ -39,11 +40,12 @@ const std::vector<RobotCase>& robots() {
   return all;
 }
 
-// Raw PD loops: one step before timing, as the servoloop loop's switch cycle.
+// Raw loops: one step without effort before timing, as the servoloop loop's
+// switch cycle.
 template <typename RawPd>
 void rawLoop(benchmark::State& state, const RobotCase* robot) {
   RawPd raw(*robot);
-  raw.step();
+  raw.stepWithoutControl();
   for (auto _ : state) {
     for (std::uint64_t k = 0; k < robot->steps_per_episode; ++k) raw.step();
   }

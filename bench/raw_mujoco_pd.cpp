@@ -12,13 +12,9 @@
 namespace servoloop::bench {
 
 RawMujocoPd::RawMujocoPd(const RobotCase& robot) : model_(loadRobotModelFile(sourcePath(robot.urdf))) {
-  const YAML::Node params = robot.namespaceParams();
   std::vector<sim_common::EngineJointConfig> engine_joints;
   for (std::size_t i = 0; i < robot.joints.size(); ++i) {
-    const YAML::Node pid = robot.group_controller.empty()
-                               ? params[robot.position_controllers[i]]["pid"]
-                               : params[robot.group_controller][robot.joints[i]]["pid"];
-    joints_.push_back({robot.setpoints_rad[i], pid["p"].as<double>(), pid["d"] ? pid["d"].as<double>() : 0.0});
+    joints_.push_back(HandWrittenPositionLaw::forJoint(robot, i, *model_));
     sim_common::EngineJointConfig config;
     config.name = robot.joints[i];
     // Effort commands only: the motor bound is never used.
@@ -32,11 +28,13 @@ RawMujocoPd::RawMujocoPd(const RobotCase& robot) : model_(loadRobotModelFile(sou
 
 void RawMujocoPd::step() noexcept {
   for (std::size_t j = 0; j < joints_.size(); ++j) {
-    const Joint& joint = joints_[j];
-    const double q = physics_.jointPosition(j);
-    const double qdot = physics_.jointVelocity(j);
-    physics_.setJointEffort(j, joint.kp * (joint.setpoint_rad - q) - joint.kd * qdot);
+    physics_.setJointEffort(j, joints_[j].effort(physics_.jointPosition(j), physics_.jointVelocity(j)));
   }
+  physics_.step();
+}
+
+void RawMujocoPd::stepWithoutControl() noexcept {
+  for (std::size_t j = 0; j < joints_.size(); ++j) physics_.setJointEffort(j, 0.0);
   physics_.step();
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// MuJoCo stepped by hand, for the backend benchmark: the same PD as
-// RawBulletPd (loop_fixtures.hpp), written inline, on servoloop's MuJoCo
-// engine used directly — MujocoPhysics::setJointEffort → step() (which puts
+// MuJoCo stepped by hand, for the backend benchmark: the same hand-written
+// law as RawBulletPd (HandWrittenPositionLaw, loop_fixtures.hpp) on
+// servoloop's MuJoCo engine used directly — MujocoPhysics::setJointEffort → step() (which puts
 // the effort in qfrc_applied and calls mj_step once, RK4) → jointPosition /
 // jointVelocity. No SimRobotHW, transmissions, limits or controllers.
 // Construction is set-up (allocates, throws); step() is what is timed.
@@ -19,23 +19,20 @@ class RawMujocoPd {
  public:
   // The robot's URDF with default simulation settings (1 ms step, gravity −z,
   // no ground plane: what the robot YAMLs give), every controlled joint at 0,
-  // at rest; kp and kd are the p and d of the robot's controller YAML.
+  // at rest; the law's gains from the robot's controller YAML.
   explicit RawMujocoPd(const RobotCase& robot);
-  // Real-time: effort = kp·(q_ref − q) − kd·q̇ for every joint, then one physics step.
+  // Real-time: the law's effort for every joint, then one physics step.
   void step() noexcept;
+  // One physics step with no effort, as the servoloop loop's first cycle.
+  void stepWithoutControl() noexcept;
   double jointPosition(std::size_t controlled_joint) const;
   // Largest |q| over the controlled joints (rad): shows a robot that went unstable.
   double maxAbsJointPosition() const;
 
  private:
-  struct Joint {
-    double setpoint_rad;
-    double kp;
-    double kd;
-  };
   std::shared_ptr<const urdf::ModelInterface> model_;
   sim_mujoco::MujocoPhysics physics_;
-  std::vector<Joint> joints_;  // in the engine's joint order
+  std::vector<HandWrittenPositionLaw> joints_;  // in the engine's joint order
 };
 
 }  // namespace servoloop::bench
