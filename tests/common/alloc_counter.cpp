@@ -1,7 +1,11 @@
 #include "alloc_counter.hpp"
 
+#include <execinfo.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 
 namespace {
@@ -11,10 +15,20 @@ std::atomic<int> g_any{0};
 std::atomic<std::size_t> g_allocations{0};
 std::atomic<std::size_t> g_deallocations{0};
 
+// The stack of the first counted allocation (written by the thread that made it).
+constexpr int kMaxFrames = 48;
+void* g_first_stack[kMaxFrames];
+std::atomic<int> g_first_stack_depth{0};
+thread_local bool t_in_backtrace = false;
+
 void* counted_alloc(std::size_t size, std::size_t alignment) {
   if (g_any.load(std::memory_order_relaxed) > 0 &&
       (t_active > 0 || g_active_all.load(std::memory_order_relaxed) > 0)) {
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
+    if (g_allocations.fetch_add(1, std::memory_order_relaxed) == 0 && !t_in_backtrace) {
+      t_in_backtrace = true;  // backtrace() itself must not be counted or recurse
+      g_first_stack_depth.store(backtrace(g_first_stack, kMaxFrames), std::memory_order_release);
+      t_in_backtrace = false;
+    }
   }
   if (size == 0) size = 1;
   void* p = nullptr;
@@ -38,6 +52,10 @@ void counted_free(void* p) {
 
 namespace servoloop::testing {
 AllocationCounter::AllocationCounter(Scope scope) : scope_(scope) {
+  // backtrace() loads its unwinder (and allocates) on first use: do that now,
+  // before anything is counted.
+  void* warm_up[2];
+  backtrace(warm_up, 2);
   reset();
   if (scope_ == Scope::all_threads) {
     g_active_all.fetch_add(1);
@@ -59,6 +77,15 @@ std::size_t AllocationCounter::deallocations() const { return g_deallocations.lo
 void AllocationCounter::reset() {
   g_allocations.store(0);
   g_deallocations.store(0);
+  g_first_stack_depth.store(0);
+}
+
+void AllocationCounter::printFirstCountedStack(int fd) {
+  const int depth = g_first_stack_depth.load(std::memory_order_acquire);
+  const char* header = depth > 0 ? "stack of the first counted allocation:\n"
+                                 : "no counted allocation recorded a stack\n";
+  if (write(fd, header, std::strlen(header)) < 0) return;
+  if (depth > 0) backtrace_symbols_fd(g_first_stack, depth, fd);
 }
 }  // namespace servoloop::testing
 

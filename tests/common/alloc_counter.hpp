@@ -26,6 +26,13 @@ class AllocationCounter {
   std::size_t deallocations() const;
   void reset();
 
+  // Writes the call stack of the first allocation counted since construction
+  // or reset() to file descriptor fd (standard error by default), as
+  // backtrace_symbols_fd prints it, or a line saying there was none. For a
+  // test that found allocations on a path that must have none: the stack names
+  // the culprit. Does not allocate.
+  static void printFirstCountedStack(int fd = 2);
+
  private:
   Scope scope_;
 };

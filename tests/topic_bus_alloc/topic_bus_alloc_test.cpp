@@ -2,6 +2,8 @@
 // JointState and reading command inputs, 100,000 times, while the delivery
 // thread and a non-real-time writer work concurrently.
 #include <atomic>
+#include <cstdio>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -82,6 +84,7 @@ TEST(TopicBusAllocation, RealtimePublishAndCommandReadAllocateNothing) {
     }
     allocations = counter.allocations();
     deallocations = counter.deallocations();
+    if (allocations != 0) AllocationCounter::printFirstCountedStack();
   }
   running = false;
   writer.join();
@@ -104,6 +107,18 @@ TEST(TopicBusAllocation, CounterSeesNonRealtimeAllocations) {
   AllocationCounter counter;
   bus.publish("/t", msg);
   EXPECT_GT(counter.allocations(), 0u);
+
+  // And it kept the stack of the first one, which names the publish path.
+  std::FILE* file = std::tmpfile();
+  ASSERT_NE(file, nullptr);
+  AllocationCounter::printFirstCountedStack(fileno(file));
+  std::rewind(file);
+  std::string printed;
+  char buffer[4096];
+  while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, file)) printed.append(buffer, n);
+  std::fclose(file);
+  EXPECT_NE(printed.find("stack of the first counted allocation"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("TopicBus"), std::string::npos) << printed;
 }
 
 }  // namespace
