@@ -88,6 +88,13 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
   world.update_rate_hz = launch_.controller_manager.update_rate_hz;
   world.real_time_factor = real_time_factor_;
   auto robot = std::make_unique<RobotInstance>(spec, world);
+  robot->setFinishedCallback([this] {
+    {
+      std::lock_guard lock(finished_mutex_);
+      robot_finished_ = true;
+    }
+    finished_wake_.notify_all();
+  });
   const std::string ns = robot->robotNamespace();
 
   std::lock_guard lock(robots_mutex_);
@@ -147,7 +154,12 @@ void Node::waitUntilDone(const std::function<void()>& tick, std::chrono::millise
       logger().warn("every robot's control loop has stopped (the hardware asked to stop); ending the run");
       break;
     }
-    std::this_thread::sleep_for(tick_period);
+    // Until the next tick, or at once when a robot's loop ends (a short run
+    // is not kept waiting for the tick; a shutdown request from a signal
+    // handler is seen at the next tick).
+    std::unique_lock lock(finished_mutex_);
+    finished_wake_.wait_for(lock, tick_period, [this] { return robot_finished_; });
+    robot_finished_ = false;
   }
 }
 

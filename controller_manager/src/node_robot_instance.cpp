@@ -238,6 +238,7 @@ void RobotInstance::driveLoop(std::optional<double> duration_s) {
   }
   bus_->flush();
   loop_done_.store(true);
+  if (on_finished_) on_finished_();
 }
 
 void RobotInstance::start(std::optional<double> duration_s) {
@@ -260,6 +261,7 @@ void RobotInstance::start(std::optional<double> duration_s) {
       if (!started_set) started.set_value();
       logger().error("robot '{}': the control loop stopped: {}", namespace_, e.what());
       loop_done_.store(true);
+      if (on_finished_) on_finished_();
     }
   });
   ready.wait();

@@ -5,6 +5,7 @@
 // I_yy = 0.1 kg·m², so I = 0.1 + m·d² = 0.35 kg·m² about the joint).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -223,6 +224,24 @@ TEST(NodeRun, ControllerThatFailsToLoadIsReportedAndTheRunGoesOn) {
   const RunSummary summary = node.summary();
   EXPECT_NEAR(summary.sim_time_s, 0.1, 1e-9);
   expectBothControllersRunning(summary);
+}
+
+// waitUntilDone() returns when the robots' loops end, not at its next tick: a
+// free-running 1 s run of the mock robot takes milliseconds, far below the
+// one-minute tick given here (which the old polling would have waited out).
+TEST(NodeRun, WaitUntilDoneReturnsWhenTheRunEndsNotAtTheNextTick) {
+  ASSERT_TRUE(backendAvailable("mock"));
+  NodeOptions options;
+  options.duration_s = 1.0;
+  options.serve_ipc = false;
+  Node node(seedLaunch("mock"), options);
+  node.start();
+  const auto before = std::chrono::steady_clock::now();
+  node.waitUntilDone({}, std::chrono::minutes(1));
+  const double waited_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
+  node.shutdown();
+  EXPECT_LT(waited_s, 30.0);  // half the tick: woken by the loop's end, not by the tick
+  EXPECT_NEAR(node.summary().sim_time_s, 1.0, 1e-9);
 }
 
 TEST(NodeRun, BackendThatDoesNotExistIsAConfigError) {

@@ -18,6 +18,7 @@
 // Public members are non-real-time and safe from any thread unless noted.
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -121,6 +122,12 @@ class Node {
   double real_time_factor_ = 0.0;
   std::shared_ptr<PluginLoader> plugins_;
   ParameterStore parameters_;
+
+  // Woken by a robot whose loop has ended (declared before robots_, whose
+  // loop threads call into it, so that it outlives them).
+  std::mutex finished_mutex_;
+  std::condition_variable finished_wake_;
+  bool robot_finished_ = false;  // under finished_mutex_
 
   mutable std::mutex robots_mutex_;
   std::vector<std::unique_ptr<RobotInstance>> robots_;

@@ -29,6 +29,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -91,6 +92,9 @@ class RobotInstance {
   void stop();
   // True once the loop thread has ended (or was never started).
   bool finished() const { return !loop_thread_.joinable() || loop_done_.load(); }
+  // Non-real-time, before start(): called on the loop thread right after its
+  // loop has ended (finished() is then true), e.g. to wake whoever waits for it.
+  void setFinishedCallback(std::function<void()> callback) { on_finished_ = std::move(callback); }
 
   // Non-real-time, with the loop stopped: stops every running controller (their
   // stopping() runs) and unloads every controller. Idempotent.
@@ -146,6 +150,7 @@ class RobotInstance {
   std::thread loop_thread_;
   std::atomic<bool> stop_requested_{false};
   std::atomic<bool> loop_done_{false};
+  std::function<void()> on_finished_;
   bool controllers_shut_down_ = false;
 };
 
