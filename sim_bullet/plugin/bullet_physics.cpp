@@ -108,32 +108,13 @@ void BulletPhysics::setJointPositionTarget(std::size_t joint, double position) n
   world_->setJointPositionTarget(world_index_[joint], position);
 }
 
+// BulletPhysics is final: the per-joint calls in these loops bind statically.
 void BulletPhysics::readJointStates(std::span<sim_common::EngineJointState> states) const noexcept {
-  const BulletWorld& world = *world_;
-  for (std::size_t j = 0; j < states.size(); ++j) {
-    const std::size_t w = world_index_[j];
-    states[j] = sim_common::EngineJointState{world.jointPosition(w), world.jointVelocity(w), world.jointAppliedEffort(w)};
-  }
+  sim_common::readJointStatesVia(*this, states);
 }
 
 void BulletPhysics::applyJointCommands(std::span<const sim_common::AppliedJointCommand> commands) noexcept {
-  BulletWorld& world = *world_;
-  for (std::size_t j = 0; j < commands.size(); ++j) {
-    const sim_common::AppliedJointCommand& command = commands[j];
-    const std::size_t w = world_index_[j];
-    switch (command.mode) {
-      case sim_common::JointCommandMode::none:
-      case sim_common::JointCommandMode::effort:
-        world.setJointEffort(w, command.value);
-        break;
-      case sim_common::JointCommandMode::velocity:
-        world.setJointVelocityTarget(w, command.value);
-        break;
-      case sim_common::JointCommandMode::position:
-        world.setJointPositionTarget(w, command.value);
-        break;
-    }
-  }
+  sim_common::applyJointCommandsVia(*this, commands);
 }
 
 void BulletPhysics::step() noexcept { world_->step(); }

@@ -4,27 +4,11 @@
 namespace servoloop::sim_common {
 
 void PhysicsEngine::readJointStates(std::span<EngineJointState> states) const noexcept {
-  for (std::size_t j = 0; j < states.size(); ++j) {
-    states[j] = EngineJointState{jointPosition(j), jointVelocity(j), jointEffort(j)};
-  }
+  readJointStatesVia(*this, states);
 }
 
 void PhysicsEngine::applyJointCommands(std::span<const AppliedJointCommand> commands) noexcept {
-  for (std::size_t j = 0; j < commands.size(); ++j) {
-    const AppliedJointCommand& command = commands[j];
-    switch (command.mode) {
-      case JointCommandMode::none:
-      case JointCommandMode::effort:
-        setJointEffort(j, command.value);
-        break;
-      case JointCommandMode::velocity:
-        setJointVelocityTarget(j, command.value);
-        break;
-      case JointCommandMode::position:
-        setJointPositionTarget(j, command.value);
-        break;
-    }
-  }
+  applyJointCommandsVia(*this, commands);
 }
 
 }  // namespace servoloop::sim_common

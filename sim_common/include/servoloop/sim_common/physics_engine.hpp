@@ -108,4 +108,35 @@ class PhysicsEngine {
   virtual void setJointState(std::size_t joint, double position, double velocity) = 0;
 };
 
+// The loops behind readJointStates() and applyJointCommands(), over the
+// per-joint calls of `engine`. The defaults use them with PhysicsEngine (one
+// virtual call per joint and value); an engine class marked final may
+// override the two with `readJointStatesVia(*this, ...)` and
+// `applyJointCommandsVia(*this, ...)`, whose calls then bind statically.
+template <class Engine>
+void readJointStatesVia(const Engine& engine, std::span<EngineJointState> states) noexcept {
+  for (std::size_t j = 0; j < states.size(); ++j) {
+    states[j] = EngineJointState{engine.jointPosition(j), engine.jointVelocity(j), engine.jointEffort(j)};
+  }
+}
+
+template <class Engine>
+void applyJointCommandsVia(Engine& engine, std::span<const AppliedJointCommand> commands) noexcept {
+  for (std::size_t j = 0; j < commands.size(); ++j) {
+    const AppliedJointCommand& command = commands[j];
+    switch (command.mode) {
+      case JointCommandMode::none:
+      case JointCommandMode::effort:
+        engine.setJointEffort(j, command.value);
+        break;
+      case JointCommandMode::velocity:
+        engine.setJointVelocityTarget(j, command.value);
+        break;
+      case JointCommandMode::position:
+        engine.setJointPositionTarget(j, command.value);
+        break;
+    }
+  }
+}
+
 }  // namespace servoloop::sim_common

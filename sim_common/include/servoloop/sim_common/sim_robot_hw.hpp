@@ -9,6 +9,7 @@
 //   write(): joint limits on the active command interfaces ─▶ emergency stop
 //            ─▶ jointCommandToActuatorCommand ─▶ motor limits (actuators/<name>/
 //            max_effort) ─▶ actuatorCommandToJointCommand ─▶ applied commands
+//   step():  applied commands ─▶ engine, one physics step
 //
 // Every transmission map is linear and invertible, so the round trips
 // joint → actuator → joint give back the same values (up to rounding); they
@@ -16,7 +17,6 @@
 // limits. Without any max_effort, write() maps the joint commands to the
 // actuators (for actuator-space readers) and applies the joint commands as
 // they are; read() never maps back.
-//   step():  applied commands ─▶ engine, one physics step
 //
 // Joints without a <transmission> get an implicit SimpleTransmission
 // (reduction 1, EffortJointInterface, actuator "<joint>_motor").
