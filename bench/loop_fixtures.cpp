@@ -48,9 +48,8 @@ RobotCase chainRobot(bool group) {
   return robot;
 }
 
-HandWrittenPositionLaw HandWrittenPositionLaw::forJoint(const RobotCase& robot, std::size_t i,
-                                                        const urdf::ModelInterface& model) {
-  const YAML::Node params = robot.namespaceParams();
+HandWrittenPositionLaw HandWrittenPositionLaw::forJoint(const RobotCase& robot, const YAML::Node& params,
+                                                        std::size_t i, const urdf::ModelInterface& model) {
   const YAML::Node pid = robot.group_controller.empty() ? params[robot.position_controllers[i]]["pid"]
                                                         : params[robot.group_controller][robot.joints[i]]["pid"];
   const auto gain = [&pid](const char* key) { return pid[key] ? pid[key].as<double>() : 0.0; };
@@ -79,8 +78,9 @@ RawBulletPd::RawBulletPd(const RobotCase& robot) : model_(loadRobotModelFile(sou
   sim_bullet::WorldSettings settings;
   settings.time_step_s = kTimeStepS;
   world_ = std::make_unique<sim_bullet::BulletWorld>(*model_, settings);
+  const YAML::Node params = robot.namespaceParams();
   for (std::size_t i = 0; i < robot.joints.size(); ++i) {
-    joints_.push_back({world_->jointIndex(robot.joints[i]), HandWrittenPositionLaw::forJoint(robot, i, *model_)});
+    joints_.push_back({world_->jointIndex(robot.joints[i]), HandWrittenPositionLaw::forJoint(robot, params, i, *model_)});
   }
 }
 

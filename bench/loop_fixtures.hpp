@@ -67,8 +67,10 @@ struct HandWrittenPositionLaw {
   double error_before = 0.0;
   double error_integral = 0.0;
 
-  // Non-real-time: controlled joint i of `robot`, gains from its YAML, limits from `model`.
-  static HandWrittenPositionLaw forJoint(const RobotCase& robot, std::size_t i, const urdf::ModelInterface& model);
+  // Non-real-time: controlled joint i of `robot`, gains from `params` (its
+  // namespace's parameters, RobotCase::namespaceParams()), limits from `model`.
+  static HandWrittenPositionLaw forJoint(const RobotCase& robot, const YAML::Node& params, std::size_t i,
+                                         const urdf::ModelInterface& model);
 
   // Real-time: the effort for this step.
   double effort(double position, double velocity) noexcept {

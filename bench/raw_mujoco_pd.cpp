@@ -12,9 +12,10 @@
 namespace servoloop::bench {
 
 RawMujocoPd::RawMujocoPd(const RobotCase& robot) : model_(loadRobotModelFile(sourcePath(robot.urdf))) {
+  const YAML::Node params = robot.namespaceParams();
   std::vector<sim_common::EngineJointConfig> engine_joints;
   for (std::size_t i = 0; i < robot.joints.size(); ++i) {
-    joints_.push_back(HandWrittenPositionLaw::forJoint(robot, i, *model_));
+    joints_.push_back(HandWrittenPositionLaw::forJoint(robot, params, i, *model_));
     sim_common::EngineJointConfig config;
     config.name = robot.joints[i];
     // Effort commands only: the motor bound is never used.
