@@ -19,12 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A gnuplot single-quoted string ('' stands for a quote inside it).
-std::string quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
 
 // Shortest round-trip form; gnuplot reads NaN as a missing point.
 std::string number(double value) {
@@ -71,7 +65,7 @@ std::string plotCommand(const std::vector<Line>& lines) {
     const Line& line = lines[i];
     command += (i == 0 ? "" : ", \\\n     ") + line.source + " using 1:" + std::to_string(line.column) +
                " with lines linewidth 2 linecolor " + std::to_string(line.colour) + " dashtype " +
-               (line.dashed ? "2" : "1") + " title " + quoted(line.title) + " noenhanced";
+               (line.dashed ? "2" : "1") + " title " + gnuplotPlainTitle(line.title);
   }
   return command + "\n";
 }
@@ -85,7 +79,7 @@ std::string makeComparisonScript(const ComparisonPlot& plot) {
   }
   std::ostringstream script;
   script << "set terminal pngcairo size " << plot.width_px << "," << plot.height_px << " enhanced font 'sans,10'\n"
-         << "set output " << quoted(plot.png.string()) << "\n"
+         << "set output " << gnuplotQuoted(plot.png.string()) << "\n"
          << "set grid\nset key outside right top box\n"
          << "set xlabel 'simulated time (s)'\n";
 
@@ -117,10 +111,10 @@ std::string makeComparisonScript(const ComparisonPlot& plot) {
 
   // Fixed margins keep the three time axes aligned whatever the legends' widths.
   script << "set lmargin at screen 0.09\nset rmargin at screen 0.78\n";
-  script << "set multiplot layout 3,1 title " << quoted(plot.title) << " noenhanced\n";
+  script << "set multiplot layout 3,1 title " << gnuplotPlainTitle(plot.title) << "\n";
   script << "set ylabel 'joint position (rad or m)'\n" << plotCommand(positions);
   script << "set ylabel 'joint velocity (rad/s or m/s)'\n" << plotCommand(velocities);
-  script << "set ylabel " << quoted("position difference, " + plot.backend_b + " − " + plot.backend_a) << "\n"
+  script << "set ylabel " << gnuplotQuoted("position difference, " + plot.backend_b + " − " + plot.backend_a) << "\n"
          << plotCommand(differences);
   script << "unset multiplot\nunset output\n";
   return script.str();

@@ -14,19 +14,19 @@
 #include "servoloop/hardware_interface/errors.hpp"
 
 namespace servoloop::cli {
-namespace {
 
-namespace fs = std::filesystem;
-
-// A gnuplot single-quoted string ('' stands for a quote inside it).
-std::string quoted(const std::string& text) {
+std::string gnuplotQuoted(const std::string& text) {
   std::string out = "'";
   for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
   return out + "'";
 }
 
 // gnuplot's enhanced text treats _ ^ @ & { } as markup; titles are plain.
-std::string plainTitle(const std::string& text) { return quoted(text) + " noenhanced"; }
+std::string gnuplotPlainTitle(const std::string& text) { return gnuplotQuoted(text) + " noenhanced"; }
+
+namespace {
+
+namespace fs = std::filesystem;
 
 struct Series {
   const CsvTable* table;
@@ -40,10 +40,10 @@ std::string plotCommand(const std::vector<Series>& series) {
   std::string command = "plot ";
   for (std::size_t i = 0; i < series.size(); ++i) {
     const Series& s = series[i];
-    const std::string source = s.datablock.empty() ? quoted(s.table->file.string()) + " skip 1" : s.datablock;
+    const std::string source = s.datablock.empty() ? gnuplotQuoted(s.table->file.string()) + " skip 1" : s.datablock;
     command += (i == 0 ? "" : ", \\\n     ") + source + " using 1:" +
                std::to_string(s.column) + " with " + (s.steps ? "steps dashtype 2 linewidth 2" : "lines linewidth 2") +
-               " title " + plainTitle(s.title);
+               " title " + gnuplotPlainTitle(s.title);
   }
   return command + "\n";
 }
@@ -106,7 +106,7 @@ std::string makeGnuplotScript(const PlotRequest& request) {
   std::ostringstream script;
   script << "set terminal pngcairo size " << request.width_px << "," << request.height_px
          << " enhanced font 'sans,10'\n"
-         << "set output " << quoted(request.png.string()) << "\n"
+         << "set output " << gnuplotQuoted(request.png.string()) << "\n"
          << "set datafile separator ','\n"
          << "set grid\nset key outside right top box\n"
          << "set xlabel 'simulated time (s)'\n";
@@ -140,7 +140,7 @@ std::string makeGnuplotScript(const PlotRequest& request) {
       }
       throw Error("--columns: no file has such a column (columns: " + known + ")");
     }
-    script << "set title " << plainTitle(title) << "\nset ylabel 'value'\n" << plotCommand(series);
+    script << "set title " << gnuplotPlainTitle(title) << "\nset ylabel 'value'\n" << plotCommand(series);
     script << "unset output\n";
     return script.str();
   }
@@ -168,7 +168,7 @@ std::string makeGnuplotScript(const PlotRequest& request) {
                           {"velocity", "joint velocity (rad/s)"},
                           {"effort", "joint effort (N·m)"}};
   script << "set lmargin at screen 0.08\nset rmargin at screen 0.80\n";
-  script << "set multiplot layout 3,1 title " << plainTitle(title) << "\n";
+  script << "set multiplot layout 3,1 title " << gnuplotPlainTitle(title) << "\n";
   for (const Panel& panel : panels) {
     std::vector<Series> series;
     for (const std::string& joint : joints) {
@@ -176,7 +176,7 @@ std::string makeGnuplotScript(const PlotRequest& request) {
       series.push_back({joint_states, joint_states->columnNumber(column), column, false, ""});
     }
     if (std::string(panel.field) == "position") series.insert(series.end(), commands.begin(), commands.end());
-    script << "set ylabel " << quoted(panel.label) << "\n" << plotCommand(series);
+    script << "set ylabel " << gnuplotQuoted(panel.label) << "\n" << plotCommand(series);
   }
   script << "unset multiplot\nunset output\n";
   return script.str();

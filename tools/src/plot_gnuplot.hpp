@@ -33,6 +33,12 @@ std::string makeGnuplotScript(const PlotRequest& request);
 // (with its first error line).
 void plotToPng(const PlotRequest& request);
 
+// A gnuplot single-quoted string ('' stands for a quote inside it).
+std::string gnuplotQuoted(const std::string& text);
+// A title gnuplot prints as it is: quoted, with enhanced-text markup (_ ^ @ & { })
+// switched off.
+std::string gnuplotPlainTitle(const std::string& text);
+
 // Runs gnuplot on any script that writes png (the script sets the terminal
 // and output), with the same checks and errors as plotToPng.
 void runGnuplotScript(const std::string& script, const std::filesystem::path& png);
