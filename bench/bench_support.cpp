@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <utility>
 
@@ -63,6 +64,14 @@ std::vector<std::string> numberedJointNames(std::size_t joints) {
     names.emplace_back(name);
   }
   return names;
+}
+
+HeapPlacementShuffle::HeapPlacementShuffle() {
+  static std::mt19937 generator{std::random_device{}()};
+  constexpr std::size_t kStep = 64;
+  constexpr std::size_t kMaxSteps = 256;
+  const std::size_t steps = std::uniform_int_distribution<std::size_t>(1, kMaxSteps)(generator);
+  block_.assign(steps * kStep, 1);  // written, so the pages are really there
 }
 
 std::string revoluteChainUrdf(std::size_t joints) {

@@ -51,6 +51,21 @@ class PluginControllerFactory : public controller_manager::ControllerFactory {
   controller_manager::PluginLoader loader_;
 };
 
+// A heap block of random size (64 B to 16 KiB in steps of 64 B) taken before a
+// benchmark builds its robot and held until its episode ends, so that each
+// repetition's objects start at a different heap address. The same code runs
+// a few percent faster or slower depending on where its hot data happens to
+// lie (cache sets, 4 KiB aliasing); without this a process keeps one
+// placement for all its repetitions, and the median of a run says as much
+// about that placement as about the code. Every variant takes one.
+class HeapPlacementShuffle {
+ public:
+  HeapPlacementShuffle();
+
+ private:
+  std::vector<char> block_;
+};
+
 // The build's plugin folder (controllers and robot_hw backends).
 std::filesystem::path pluginDirectory();
 // A path inside the source tree, e.g. "robots/chain32/chain32.urdf".

@@ -35,6 +35,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_support.hpp"
 #include "loop_fixtures.hpp"
 #include "median_reporter.hpp"
 
@@ -47,6 +48,7 @@ const std::vector<RobotCase>& robots() {
 }
 
 void rawBullet(benchmark::State& state, const RobotCase* robot) {
+  const HeapPlacementShuffle placement;  // (bench_support.hpp)
   RawBulletPd raw(*robot);
   raw.stepWithoutControl();  // as the servoloop loop's switch cycle
   for (auto _ : state) {
@@ -58,6 +60,7 @@ void rawBullet(benchmark::State& state, const RobotCase* robot) {
 }
 
 void servoloopLoop(benchmark::State& state, const RobotCase* robot, const char* backend) {
+  const HeapPlacementShuffle placement;  // (bench_support.hpp)
   ServoloopSimulation simulation(*robot, backend);
   for (auto _ : state) simulation.runSteps(robot->steps_per_episode);
   if (simulation.stepsTaken() != robot->steps_per_episode + 1) state.SkipWithError("wrong number of steps");

@@ -28,6 +28,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_support.hpp"
 #include "loop_fixtures.hpp"
 #include "median_reporter.hpp"
 #include "raw_mujoco_pd.hpp"
@@ -44,6 +45,7 @@ const std::vector<RobotCase>& robots() {
 // switch cycle.
 template <typename RawPd>
 void rawLoop(benchmark::State& state, const RobotCase* robot) {
+  const HeapPlacementShuffle placement;  // (bench_support.hpp)
   RawPd raw(*robot);
   raw.stepWithoutControl();
   for (auto _ : state) {
@@ -55,6 +57,7 @@ void rawLoop(benchmark::State& state, const RobotCase* robot) {
 }
 
 void servoloopMujoco(benchmark::State& state, const RobotCase* robot) {
+  const HeapPlacementShuffle placement;  // (bench_support.hpp)
   ServoloopSimulation simulation(*robot, "mujoco");
   for (auto _ : state) simulation.runSteps(robot->steps_per_episode);
   if (simulation.stepsTaken() != robot->steps_per_episode + 1) state.SkipWithError("wrong number of steps");

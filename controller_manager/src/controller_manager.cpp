@@ -9,6 +9,7 @@
 #include <thread>
 #include <utility>
 
+#include "asymmetric_fence.hpp"
 #include "controller_entry.hpp"
 #include "servoloop/hardware_interface/errors.hpp"
 #include "servoloop/hardware_interface/logging.hpp"
@@ -51,6 +52,7 @@ ControllerManager::ControllerManager(hardware_interface::RobotHW* robot_hw,
       context_template_(std::move(context_template)),
       update_rate_hz_(update_rate_hz),
       hardware_fault_(std::make_unique<detail::FaultRecord>()) {
+  asymmetric_list_fence_ = asymmetric_fence::available();
   if (robot_hw_ == nullptr) throw Error("ControllerManager: the RobotHW pointer is null");
   if (!factory_) throw Error("ControllerManager: the controller factory is null");
   if (!parameters_) throw Error("ControllerManager: no parameter lookup given");
@@ -233,6 +235,7 @@ ServiceResult ControllerManager::unloadLocked(const std::string& name_ref) {
 }
 
 void ControllerManager::waitUntilRealtimeLeaves(int list_index) const {
+  if (asymmetric_list_fence_) asymmetric_fence::heavy();
   while (realtime_reading_list_.load() == list_index) {
     std::this_thread::sleep_for(std::chrono::microseconds(50));
   }

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <exception>
 
+#include "asymmetric_fence.hpp"
 #include "controller_entry.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
 
@@ -57,10 +58,17 @@ void ControllerManager::contain(detail::ControllerEntry& entry, FaultKind kind,
 int ControllerManager::enterRealtimeList() noexcept {
   // Announce which list this cycle reads, then re-check it is still the
   // current one: a publisher that swapped in between sees the announcement
-  // (all seq_cst) and waits, or we see its swap and announce the new list.
-  int index = realtime_current_list_.load();
+  // and waits, or we see its swap and announce the new list. Between the
+  // announcement and the re-check: a full fence, or a compiler barrier that
+  // the publisher's heavy fence completes (asymmetric_fence.hpp).
+  int index = realtime_current_list_.load(std::memory_order_acquire);
   for (;;) {
-    realtime_reading_list_.store(index);
+    if (asymmetric_list_fence_) {
+      realtime_reading_list_.store(index, std::memory_order_relaxed);
+      asymmetric_fence::light();
+    } else {
+      realtime_reading_list_.store(index);
+    }
     const int again = realtime_current_list_.load();
     if (again == index) return index;
     index = again;

@@ -113,16 +113,20 @@ LoopStatisticsSnapshot LoopStatistics::snapshot() const noexcept {
   s.hardware_errors = hardware_errors_.load(std::memory_order_relaxed);
   if (s.cycles == 0) return s;
 
+  // The histogram's own total: the timed cycles, consistent with the
+  // percentiles even while the writer adds a cycle.
+  std::uint64_t total = 0;
+  for (const auto& bucket : histogram_) total += bucket.load(std::memory_order_relaxed);
   const std::int64_t min_ns = compute_min_ns_.load(std::memory_order_relaxed);
   const std::int64_t max_ns = compute_max_ns_.load(std::memory_order_relaxed);
   const std::int64_t sum_ns = compute_sum_ns_.load(std::memory_order_relaxed);
+  // (A first timed cycle counted in the histogram but not yet in the minimum
+  // is still being recorded: as if it were not there yet.)
+  if (total == 0 || min_ns == kUnsetMin) return s;
+  s.timed_cycles = total;
   s.compute_min_s = static_cast<double>(min_ns) * kSecondsPerNs;
   s.compute_max_s = static_cast<double>(max_ns) * kSecondsPerNs;
-  s.compute_mean_s = static_cast<double>(sum_ns) / static_cast<double>(s.cycles) * kSecondsPerNs;
-  // The histogram's own total, so the percentiles are consistent with it even
-  // while the writer adds a cycle.
-  std::uint64_t total = 0;
-  for (const auto& bucket : histogram_) total += bucket.load(std::memory_order_relaxed);
+  s.compute_mean_s = static_cast<double>(sum_ns) / static_cast<double>(total) * kSecondsPerNs;
   s.compute_p50_s = percentileSeconds(0.50, total, min_ns, max_ns);
   s.compute_p99_s = percentileSeconds(0.99, total, min_ns, max_ns);
   return s;
@@ -131,11 +135,13 @@ LoopStatisticsSnapshot LoopStatistics::snapshot() const noexcept {
 std::string LoopStatistics::summary() const { return summary(snapshot()); }
 
 std::string LoopStatistics::summary(const LoopStatisticsSnapshot& s) {
+  const std::string timed =
+      s.timed_cycles == s.cycles ? std::string() : fmt::format(" ({} of {} cycles timed)", s.timed_cycles, s.cycles);
   return fmt::format(
       "loop: {} cycles ({} control updates), {:.3f} s simulated in {:.3f} s wall (real-time factor {:.3f}); "
-      "compute per cycle min {}, mean {}, p50 {}, p99 {}, max {}; "
+      "compute per cycle{} min {}, mean {}, p50 {}, p99 {}, max {}; "
       "{} overruns, {} schedule resets, {} hardware errors",
-      s.cycles, s.control_updates, s.sim_time_s, s.wall_time_s, s.real_time_factor,
+      s.cycles, s.control_updates, s.sim_time_s, s.wall_time_s, s.real_time_factor, timed,
       formatDuration(s.compute_min_s), formatDuration(s.compute_mean_s), formatDuration(s.compute_p50_s),
       formatDuration(s.compute_p99_s), formatDuration(s.compute_max_s), s.overruns, s.schedule_resets,
       s.hardware_errors);

@@ -14,7 +14,11 @@ constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
 
 StepGrid::StepGrid(double step_s) noexcept : step_s_(step_s) {
   if (!(step_s > 0.0) || !std::isfinite(step_s)) return;
-  if (std::isfinite(1.0 / step_s)) inverse_step_ = 1.0 / step_s;  // a subnormal step: no snapping
+  if (std::isfinite(1.0 / step_s)) {  // a subnormal step: no snapping
+    inverse_step_ = 1.0 / step_s;
+    max_snap_time_s_ = kExactIntegerLimit * step_s;
+    snap_tolerance_s_ = 1e-6 * step_s;
+  }
   // The shortest decimal m / 10^k that reads back as step_s.
   for (const double power : kPowersOfTen) {
     const double mantissa = std::nearbyint(step_s * power);

@@ -45,6 +45,33 @@ TEST(LoopStatistics, PercentilesOfAUniformDistribution) {
   EXPECT_NEAR(s.compute_p99_s, 990e-6, 990e-6 / 32.0);
 }
 
+TEST(LoopStatistics, UntimedCyclesAreCountedWithoutACost) {
+  // Cycles of 2, 4 and 9 us timed, two more only counted: the compute
+  // figures are those of the three timed ones.
+  LoopStatistics stats;
+  stats.recordCycle(2000, true);
+  stats.recordUntimedCycle(false);
+  stats.recordCycle(4000, false);
+  stats.recordUntimedCycle(true);
+  stats.recordCycle(9000, true);
+  const LoopStatisticsSnapshot s = stats.snapshot();
+  EXPECT_EQ(s.cycles, 5u);
+  EXPECT_EQ(s.control_updates, 3u);
+  EXPECT_EQ(s.timed_cycles, 3u);
+  EXPECT_DOUBLE_EQ(s.compute_min_s, 2e-6);
+  EXPECT_DOUBLE_EQ(s.compute_max_s, 9e-6);
+  EXPECT_NEAR(s.compute_mean_s, 5e-6, 1e-15);
+  const std::string summary = stats.summary();
+  EXPECT_NE(summary.find("compute per cycle (3 of 5 cycles timed) min 2.0 us"), std::string::npos) << summary;
+
+  // Counted only: no compute figures at all.
+  LoopStatistics untimed;
+  untimed.recordUntimedCycle(true);
+  EXPECT_EQ(untimed.snapshot().cycles, 1u);
+  EXPECT_EQ(untimed.snapshot().timed_cycles, 0u);
+  EXPECT_EQ(untimed.snapshot().compute_max_s, 0.0);
+}
+
 TEST(LoopStatistics, EmptyAndElapsed) {
   LoopStatistics stats;
   LoopStatisticsSnapshot s = stats.snapshot();

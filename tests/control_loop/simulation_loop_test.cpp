@@ -264,11 +264,15 @@ TEST(SimulationLoop, FreeRunStatisticsAreConsistent) {
   EXPECT_LE(s.compute_p99_s, s.compute_max_s);
   EXPECT_LE(s.compute_min_s, s.compute_mean_s);
   EXPECT_LE(s.compute_mean_s, s.compute_max_s);
-  EXPECT_LE(s.compute_mean_s * 500.0, s.wall_time_s + 1e-9);  // compute is part of the wall time
+  // One cycle in 16 is timed: cycles 0, 16, ..., 496.
+  EXPECT_EQ(SimulationLoop::kFreeRunningTimingStride, 16u);
+  EXPECT_EQ(s.timed_cycles, 32u);
+  EXPECT_LE(s.compute_mean_s * 32.0, s.wall_time_s + 1e-9);  // the timed cycles are part of the wall time
   EXPECT_EQ(s.overruns, 0u);  // free-running has no deadlines
   EXPECT_EQ(s.hardware_errors, 0u);
   const std::string summary = loop.statistics().summary();
   EXPECT_TRUE(contains(summary, "500 cycles (500 control updates)")) << summary;
+  EXPECT_TRUE(contains(summary, "(32 of 500 cycles timed)")) << summary;
   EXPECT_TRUE(contains(summary, "0.500 s simulated")) << summary;
   EXPECT_TRUE(contains(summary, "0 hardware errors")) << summary;
 }

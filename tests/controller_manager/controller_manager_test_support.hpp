@@ -262,17 +262,18 @@ class LogCapture {
   spdlog::level::level_enum level_;
 };
 
-// Calls update() in a loop on its own thread, as a control loop would.
+// Calls update() in a loop on its own thread, as a control loop would:
+// 20 us apart, or back to back (spin) as a free-running simulation does.
 class RealtimeThread {
  public:
-  RealtimeThread(ControllerManager& manager, double period_s)
-      : thread_([this, &manager, period_s] {
+  RealtimeThread(ControllerManager& manager, double period_s, bool spin = false)
+      : thread_([this, &manager, period_s, spin] {
           double t = 0.0;
           while (!stop_.load()) {
             t += period_s;
             manager.update(Time(t), Duration(period_s));
             cycles_.fetch_add(1);
-            std::this_thread::sleep_for(std::chrono::microseconds(20));
+            if (!spin) std::this_thread::sleep_for(std::chrono::microseconds(20));
           }
         }) {}
   ~RealtimeThread() { stop(); }

@@ -1,8 +1,10 @@
 // Simulated time on the step grid (hardware_interface/step_grid.hpp) against an independent
 // reference: the decimal text of steps × step, written with integer
 // arithmetic and read back by strtod (the double nearest to that decimal).
+
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
@@ -67,6 +69,23 @@ TEST(StepTime, SnapPutsProductsOnTheGridAndLeavesOtherTimes) {
   // Off the grid, or before 0: unchanged.
   EXPECT_EQ(snapToStepGrid(3.1315, 0.001), 3.1315);
   EXPECT_EQ(snapToStepGrid(-0.002, 0.001), -0.002);
+}
+
+TEST(StepTime, StepsAtFindsTheWholeNumberOfSteps) {
+  const StepGrid grid(0.001);
+  std::uint64_t steps = 0;
+  double accumulated = 0.0;
+  for (int i = 0; i < 3131; ++i) accumulated += 0.001;
+  ASSERT_TRUE(grid.stepsAt(accumulated, &steps));
+  EXPECT_EQ(steps, 3131u);
+  ASSERT_TRUE(grid.stepsAt(0.0, &steps));
+  EXPECT_EQ(steps, 0u);
+  // Half a step is no grid point, and neither is anything before 0 or a NaN.
+  EXPECT_FALSE(grid.stepsAt(3.1315, &steps));
+  EXPECT_FALSE(grid.stepsAt(-0.001, &steps));
+  EXPECT_FALSE(grid.stepsAt(std::nan(""), &steps));
+  // A grid without a usable step has no points.
+  EXPECT_FALSE(StepGrid(0.0).stepsAt(1.0, &steps));
 }
 
 }  // namespace

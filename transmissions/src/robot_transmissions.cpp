@@ -247,19 +247,7 @@ void RobotTransmissions::actuatorStateToJointState() noexcept {
   }
 }
 
-void RobotTransmissions::jointCommandToActuatorCommand() noexcept {
-  for (const SimpleBinding& b : simple_bindings_) {
-    const JointValues& joint = joints_[b.joint];
-    ActuatorValues& actuator = actuators_[b.actuator];
-    if (b.commands.effort) actuator.effort_command = SimpleTransmission::actuatorEffort(joint.effort_command, b.reduction);
-    if (b.commands.velocity) {
-      actuator.velocity_command = SimpleTransmission::actuatorVelocity(joint.velocity_command, b.reduction);
-    }
-    if (b.commands.position) {
-      actuator.position_command =
-          SimpleTransmission::actuatorPosition(joint.position_command, b.reduction, b.joint_offset);
-    }
-  }
+void RobotTransmissions::generalJointCommandToActuatorCommand() noexcept {
   for (Binding* b : general_bindings_) {
     if (b->commands.effort) b->transmission->jointToActuatorEffort(b->joint_command, b->actuator_command);
     if (b->commands.velocity) b->transmission->jointToActuatorVelocity(b->joint_command, b->actuator_command);
@@ -267,14 +255,7 @@ void RobotTransmissions::jointCommandToActuatorCommand() noexcept {
   }
 }
 
-void RobotTransmissions::jointStateToActuatorState() noexcept {
-  for (const SimpleBinding& b : simple_bindings_) {
-    const JointValues& joint = joints_[b.joint];
-    ActuatorValues& actuator = actuators_[b.actuator];
-    actuator.position = SimpleTransmission::actuatorPosition(joint.position, b.reduction, b.joint_offset);
-    actuator.velocity = SimpleTransmission::actuatorVelocity(joint.velocity, b.reduction);
-    actuator.effort = SimpleTransmission::actuatorEffort(joint.effort, b.reduction);
-  }
+void RobotTransmissions::generalJointStateToActuatorState() noexcept {
   for (Binding* b : general_bindings_) {
     b->transmission->jointToActuatorPosition(b->joint_state, b->actuator_state);
     b->transmission->jointToActuatorVelocity(b->joint_state, b->actuator_state);
@@ -347,26 +328,6 @@ ActuatorIndex RobotTransmissions::actuatorIndex(const std::string& name) const {
                       joinNames(actuator_names_) + "); check the <actuator name> in the URDF");
   }
   return ActuatorIndex(it->second);
-}
-
-JointValues& RobotTransmissions::joint(JointIndex joint) noexcept {
-  assert(joint.value() < joints_.size());
-  return joints_[joint.value()];
-}
-
-const JointValues& RobotTransmissions::joint(JointIndex joint) const noexcept {
-  assert(joint.value() < joints_.size());
-  return joints_[joint.value()];
-}
-
-ActuatorValues& RobotTransmissions::actuator(ActuatorIndex actuator) noexcept {
-  assert(actuator.value() < actuators_.size());
-  return actuators_[actuator.value()];
-}
-
-const ActuatorValues& RobotTransmissions::actuator(ActuatorIndex actuator) const noexcept {
-  assert(actuator.value() < actuators_.size());
-  return actuators_[actuator.value()];
 }
 
 }  // namespace servoloop::transmissions

@@ -165,52 +165,6 @@ void Pid::reset() noexcept {
   command_ = 0.0;
 }
 
-double Pid::computeCommand(double error, double dt) noexcept {
-  if (dt == 0.0 || !std::isfinite(dt) || !std::isfinite(error)) return 0.0;
-
-  double error_dot = d_error_;
-  if (dt > 0.0) {
-    error_dot = (error - p_error_last_) / dt;
-    p_error_last_ = error;
-  }
-  return computeCommand(error, error_dot, dt);
-}
-
-double Pid::computeCommand(double error, double error_dot, double dt) noexcept {
-  if (dt == 0.0 || !std::isfinite(dt) || !std::isfinite(error) || !std::isfinite(error_dot)) {
-    return 0.0;
-  }
-  // New gains take effect here; a write in progress leaves the previous ones
-  // (and they are read again next time).
-  const std::uint64_t sequence = gains_sequence_.load(std::memory_order_acquire);
-  if (sequence != active_sequence_ && tryReadGains(active_gains_)) active_sequence_ = sequence;
-  const Gains& gains = active_gains_;
-
-  p_error_ = error;
-  d_error_ = error_dot;
-
-  const double p_term = gains.p_gain * p_error_;
-
-  i_error_ += dt * p_error_;
-  if (gains.antiwindup && gains.i_gain != 0.0) {
-    // Keep i_error where i·i_error stays inside [i_min, i_max]; the bounds swap
-    // when the integral gain is negative.
-    const double bound_a = gains.i_min / gains.i_gain;
-    const double bound_b = gains.i_max / gains.i_gain;
-    i_error_ = std::clamp(i_error_, std::min(bound_a, bound_b), std::max(bound_a, bound_b));
-  }
-  double i_term = gains.i_gain * i_error_;
-  if (!gains.antiwindup) {
-    // Limit the term, not the state: i_error keeps integrating.
-    i_term = std::min(std::max(i_term, gains.i_min), gains.i_max);
-  }
-
-  const double d_term = gains.d_gain * d_error_;
-
-  command_ = p_term + i_term + d_term;
-  return command_;
-}
-
 void Pid::getCurrentPIDErrors(double& p_error, double& i_error, double& d_error) const noexcept {
   p_error = p_error_;
   i_error = i_error_;

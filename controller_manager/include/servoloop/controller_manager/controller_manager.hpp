@@ -195,6 +195,9 @@ class ControllerManager {
   std::vector<detail::ControllerEntry*> realtime_lists_[2];
   std::atomic<int> realtime_current_list_{0};
   std::atomic<int> realtime_reading_list_{-1};  // -1 while outside update()
+  // The real-time side of that handshake needs only a compiler barrier when
+  // the publisher can fence every thread (src/asymmetric_fence.hpp).
+  bool asymmetric_list_fence_ = false;
 
   std::atomic<SwitchPhase> switch_phase_{SwitchPhase::idle};
   SwitchPlan switch_plan_;

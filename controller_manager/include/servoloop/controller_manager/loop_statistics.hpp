@@ -6,7 +6,14 @@
 // Threads. The loop's real-time thread is the only writer (the record*/set*
 // calls: lock-free, allocation-free). Any thread may call snapshot() at any
 // time: every field is an atomic, so each value read is one the writer stored;
-// fields of one snapshot may be a cycle apart. The compute-cost percentiles
+// fields of one snapshot may be a cycle apart (a free-running simulation loop
+// publishes its elapsed times with its timed cycles: up to
+// SimulationLoop::kFreeRunningTimingStride cycles apart).
+//
+// Not every cycle need be timed: a free-running simulation loop times one
+// cycle in kFreeRunningTimingStride and only counts the others
+// (recordUntimedCycle). The compute figures are then those of the timed
+// cycles, and timed_cycles says how many there were. The compute-cost percentiles
 // come from a histogram preallocated inside the object (log-linear buckets,
 // at most 1/32 ≈ 3 % relative error), so recording never allocates.
 #include <array>
@@ -24,9 +31,11 @@ struct LoopStatisticsSnapshot {
   double wall_time_s = 0.0;           // wall time spent running, pacing sleeps included
   double real_time_factor = 0.0;      // sim_time_s / wall_time_s; 0 before any wall time passed
 
-  // Per-cycle compute cost: wall time of the cycle's work (read, update,
-  // write, step, and the loop's bookkeeping since the previous cycle), sleeps
-  // excluded. All 0 before the first cycle.
+  // Per-cycle compute cost of the timed cycles: wall time of the cycle's
+  // work (read, update, write, step; in a paced loop also the loop's
+  // bookkeeping since the previous cycle), sleeps excluded. All 0 before the
+  // first timed cycle.
+  std::uint64_t timed_cycles = 0;  // cycles the figures below come from
   double compute_min_s = 0.0;
   double compute_mean_s = 0.0;
   double compute_max_s = 0.0;
@@ -59,6 +68,11 @@ class LoopStatistics {
   // One finished cycle that took compute_ns of work; control_update: the
   // manager was updated in it.
   void recordCycle(std::int64_t compute_ns, bool control_update) noexcept;
+  // One finished cycle that was not timed: counted, without a compute cost.
+  void recordUntimedCycle(bool control_update) noexcept {
+    if (control_update) bump(control_updates_);
+    cycles_.store(cycles_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+  }
   // The loop's cumulative simulated (control) and wall time.
   void setElapsed(double sim_time_s, std::int64_t wall_time_ns) noexcept;
   void recordOverrun() noexcept { bump(overruns_); }
@@ -76,6 +90,8 @@ class LoopStatistics {
   //   "loop: 1000 cycles (1000 control updates), 1.000 s simulated in 1.002 s wall
   //    (real-time factor 0.998); compute per cycle min 3.1 us, mean 4.0 us, p50 3.9 us,
   //    p99 9.8 us, max 41.0 us; 0 overruns, 0 schedule resets, 0 hardware errors"
+  // ("compute per cycle (63 of 1000 cycles timed) min ..." when not every
+  // cycle was timed).
   std::string summary() const;
   static std::string summary(const LoopStatisticsSnapshot& stats);
 

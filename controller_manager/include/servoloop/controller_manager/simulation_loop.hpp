@@ -2,7 +2,7 @@
 // The control loop of a simulation, in lockstep with the physics as
 // gazebo_ros_control runs it. One cycle is one physics step:
 //
-//   t = hw.simTime()
+//   t = hw.simTime()       -- read at the start of a run, then counted in steps
 //   hw.read(t, dt)
 //   if a control update is due: manager.update(t, control period), cycle hook
 //   hw.write(t, dt)        -- commands reach the simulator every physics step
@@ -23,6 +23,12 @@
 // (counted as a schedule reset), so a stall (debugger, swapped-out process)
 // is never followed by a long burst at full speed. Every cycle that ends after
 // its deadline counts as an overrun.
+//
+// Statistics. Paced, every cycle is timed. Free-running, one cycle in
+// kFreeRunningTimingStride is (the first of each run and every stride-th
+// after it): the compute figures come from those, every cycle is counted,
+// and the elapsed times are published with the timed cycles and at the end
+// of each run.
 #include <atomic>
 #include <cstdint>
 
@@ -47,6 +53,9 @@ struct SimulationLoopOptions : LoopCommonOptions {
 class SimulationLoop final : public ControlLoop {
  public:
   using Options = SimulationLoopOptions;
+
+  // A free-running loop times every kFreeRunningTimingStride-th cycle.
+  static constexpr std::uint64_t kFreeRunningTimingStride = 16;
 
   // Non-real-time. hw and manager must outlive the loop; the manager must be
   // built on hw. Throws servoloop::ConfigError when the physics step is not a
@@ -76,7 +85,11 @@ class SimulationLoop final : public ControlLoop {
  private:
   // One cycle's work; returns its combined hardware result.
   ReturnType runCycle(bool* control_updated) noexcept;
+  // Reads the hardware's simulated time and finds its step on the grid.
+  void syncHardwareStep() noexcept;
   void runCycles(std::uint64_t max_cycles, const std::atomic<bool>* external_stop);
+  void runFreeCycles(std::uint64_t max_cycles, const std::atomic<bool>* external_stop);
+  void runPacedCycles(std::uint64_t max_cycles, const std::atomic<bool>* external_stop);
   void publishElapsed() noexcept;
 
   hardware_interface::SimulatedRobotHW& hw_;
@@ -91,6 +104,10 @@ class SimulationLoop final : public ControlLoop {
   std::uint64_t last_update_step_ = 0;
   bool updated_before_ = false;
   std::int64_t wall_time_ns_ = 0;  // accumulated over runs and single cycles
+  // The hardware's simulated time as a number of steps on step_grid_, when
+  // it lies on the grid (hardware_step_known_).
+  std::uint64_t hardware_step_ = 0;
+  bool hardware_step_known_ = false;
 };
 
 }  // namespace servoloop::controller_manager

@@ -39,12 +39,23 @@ class StepGrid {
   // steps) when it lies within a millionth of a step of a grid point at or
   // after 0; any other time is returned unchanged.
   double snap(double time_s) const noexcept {
-    if (!(inverse_step_ > 0.0) || !(time_s >= 0.0) || !(time_s <= kExactIntegerLimit * step_s_)) return time_s;
-    // Near a grid point (the only case that snaps) the product rounds like
-    // the quotient: both are within a millionth of the same integer.
-    const double steps = std::nearbyint(time_s * inverse_step_);
-    if (std::abs(steps * step_s_ - time_s) > 1e-6 * step_s_) return time_s;
-    return seconds(static_cast<std::uint64_t>(steps));
+    std::uint64_t steps = 0;
+    return stepsAt(time_s, &steps) ? seconds(steps) : time_s;
+  }
+
+  // Whether `time_s` lies within a millionth of a step of a grid point at or
+  // after 0, and if so, that point's number of steps.
+  bool stepsAt(double time_s, std::uint64_t* steps) const noexcept {
+    if (!(time_s >= 0.0) || !(time_s <= max_snap_time_s_)) return false;
+    // The nearest whole number of steps, as x + 0.5 truncated (x >= 0 and
+    // below 2^53 here; at a tie both neighbours are half a step away, so
+    // neither is taken). Near a grid point (the only case that counts) the
+    // product rounds like the quotient: both are within a millionth of the
+    // same integer.
+    const auto nearest = static_cast<std::int64_t>(time_s * inverse_step_ + 0.5);
+    if (std::abs(static_cast<double>(nearest) * step_s_ - time_s) > snap_tolerance_s_) return false;
+    *steps = static_cast<std::uint64_t>(nearest);
+    return true;
   }
 
  private:
@@ -53,6 +64,8 @@ class StepGrid {
 
   double step_s_;
   double inverse_step_ = 0.0;  // 1 / step_s; 0 when the step is not positive and finite
+  double max_snap_time_s_ = -1.0;  // 2^53 steps; negative (nothing snaps) without inverse_step_
+  double snap_tolerance_s_ = 0.0;  // a millionth of a step
   double mantissa_ = 0.0;  // m, with step_s == m / power_; 0 when the step is no short decimal
   double power_ = 0.0;     // 10^k
   std::uint64_t max_exact_steps_ = 0;

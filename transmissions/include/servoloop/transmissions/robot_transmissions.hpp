@@ -33,6 +33,7 @@
 // Everything else is non-real-time.
 #include <urdf_model/model.h>
 
+#include <cassert>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -42,6 +43,7 @@
 #include "servoloop/hardware_interface/interface_manager.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/strong_index.hpp"
+#include "servoloop/transmissions/simple_transmission.hpp"
 #include "servoloop/transmissions/transmission.hpp"
 #include "servoloop/transmissions/transmission_info.hpp"
 
@@ -119,11 +121,36 @@ class RobotTransmissions {
   void actuatorStateToJointState() noexcept;
   // Real-time. Write path: for each transmission, the actuator commands for
   // the command interfaces its joints name (effort, velocity, position).
-  void jointCommandToActuatorCommand() noexcept;
+  // (Inline, as jointStateToActuatorState: the simple transmissions, which
+  // most joints have, are mapped without a call.)
+  void jointCommandToActuatorCommand() noexcept {
+    for (const SimpleBinding& b : simple_bindings_) {
+      const JointValues& joint = joints_[b.joint];
+      ActuatorValues& actuator = actuators_[b.actuator];
+      if (b.commands.effort) actuator.effort_command = SimpleTransmission::actuatorEffort(joint.effort_command, b.reduction);
+      if (b.commands.velocity) {
+        actuator.velocity_command = SimpleTransmission::actuatorVelocity(joint.velocity_command, b.reduction);
+      }
+      if (b.commands.position) {
+        actuator.position_command =
+            SimpleTransmission::actuatorPosition(joint.position_command, b.reduction, b.joint_offset);
+      }
+    }
+    if (!general_bindings_.empty()) generalJointCommandToActuatorCommand();
+  }
 
   // Real-time, simulation direction. Actuator position/velocity/effort from
   // the joints' (a simulator measures joints).
-  void jointStateToActuatorState() noexcept;
+  void jointStateToActuatorState() noexcept {
+    for (const SimpleBinding& b : simple_bindings_) {
+      const JointValues& joint = joints_[b.joint];
+      ActuatorValues& actuator = actuators_[b.actuator];
+      actuator.position = SimpleTransmission::actuatorPosition(joint.position, b.reduction, b.joint_offset);
+      actuator.velocity = SimpleTransmission::actuatorVelocity(joint.velocity, b.reduction);
+      actuator.effort = SimpleTransmission::actuatorEffort(joint.effort, b.reduction);
+    }
+    if (!general_bindings_.empty()) generalJointStateToActuatorState();
+  }
   // Real-time, simulation direction. Joint effort commands from the actuator
   // effort commands of every transmission (what a simulator applies).
   void actuatorEffortToJointEffort() noexcept;
@@ -152,10 +179,22 @@ class RobotTransmissions {
 
   // Real-time safe direct access for backends (indices are not range-checked
   // beyond a debug assert).
-  JointValues& joint(JointIndex joint) noexcept;
-  const JointValues& joint(JointIndex joint) const noexcept;
-  ActuatorValues& actuator(ActuatorIndex actuator) noexcept;
-  const ActuatorValues& actuator(ActuatorIndex actuator) const noexcept;
+  JointValues& joint(JointIndex joint) noexcept {
+    assert(joint.value() < joints_.size());
+    return joints_[joint.value()];
+  }
+  const JointValues& joint(JointIndex joint) const noexcept {
+    assert(joint.value() < joints_.size());
+    return joints_[joint.value()];
+  }
+  ActuatorValues& actuator(ActuatorIndex actuator) noexcept {
+    assert(actuator.value() < actuators_.size());
+    return actuators_[actuator.value()];
+  }
+  const ActuatorValues& actuator(ActuatorIndex actuator) const noexcept {
+    assert(actuator.value() < actuators_.size());
+    return actuators_[actuator.value()];
+  }
 
   const JointCommandInterfaces& jointCommandInterfaces(JointIndex joint) const {
     return joint_commands_.at(joint.value());
@@ -187,6 +226,10 @@ class RobotTransmissions {
     double joint_offset = 0.0;
     JointCommandInterfaces commands;
   };
+
+  // The maps of the transmissions other than SimpleTransmissions.
+  void generalJointCommandToActuatorCommand() noexcept;
+  void generalJointStateToActuatorState() noexcept;
 
   void addTransmission(const TransmissionInfo& info, const urdf::ModelInterface& robot,
                        const Options& options);

@@ -1,0 +1,32 @@
+// Asymmetric fences through membarrier(2) (asymmetric_fence.hpp).
+#include "asymmetric_fence.hpp"
+
+#include <linux/membarrier.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+namespace servoloop::controller_manager::asymmetric_fence {
+
+namespace {
+
+long membarrier(int command) noexcept { return syscall(__NR_membarrier, command, 0, 0); }
+
+bool registerProcess() noexcept {
+  const long commands = membarrier(MEMBARRIER_CMD_QUERY);
+  if (commands < 0 || (commands & MEMBARRIER_CMD_PRIVATE_EXPEDITED) == 0) return false;
+  return membarrier(MEMBARRIER_CMD_REGISTER_PRIVATE_EXPEDITED) == 0;
+}
+
+}  // namespace
+
+bool available() noexcept {
+  static const bool registered = registerProcess();
+  return registered;
+}
+
+void heavy() noexcept {
+  if (available() && membarrier(MEMBARRIER_CMD_PRIVATE_EXPEDITED) == 0) return;
+  std::atomic_thread_fence(std::memory_order_seq_cst);
+}
+
+}  // namespace servoloop::controller_manager::asymmetric_fence
