@@ -28,8 +28,18 @@
 // One benchmark iteration is one whole episode (a fresh robot, then N steps),
 // repeated and interleaved at random with the other variants; the summary
 // prints ratios of medians from the same run.
+//
+//   loop/<robot>/paired           three times, one raw_bullet and one servoloop_bullet
+//                                 episode back to back (which goes first alternates), each timed
+//                                 on the thread's CPU clock: one ratio per pair. A
+//                                 change in the machine's speed that is slower than a
+//                                 pair (about 30 ms for the seed) cancels out of each
+//                                 ratio; the summary prints their median and quartiles.
+#include <time.h>
+
 #include <cstdint>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -69,6 +79,50 @@ void servoloopLoop(benchmark::State& state, const RobotCase* robot, const char* 
   state.counters["q_first_end"] = simulation.firstJointPosition();
 }
 
+double threadCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+// Thread CPU seconds of one episode on a fresh robot (set-up not counted).
+double rawEpisodeSeconds(const RobotCase& robot) {
+  const HeapPlacementShuffle placement;
+  RawBulletPd raw(robot);
+  raw.stepWithoutControl();
+  const double start = threadCpuSeconds();
+  for (std::uint64_t k = 0; k < robot.steps_per_episode; ++k) raw.step();
+  return threadCpuSeconds() - start;
+}
+
+double servoloopEpisodeSeconds(const RobotCase& robot) {
+  const HeapPlacementShuffle placement;
+  ServoloopSimulation simulation(robot, "bullet");
+  const double start = threadCpuSeconds();
+  simulation.runSteps(robot.steps_per_episode);
+  return threadCpuSeconds() - start;
+}
+
+// Per robot: servoloop / raw thread CPU time of each back-to-back pair.
+std::map<std::string, std::vector<double>>& pairedRatios() {
+  static std::map<std::string, std::vector<double>> ratios;
+  return ratios;
+}
+
+void pairedEpisodes(benchmark::State& state, const RobotCase* robot, const RobotCase* raw_robot) {
+  constexpr int kPairsPerRepetition = 3;
+  std::vector<double>& ratios = pairedRatios()[robot->label];
+  for (auto _ : state) {
+    for (int pair = 0; pair < kPairsPerRepetition; ++pair) {
+      const bool raw_first = ratios.size() % 2 == 0;
+      const double first = raw_first ? rawEpisodeSeconds(*raw_robot) : servoloopEpisodeSeconds(*robot);
+      const double second = raw_first ? servoloopEpisodeSeconds(*robot) : rawEpisodeSeconds(*raw_robot);
+      ratios.push_back(raw_first ? second / first : first / second);
+    }
+  }
+  state.counters[kUnitsPerIterationCounter] = 2.0 * kPairsPerRepetition * static_cast<double>(robot->steps_per_episode);
+}
+
 std::string nameOf(const RobotCase& robot, const std::string& variant) { return "loop/" + robot.label + "/" + variant; }
 
 void registerAll() {
@@ -80,12 +134,18 @@ void registerAll() {
         ->Iterations(1);
     benchmark::RegisterBenchmark(nameOf(robot, "servoloop_mock").c_str(), servoloopLoop, &robot, "mock")
         ->Iterations(1);
+    // The group robot's raw loop is the chain's (the same law per joint).
+    const RobotCase* raw_robot = robot.group_controller.empty() ? &robot : &robots()[1];
+    benchmark::RegisterBenchmark(nameOf(robot, "paired").c_str(), pairedEpisodes, &robot, raw_robot)->Iterations(1);
   }
 }
 
 void summary(const MedianTable& table, std::ostream& out) {
   out << "=== Cost per 1 ms physics step (median over repetitions) ===\n";
-  for (const auto& name : table.names()) printMedianLine(out, table, name, name);
+  for (const auto& name : table.names()) {
+    // A pair's own benchmark time includes building both robots: not a cost per step.
+    if (!name.ends_with("/paired")) printMedianLine(out, table, name, name);
+  }
   out << "\n=== Ratios (same run, medians) ===\n";
   const char* raw_of[][2] = {{"seed", "seed"}, {"chain32", "chain32"}, {"chain32_group", "chain32"}};
   for (const auto& [robot, raw_robot] : raw_of) {
@@ -102,6 +162,16 @@ void summary(const MedianTable& table, std::ostream& out) {
                   "free-running RTF %.0f\n",
                   (std::string(robot) + ": framework overhead").c_str(), overhead_ns,
                   table.median(mock, Clock::thread_cpu), rtf);
+    out << line;
+  }
+  out << "\n=== Paired ratios: servoloop+bullet / raw bullet, back-to-back episodes (thread CPU) ===\n";
+  for (const auto& [robot, ratios] : pairedRatios()) {
+    if (ratios.empty()) continue;
+    const double median = quantileOf(ratios, 0.5);
+    char line[256];
+    std::snprintf(line, sizeof line, "  %-44s %6.3f median of %zu pairs (quartiles %.3f, %.3f)   target <= 1.1: %s\n",
+                  (robot + ": paired").c_str(), median, ratios.size(), quantileOf(ratios, 0.25),
+                  quantileOf(ratios, 0.75), median <= 1.10 ? "met" : "NOT met");
     out << line;
   }
 }

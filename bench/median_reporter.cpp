@@ -26,15 +26,18 @@ const std::vector<double>& MedianTable::values(const std::string& name, Clock cl
   return clock == Clock::wall ? it->second.wall_ns : it->second.cpu_ns;
 }
 
-double MedianTable::quantile(const std::string& name, Clock clock, double q) const {
-  std::vector<double> sorted = values(name, clock);
-  if (sorted.empty()) return std::nan("");
-  std::sort(sorted.begin(), sorted.end());
-  const double position = q * static_cast<double>(sorted.size() - 1);
+double quantileOf(std::vector<double> values, double q) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  const double position = q * static_cast<double>(values.size() - 1);
   const auto below = static_cast<std::size_t>(std::floor(position));
-  const std::size_t above = std::min(below + 1, sorted.size() - 1);
+  const std::size_t above = std::min(below + 1, values.size() - 1);
   const double fraction = position - static_cast<double>(below);
-  return sorted[below] + fraction * (sorted[above] - sorted[below]);
+  return values[below] + fraction * (values[above] - values[below]);
+}
+
+double MedianTable::quantile(const std::string& name, Clock clock, double q) const {
+  return quantileOf(values(name, clock), q);
 }
 
 double MedianTable::relativeSpread(const std::string& name, Clock clock) const {

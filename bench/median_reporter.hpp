@@ -24,6 +24,9 @@ inline constexpr const char* kUnitsPerIterationCounter = "units_per_iteration";
 
 enum class Clock { wall, thread_cpu };
 
+// Quantile q in [0, 1] of values (linear interpolation); NaN when empty.
+double quantileOf(std::vector<double> values, double q);
+
 // Per-repetition times of every benchmark, in nanoseconds per unit of work.
 class MedianTable {
  public:

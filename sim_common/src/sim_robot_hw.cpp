@@ -208,18 +208,11 @@ ReturnType SimRobotHW::read(Time /*time*/, Duration /*period*/) {
 }
 
 ReturnType SimRobotHW::write(Time /*time*/, Duration period) {
+  // The every-cycle path; emergency stops and motor effort limits are out of line.
   transmissions::RobotTransmissions& tr = *transmissions_;
   const std::size_t joint_count = applied_.size();
-
-  // Emergency stop: remember where the joints were when it engaged; when it
-  // is released, the limit handles start again from the measured state.
   const bool estop = estop_requested_.load(std::memory_order_acquire);
-  if (estop && !estop_active_) {
-    for (std::size_t j = 0; j < joint_count; ++j) estop_positions_[j] = tr.joint(JointIndex(j)).position;
-  } else if (!estop && estop_active_) {
-    for (JointCommandLimiter& limiter : limiters_) limiter.reset();
-  }
-  estop_active_ = estop;
+  if (estop != estop_active_) [[unlikely]] changeEmergencyStop(estop);
 
   // Joint limits on the commands controllers wrote, before anything else sees them.
   for (std::size_t j = 0; j < joint_count; ++j) limiters_[j].enforce(modes_[j], period);
@@ -228,42 +221,68 @@ ReturnType SimRobotHW::write(Time /*time*/, Duration period) {
   // joint. Without motor limits the way back would return the joint commands
   // unchanged, so it is only taken when a limit may have cut an actuator's.
   tr.jointCommandToActuatorCommand();
-  if (any_motor_limit_) {
-    for (std::size_t a = 0; a < actuator_parameters_.size(); ++a) {
-      const double max_effort = actuator_parameters_[a].max_effort;
-      double& effort_command = tr.actuator(ActuatorIndex(a)).effort_command;
-      if (std::isfinite(max_effort) && std::isfinite(effort_command)) {
-        effort_command = std::clamp(effort_command, -max_effort, max_effort);
-      }
-    }
-    tr.actuatorCommandToJointCommand();
-  }
+  if (any_motor_limit_) [[unlikely]] limitMotorEfforts();
 
+  if (estop_active_) [[unlikely]] {
+    applyEmergencyStop();
+    return ReturnType::ok;
+  }
   // What the engine applies at the next step. Non-finite commands (from a
   // joint without limit handles) become harmless: no effort, no motion.
   for (std::size_t j = 0; j < joint_count; ++j) {
     const transmissions::JointValues& joint = tr.joint(JointIndex(j));
     AppliedJointCommand& applied = applied_[j];
-    applied.mode = modes_[j];
-    switch (modes_[j]) {
+    const JointCommandMode mode = modes_[j];
+    applied.mode = mode;
+    switch (mode) {
       case JointCommandMode::none:
         applied.value = 0.0;
         break;
       case JointCommandMode::effort:
-        applied.value = estop_active_ || !std::isfinite(joint.effort_command) ? 0.0 : joint.effort_command;
+        applied.value = std::isfinite(joint.effort_command) ? joint.effort_command : 0.0;
         break;
       case JointCommandMode::velocity:
-        applied.value =
-            estop_active_ || !std::isfinite(joint.velocity_command) ? 0.0 : joint.velocity_command;
+        applied.value = std::isfinite(joint.velocity_command) ? joint.velocity_command : 0.0;
         break;
       case JointCommandMode::position:
-        applied.value = estop_active_                              ? estop_positions_[j]
-                        : std::isfinite(joint.position_command) ? joint.position_command
-                                                                 : joint.position;
+        applied.value = std::isfinite(joint.position_command) ? joint.position_command : joint.position;
         break;
     }
   }
   return ReturnType::ok;
+}
+
+void SimRobotHW::changeEmergencyStop(bool engaged) noexcept {
+  // Engaged: remember where the joints were; released: the limit handles
+  // start again from the measured state.
+  if (engaged) {
+    for (std::size_t j = 0; j < applied_.size(); ++j) estop_positions_[j] = transmissions_->joint(JointIndex(j)).position;
+  } else {
+    for (JointCommandLimiter& limiter : limiters_) limiter.reset();
+  }
+  estop_active_ = engaged;
+}
+
+void SimRobotHW::limitMotorEfforts() noexcept {
+  transmissions::RobotTransmissions& tr = *transmissions_;
+  for (std::size_t a = 0; a < actuator_parameters_.size(); ++a) {
+    const double max_effort = actuator_parameters_[a].max_effort;
+    double& effort_command = tr.actuator(ActuatorIndex(a)).effort_command;
+    if (std::isfinite(max_effort) && std::isfinite(effort_command)) {
+      effort_command = std::clamp(effort_command, -max_effort, max_effort);
+    }
+  }
+  tr.actuatorCommandToJointCommand();
+}
+
+void SimRobotHW::applyEmergencyStop() noexcept {
+  // Position commands hold where the joints were when the stop engaged;
+  // effort and velocity commands are zero.
+  for (std::size_t j = 0; j < applied_.size(); ++j) {
+    AppliedJointCommand& applied = applied_[j];
+    applied.mode = modes_[j];
+    applied.value = modes_[j] == JointCommandMode::position ? estop_positions_[j] : 0.0;
+  }
 }
 
 ReturnType SimRobotHW::step() {

@@ -51,20 +51,9 @@ void JointPositionController::starting(const Time& /*time*/) {
 }
 
 ReturnType JointPositionController::update(const Time& time, const Duration& period) {
-  // New setpoints: the topic's, then a direct one (which wins if both came).
-  double commanded_position = 0.0;
-  if (command_input_.takeNew(commanded_position)) {
-    setpoint_ = commanded_position;
-    has_velocity_target_ = false;
-  }
-  if (direct_command_.newDataAvailable()) {
-    if (const Command* command = direct_command_.readFromRT()) {
-      setpoint_ = command->position;
-      velocity_target_ = command->velocity;
-      has_velocity_target_ = command->has_velocity;
-    }
-  }
-  setpoint_ = position_error_.clampSetpoint(setpoint_);
+  // The every-cycle part is kept short; new setpoints and the state message
+  // (every 10th update) are handled out of line.
+  if (command_input_.hasNew() || direct_command_.newDataAvailable()) [[unlikely]] takeNewSetpoint();
 
   const double position = joint_.getPosition();
   const double velocity = joint_.getVelocity();
@@ -74,7 +63,29 @@ ReturnType JointPositionController::update(const Time& time, const Duration& per
                                  : pid_.computeCommand(error, dt);
   joint_.setCommand(effort_);
 
-  state_publisher_.onUpdate([&](ControllerStatePublisher::Message& msg) {
+  if (state_publisher_.countUpdate()) publishState(time, position, velocity, error, dt);
+  return ReturnType::ok;
+}
+
+void JointPositionController::takeNewSetpoint() noexcept {
+  // The topic's, then a direct one (which wins if both came).
+  double commanded_position = 0.0;
+  if (command_input_.takeNew(commanded_position)) {
+    setpoint_ = position_error_.clampSetpoint(commanded_position);
+    has_velocity_target_ = false;
+  }
+  if (direct_command_.newDataAvailable()) {
+    if (const Command* command = direct_command_.readFromRT()) {
+      setpoint_ = position_error_.clampSetpoint(command->position);
+      velocity_target_ = command->velocity;
+      has_velocity_target_ = command->has_velocity;
+    }
+  }
+}
+
+void JointPositionController::publishState(const Time& time, double position, double velocity, double error,
+                                           double dt) noexcept {
+  state_publisher_.publish([&](ControllerStatePublisher::Message& msg) {
     msg.stamp = time.seconds;
     msg.set_point = setpoint_;
     msg.process_value = position;
@@ -84,7 +95,6 @@ ReturnType JointPositionController::update(const Time& time, const Duration& per
     msg.command = effort_;
     ControllerStatePublisher::setGains(msg, pid_.getActiveGains());
   });
-  return ReturnType::ok;
 }
 
 }  // namespace servoloop::controllers::effort_controllers

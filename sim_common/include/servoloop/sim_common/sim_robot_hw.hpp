@@ -119,6 +119,10 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   void configureActuators(const std::string& ns, const YAML::Node& parameters);
   void configureEngineJoints();
   void readEngineState() noexcept;
+  // write()'s rare paths, out of line.
+  [[gnu::noinline]] void changeEmergencyStop(bool engaged) noexcept;
+  [[gnu::noinline]] void limitMotorEfforts() noexcept;
+  [[gnu::noinline]] void applyEmergencyStop() noexcept;
   void zeroCommands() noexcept;
   void applyModesFromClaims(const hardware_interface::ControllerInfo& controller,
                             bool starting) noexcept;

@@ -43,6 +43,10 @@ class ScalarCommandInput {
   // Real-time. Forgets commands published so far (a controller's starting()).
   void clear() noexcept { input_.clear(); }
 
+  // Real-time: whether a command arrived since the last takeNew() (cheap; a
+  // controller checks it before calling takeNew()).
+  bool hasNew() const noexcept { return input_.hasNewMessage(); }
+
   // Real-time. If a command arrived since the last call and it is finite,
   // writes it to value and returns true. A non-finite one is counted and
   // false is returned (value untouched).

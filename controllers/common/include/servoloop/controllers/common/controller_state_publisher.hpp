@@ -30,9 +30,21 @@ class ControllerStatePublisher {
   // writes the message (every field, it is reused) and it is published.
   template <class Fill>
   void onUpdate(Fill&& fill) noexcept {
+    if (!countUpdate()) return;
+    publish(fill);
+  }
+
+  // Real-time, the two halves of onUpdate, for a controller that keeps the
+  // publishing out of its every-cycle code: countUpdate() once per update,
+  // and when it says so, publish(fill).
+  bool countUpdate() noexcept {
     const bool publish_now = update_count_ % kPublishEveryNthUpdate == 0;
     ++update_count_;
-    if (!publish_now || !publisher_.valid() || !publisher_.trylock()) return;
+    return publish_now;
+  }
+  template <class Fill>
+  void publish(Fill&& fill) noexcept {
+    if (!publisher_.valid() || !publisher_.trylock()) return;
     fill(publisher_.msg());
     publisher_.unlockAndPublish();
   }

@@ -63,6 +63,12 @@ class JointPositionController
     bool has_velocity = false;
   };
 
+  // Real-time, out of the every-cycle path: a new setpoint (clamped to the
+  // position limits) from the topic or setCommand(); the state message.
+  [[gnu::noinline]] void takeNewSetpoint() noexcept;
+  [[gnu::noinline]] void publishState(const Time& time, double position, double velocity, double error,
+                                      double dt) noexcept;
+
   hardware_interface::JointHandle joint_;
   JointPositionError position_error_;
   Pid pid_;
