@@ -181,7 +181,8 @@ void SimulationLoop::runFreeCycles(std::uint64_t max_cycles, const std::atomic<b
   const std::int64_t wall_before_ns = wall_time_ns_;
   for (std::uint64_t n = 0; n < max_cycles && !shouldStop(external_stop); ++n) {
     bool control_updated = false;
-    if (n % kFreeRunningTimingStride != 0) {
+    // Counted across runs: a node runs its free loop in short runs.
+    if (free_cycles_++ % kFreeRunningTimingStride != 0) {
       runCycle(&control_updated);
       mutableStatistics().recordUntimedCycle(control_updated);
       continue;

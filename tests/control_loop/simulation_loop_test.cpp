@@ -277,6 +277,19 @@ TEST(SimulationLoop, FreeRunStatisticsAreConsistent) {
   EXPECT_TRUE(contains(summary, "0 hardware errors")) << summary;
 }
 
+TEST(SimulationLoop, TheTimingStrideRunsOnAcrossShortRuns) {
+  // A node runs a free loop 10 steps at a time: cycles 0, 16, 32 and 48 of
+  // the 50 are timed, not the first of every run.
+  LoopFixture f(0.001);
+  SimulationLoop loop(f.hw, f.manager);
+  f.requestStart();
+  for (int run = 0; run < 5; ++run) loop.runFor(Duration(0.01));
+  const LoopStatisticsSnapshot s = loop.statistics().snapshot();
+  EXPECT_EQ(s.cycles, 50u);
+  EXPECT_EQ(s.timed_cycles, 4u);
+  EXPECT_DOUBLE_EQ(s.sim_time_s, 0.05);
+}
+
 TEST(SimulationLoop, RequestStopFromAnotherThreadEndsRun) {
   LoopFixture f(0.001);
   f.recorder->enabled = false;

@@ -51,7 +51,9 @@ class PublisherChannel : public PublisherChannelBase {
       : staging_(prototype),
         slots_(queue_depth + 1, Slot{prototype, Time()}),  // + the one being delivered
         ready_(queue_depth + 1),
-        free_(queue_depth + 1),
+        // One cell more than there are slots: a push into free_ then never
+        // meets the cell of a pop still in progress one lap back.
+        free_(queue_depth + 2),
         clock_(std::move(clock)) {
     for (std::uint32_t i = 0; i < slots_.size(); ++i) free_.push(i);
   }
@@ -71,7 +73,17 @@ class PublisherChannel : public PublisherChannelBase {
     Slot& slot = slots_[index];
     slot.msg = msg;
     slot.stamp = clock_->now();
-    ready_.push(index);  // cannot fail: there are no more indices than cells
+    if (!ready_.push(index)) {
+      // The delivery thread was interrupted in the middle of taking a message
+      // from ready_, and this publisher has since gone round the whole queue
+      // (dropping the oldest each time): the cell it would write is still
+      // that message's. This message is dropped and its slot goes back to
+      // free_, so no slot is ever lost; ready_ works again once the delivery
+      // thread runs on.
+      free_.push(index);
+      dropped.fetch_add(1, std::memory_order_relaxed);
+      return false;
+    }
     published.fetch_add(1, std::memory_order_relaxed);
     return true;
   }

@@ -25,10 +25,10 @@
 // its deadline counts as an overrun.
 //
 // Statistics. Paced, every cycle is timed. Free-running, one cycle in
-// kFreeRunningTimingStride is (the first of each run and every stride-th
-// after it): the compute figures come from those, every cycle is counted,
-// and the elapsed times are published with the timed cycles and at the end
-// of each run.
+// kFreeRunningTimingStride is (the loop's first free-running cycle and every
+// stride-th after it, counted across runs): the compute figures come from
+// those, every cycle is counted, and the elapsed times are published with
+// the timed cycles and at the end of each run.
 #include <atomic>
 #include <cstdint>
 
@@ -104,6 +104,7 @@ class SimulationLoop final : public ControlLoop {
   std::uint64_t last_update_step_ = 0;
   bool updated_before_ = false;
   std::int64_t wall_time_ns_ = 0;  // accumulated over runs and single cycles
+  std::uint64_t free_cycles_ = 0;  // free-running cycles so far, for the timing stride
   // The hardware's simulated time as a number of steps on step_grid_, when
   // it lies on the grid (hardware_step_known_).
   std::uint64_t hardware_step_ = 0;
