@@ -33,7 +33,7 @@ ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t c
     // read() must not throw; containing it keeps the loop (and the robot's
     // other joints) under control. It is reported as an error of this call.
   }
-  recordResult(HardwareCall::read, result, time, cycle);
+  recordHardwareResult(HardwareCall::read, result, time, cycle);
   return result;
 }
 
@@ -44,7 +44,7 @@ ReturnType ControlLoop::writeHardware(Time time, Duration period, std::uint64_t 
   } catch (...) {
     // As in readHardware: counted and reported as an error of write().
   }
-  recordResult(HardwareCall::write, result, time, cycle);
+  recordHardwareResult(HardwareCall::write, result, time, cycle);
   return result;
 }
 

@@ -61,9 +61,9 @@ void LoopStatistics::recordCycle(std::int64_t compute_ns, bool control_update) n
   compute_sum_ns_.store(compute_sum_ns_.load(std::memory_order_relaxed) + compute_ns,
                         std::memory_order_relaxed);
   bump(histogram_[bucketIndex(compute_ns)]);
-  if (control_update) bump(control_updates_);
-  // Last, with release: a reader that sees this cycle counted sees its cost too.
-  cycles_.store(cycles_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+  // Then counted like any cycle, last (its release store): a reader that sees
+  // this cycle counted sees its cost too.
+  recordUntimedCycle(control_update);
 }
 
 void LoopStatistics::setElapsed(double sim_time_s, std::int64_t wall_time_ns) noexcept {

@@ -107,9 +107,10 @@ class ControlLoop {
   // Calls read()/write() (exceptions count as errors) and records the result.
   ReturnType readHardware(Time time, Duration period, std::uint64_t cycle) noexcept;
   ReturnType writeHardware(Time time, Duration period, std::uint64_t cycle) noexcept;
-  // Records the result of a hardware call made by the subclass (e.g. step()).
+  // Records the result of a hardware call (read() and write() here, step()
+  // in the subclass). ok needs no bookkeeping; the rest goes to recordFailure().
   void recordHardwareResult(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept {
-    recordResult(call, result, time, cycle);
+    if (result != ReturnType::ok) recordFailure(call, result, time, cycle);
   }
   // Sets the topic bus clock (if any) to time.
   void setBusTime(Time time) noexcept;
@@ -127,10 +128,6 @@ class ControlLoop {
   LoopStatistics& mutableStatistics() noexcept { return statistics_; }
 
  private:
-  // ok needs no bookkeeping; the rest goes to recordFailure().
-  void recordResult(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept {
-    if (result != ReturnType::ok) recordFailure(call, result, time, cycle);
-  }
   void recordFailure(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept;
 
   hardware_interface::RobotHW& robot_hw_;
