@@ -46,6 +46,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_support.hpp"
+#include "episode_benchmarks.hpp"
 #include "loop_fixtures.hpp"
 #include "median_reporter.hpp"
 
@@ -55,28 +56,6 @@ namespace {
 const std::vector<RobotCase>& robots() {
   static const std::vector<RobotCase> all = {seedRobot(), chainRobot(false), chainRobot(true)};
   return all;
-}
-
-void rawBullet(benchmark::State& state, const RobotCase* robot) {
-  const HeapPlacementShuffle placement;  // (bench_support.hpp)
-  RawBulletPd raw(*robot);
-  raw.stepWithoutControl();  // as the servoloop loop's switch cycle
-  for (auto _ : state) {
-    for (std::uint64_t k = 0; k < robot->steps_per_episode; ++k) raw.step();
-  }
-  state.counters[kUnitsPerIterationCounter] = static_cast<double>(robot->steps_per_episode);
-  state.counters["q_first_end"] = raw.jointPosition(0);
-  state.counters["max_abs_q_end"] = raw.maxAbsJointPosition();
-}
-
-void servoloopLoop(benchmark::State& state, const RobotCase* robot, const char* backend) {
-  const HeapPlacementShuffle placement;  // (bench_support.hpp)
-  ServoloopSimulation simulation(*robot, backend);
-  for (auto _ : state) simulation.runSteps(robot->steps_per_episode);
-  if (simulation.stepsTaken() != robot->steps_per_episode + 1) state.SkipWithError("wrong number of steps");
-  if (simulation.hardwareErrors() != 0) state.SkipWithError("hardware errors during the run");
-  state.counters[kUnitsPerIterationCounter] = static_cast<double>(robot->steps_per_episode);
-  state.counters["q_first_end"] = simulation.firstJointPosition();
 }
 
 double threadCpuSeconds() {
@@ -128,11 +107,12 @@ std::string nameOf(const RobotCase& robot, const std::string& variant) { return 
 void registerAll() {
   for (const RobotCase& robot : robots()) {
     if (robot.group_controller.empty()) {
-      benchmark::RegisterBenchmark(nameOf(robot, "raw_bullet").c_str(), rawBullet, &robot)->Iterations(1);
+      benchmark::RegisterBenchmark(nameOf(robot, "raw_bullet").c_str(), rawEpisodes<RawBulletPd>, &robot)
+          ->Iterations(1);
     }
-    benchmark::RegisterBenchmark(nameOf(robot, "servoloop_bullet").c_str(), servoloopLoop, &robot, "bullet")
+    benchmark::RegisterBenchmark(nameOf(robot, "servoloop_bullet").c_str(), servoloopEpisodes, &robot, "bullet")
         ->Iterations(1);
-    benchmark::RegisterBenchmark(nameOf(robot, "servoloop_mock").c_str(), servoloopLoop, &robot, "mock")
+    benchmark::RegisterBenchmark(nameOf(robot, "servoloop_mock").c_str(), servoloopEpisodes, &robot, "mock")
         ->Iterations(1);
     // The group robot's raw loop is the chain's (the same law per joint).
     const RobotCase* raw_robot = robot.group_controller.empty() ? &robot : &robots()[1];

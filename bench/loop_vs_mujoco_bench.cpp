@@ -28,7 +28,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "bench_support.hpp"
+#include "episode_benchmarks.hpp"
 #include "loop_fixtures.hpp"
 #include "median_reporter.hpp"
 #include "raw_mujoco_pd.hpp"
@@ -41,40 +41,15 @@ const std::vector<RobotCase>& robots() {
   return all;
 }
 
-// Raw loops: one step without effort before timing, as the servoloop loop's
-// switch cycle.
-template <typename RawPd>
-void rawLoop(benchmark::State& state, const RobotCase* robot) {
-  const HeapPlacementShuffle placement;  // (bench_support.hpp)
-  RawPd raw(*robot);
-  raw.stepWithoutControl();
-  for (auto _ : state) {
-    for (std::uint64_t k = 0; k < robot->steps_per_episode; ++k) raw.step();
-  }
-  state.counters[kUnitsPerIterationCounter] = static_cast<double>(robot->steps_per_episode);
-  state.counters["q_first_end"] = raw.jointPosition(0);
-  state.counters["max_abs_q_end"] = raw.maxAbsJointPosition();
-}
-
-void servoloopMujoco(benchmark::State& state, const RobotCase* robot) {
-  const HeapPlacementShuffle placement;  // (bench_support.hpp)
-  ServoloopSimulation simulation(*robot, "mujoco");
-  for (auto _ : state) simulation.runSteps(robot->steps_per_episode);
-  if (simulation.stepsTaken() != robot->steps_per_episode + 1) state.SkipWithError("wrong number of steps");
-  if (simulation.hardwareErrors() != 0) state.SkipWithError("hardware errors during the run");
-  state.counters[kUnitsPerIterationCounter] = static_cast<double>(robot->steps_per_episode);
-  state.counters["q_first_end"] = simulation.firstJointPosition();
-}
-
 std::string nameOf(const std::string& robot, const std::string& variant) { return "loop/" + robot + "/" + variant; }
 
 void registerAll() {
   for (const RobotCase& robot : robots()) {
-    benchmark::RegisterBenchmark(nameOf(robot.label, "raw_mujoco").c_str(), rawLoop<RawMujocoPd>, &robot)
+    benchmark::RegisterBenchmark(nameOf(robot.label, "raw_mujoco").c_str(), rawEpisodes<RawMujocoPd>, &robot)
         ->Iterations(1);
-    benchmark::RegisterBenchmark(nameOf(robot.label, "servoloop_mujoco").c_str(), servoloopMujoco, &robot)
+    benchmark::RegisterBenchmark(nameOf(robot.label, "servoloop_mujoco").c_str(), servoloopEpisodes, &robot, "mujoco")
         ->Iterations(1);
-    benchmark::RegisterBenchmark(nameOf(robot.label, "raw_bullet").c_str(), rawLoop<RawBulletPd>, &robot)
+    benchmark::RegisterBenchmark(nameOf(robot.label, "raw_bullet").c_str(), rawEpisodes<RawBulletPd>, &robot)
         ->Iterations(1);
   }
 }
