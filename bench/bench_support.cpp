@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "servoloop/controller_manager/controller_base.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::bench {
 
@@ -34,7 +34,7 @@ PluginControllerFactory::PluginControllerFactory() : loader_({pluginDirectory()}
 cm::ControllerPtr PluginControllerFactory::create(const std::string& type) {
   if (!loader_.hasType(type)) return {};
   auto plugin = loader_.create<cm::ControllerBase>(type);
-  cm::PluginDeleter deleter = plugin.get_deleter();
+  servoloop::plugin::PluginDeleter deleter = plugin.get_deleter();
   return cm::ControllerPtr(plugin.release(), [deleter](cm::ControllerBase* c) { deleter(c); });
 }
 

@@ -12,7 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/controller_manager/controller_factory.hpp"
-#include "servoloop/controller_manager/plugin_loader.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 
@@ -48,7 +48,7 @@ class PluginControllerFactory : public controller_manager::ControllerFactory {
   std::vector<std::string> types() override;
 
  private:
-  controller_manager::PluginLoader loader_;
+  servoloop::plugin::PluginLoader loader_;
 };
 
 // A heap block of random size (64 B to 16 KiB in steps of 64 B) taken before a

@@ -30,7 +30,7 @@
 #include "bench_support.hpp"
 #include "median_reporter.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 
 namespace servoloop::bench {
@@ -108,7 +108,7 @@ class ManagerUnderTest {
 
   // Non-real-time: a new setpoint for every position controller.
   void sendCommands(double setpoint_rad) {
-    for (const auto& topic : command_topics_) bus_.publish(topic, cm::std_msgs::Float64{setpoint_rad});
+    for (const auto& topic : command_topics_) bus_.publish(topic, servoloop::std_msgs::Float64{setpoint_rad});
     if (!group_command_topic_.empty()) {
       for (double& value : group_command_.data) value = setpoint_rad;
       bus_.publish(group_command_topic_, group_command_);
@@ -119,12 +119,12 @@ class ManagerUnderTest {
   double firstEffortCommand() const { return hw_.effort_command.front(); }
 
  private:
-  cm::TopicBus bus_;
+  servoloop::realtime::TopicBus bus_;
   BenchJointsHW hw_;
   std::unique_ptr<cm::ControllerManager> manager_;
   std::vector<std::string> command_topics_;
   std::string group_command_topic_;
-  cm::std_msgs::Float64MultiArray group_command_;
+  servoloop::std_msgs::Float64MultiArray group_command_;
   std::uint64_t cycles_ = 0;
 };
 

@@ -150,10 +150,10 @@ ServoloopSimulation::ServoloopSimulation(const RobotCase& robot, const std::stri
   const std::string prefix = robot.robotNamespace() + "/";
   if (robot.group_controller.empty()) {
     for (std::size_t i = 0; i < robot.position_controllers.size(); ++i) {
-      bus_.publish(prefix + robot.position_controllers[i] + "/command", cm::std_msgs::Float64{robot.setpoints_rad[i]});
+      bus_.publish(prefix + robot.position_controllers[i] + "/command", servoloop::std_msgs::Float64{robot.setpoints_rad[i]});
     }
   } else {
-    bus_.publish(prefix + robot.group_controller + "/command", cm::std_msgs::Float64MultiArray{robot.setpoints_rad});
+    bus_.publish(prefix + robot.group_controller + "/command", servoloop::std_msgs::Float64MultiArray{robot.setpoints_rad});
   }
   bus_.flush();  // the setpoints reach the controllers before the first timed cycle, as in the raw loop
   first_joint_ = hw_->get<hi::JointStateInterface>()->getHandle(robot.joints.front());

@@ -13,9 +13,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/controller_manager/controller_manager.hpp"
-#include "servoloop/controller_manager/plugin_loader.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/hardware_interface/joint_state_handle.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
@@ -131,9 +131,9 @@ class ServoloopSimulation {
   const controller_manager::SimulationLoop& loop() const { return *loop_; }
 
  private:
-  controller_manager::PluginLoader loader_;  // declared first: outlives the objects it made
-  controller_manager::TopicBus bus_;
-  controller_manager::PluginPtr<hardware_interface::RobotHW> hw_;
+  servoloop::plugin::PluginLoader loader_;  // declared first: outlives the objects it made
+  servoloop::realtime::TopicBus bus_;
+  servoloop::plugin::PluginPtr<hardware_interface::RobotHW> hw_;
   std::unique_ptr<controller_manager::ControllerManager> manager_;
   std::unique_ptr<controller_manager::SimulationLoop> loop_;
   hardware_interface::JointStateHandle first_joint_;

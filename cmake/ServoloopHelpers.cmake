@@ -1,10 +1,13 @@
 include(${CMAKE_CURRENT_LIST_DIR}/ServoloopPlugin.cmake)
 
-# servoloop_add_library(<module> SOURCES ... [PUBLIC_LINK ...] [PRIVATE_LINK ...])
-# One shared library per module folder, with public headers under
-# <module>/include/servoloop/<module>/, exported as servoloop::<module>.
+# servoloop_add_library(<module> SOURCES ... [PUBLIC_LINK ...] [PRIVATE_LINK ...]
+#                       [NO_INSTALL_HEADERS])
+# One shared library per module folder, with headers under
+# <module>/include/servoloop/<module>/, exported as servoloop::<module>. The
+# headers are installed as API unless NO_INSTALL_HEADERS (modules only the
+# node and the command line use).
 function(servoloop_add_library module)
-  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_LINK;PRIVATE_LINK" ${ARGN})
+  cmake_parse_arguments(ARG "NO_INSTALL_HEADERS" "" "SOURCES;PUBLIC_LINK;PRIVATE_LINK" ${ARGN})
   add_library(${module} SHARED ${ARG_SOURCES})
   add_library(servoloop::${module} ALIAS ${module})
   set_target_properties(${module} PROPERTIES OUTPUT_NAME servoloop_${module}
@@ -19,7 +22,9 @@ function(servoloop_add_library module)
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  if(NOT ARG_NO_INSTALL_HEADERS)
+    install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  endif()
 endfunction()
 
 # servoloop_add_test(<name> SOURCES ... LINK ... [LABELS ...])
@@ -27,10 +32,10 @@ endfunction()
 function(servoloop_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LINK;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_LINK} GTest::gtest GTest::gtest_main)
+  target_link_libraries(${name} PRIVATE ${ARG_LINK} servoloop_test_support GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
     SERVOLOOP_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    SERVOLOOP_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared")
+    SERVOLOOP_SEED_DIR="${PROJECT_SOURCE_DIR}/robots/one_dof")
   add_test(NAME ${name} COMMAND ${name})
   if(ARG_LABELS)
     set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABELS}")

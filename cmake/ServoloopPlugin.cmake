@@ -14,6 +14,8 @@ function(servoloop_add_plugin target)
       LIBRARY_OUTPUT_DIRECTORY ${SERVOLOOP_PLUGIN_OUTPUT_DIR})
     if(NOT ARG_NO_INSTALL)
       install(TARGETS ${target} LIBRARY DESTINATION ${SERVOLOOP_PLUGIN_SUBDIR})
+      # Part of what `servoloop` runs with (the servoloop_runtime target).
+      set_property(GLOBAL APPEND PROPERTY SERVOLOOP_RUNTIME_PLUGINS ${target})
     endif()
   else()
     # Out of tree: keep the path to the servoloop libraries it links in the

@@ -39,7 +39,7 @@ grep -q 'add_library(servoloop::sim_common ' "$targets_file" ||
 for header in sim_common/sim_robot_hw.hpp sim_common/physics_engine.hpp sim_common/sim_settings.hpp \
               sim_common/joint_command_limiter.hpp transmissions/robot_transmissions.hpp \
               transmissions/transmission_parser.hpp hardware_interface/simulated_robot_hw.hpp \
-              hardware_interface/joint_limits_loader.hpp controller_manager/plugin_register.hpp \
+              hardware_interface/joint_limits_loader.hpp plugin/plugin_register.hpp \
               controller_manager/wall_clock_loop.hpp; do
   [[ -f "$prefix/include/servoloop/$header" ]] || fail "the install lacks the header include/servoloop/$header"
 done

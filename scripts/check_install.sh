@@ -26,10 +26,16 @@ example_type=my_controllers/GravityCompensatedPD
 install_build_into_prefix
 config=$(find "$prefix" -name servoloopConfig.cmake -print -quit)
 [[ -n "$config" ]] || fail "the install has no servoloopConfig.cmake (find_package(servoloop) cannot work)"
-for header in controller_manager/controller.hpp controller_manager/plugin_register.hpp \
-              controller_manager/plugin_loader.hpp controller_manager/topic_bus.hpp \
-              hardware_interface/robot_hw.hpp; do
+for header in controller_manager/controller.hpp plugin/plugin_register.hpp \
+              plugin/plugin_loader.hpp realtime/topic_bus.hpp params/parameter_store.hpp \
+              core/errors.hpp hardware_interface/robot_hw.hpp controllers/pid.hpp \
+              controllers/common/command_input.hpp; do
   [[ -f "$prefix/include/servoloop/$header" ]] || fail "the install lacks the header include/servoloop/$header"
+done
+# The node's and the socket's internals are not API.
+for folder in node ipc; do
+  [[ ! -e "$prefix/include/servoloop/$folder" ]] ||
+    fail "the install has include/servoloop/$folder: internal headers must not be installed"
 done
 
 # Every servoloop library the installed binaries and plugins load must come from

@@ -2,8 +2,8 @@
 #include "servoloop/controller_manager/control_loop.hpp"
 
 #include "servoloop/controller_manager/controller_manager.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::controller_manager {
 

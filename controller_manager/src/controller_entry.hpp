@@ -10,7 +10,7 @@
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/controller_manager/controller_spec.hpp"
 #include "servoloop/hardware_interface/controller_info.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/time.hpp"
 
 namespace servoloop::controller_manager::detail {
 

@@ -11,8 +11,8 @@
 
 #include "asymmetric_fence.hpp"
 #include "controller_entry.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::controller_manager {
 

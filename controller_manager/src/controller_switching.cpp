@@ -8,7 +8,7 @@
 
 #include "controller_entry.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::controller_manager {
 

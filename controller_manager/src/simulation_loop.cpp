@@ -8,8 +8,8 @@
 
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/controller_manager/loop_clock.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/step_grid.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/step_grid.hpp"
 
 namespace servoloop::controller_manager {
 

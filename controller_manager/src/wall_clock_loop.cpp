@@ -8,7 +8,7 @@
 
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/controller_manager/loop_clock.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controller_manager {
 

@@ -2,7 +2,7 @@
 
 #include "servoloop/hardware_interface/actuator_handle.hpp"
 #include "servoloop/hardware_interface/actuator_state_handle.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_handle.hpp"
 #include "servoloop/hardware_interface/joint_state_handle.hpp"
 

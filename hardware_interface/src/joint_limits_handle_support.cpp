@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_limits_validation.hpp"
 
 namespace servoloop::hardware_interface::detail {

@@ -1,6 +1,6 @@
 #include "servoloop/hardware_interface/joint_limits_loader.hpp"
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 #include "servoloop/hardware_interface/joint_limits_validation.hpp"
 #include "servoloop/hardware_interface/joint_limits_yaml.hpp"

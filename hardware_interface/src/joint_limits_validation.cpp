@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::hardware_interface {
 namespace {

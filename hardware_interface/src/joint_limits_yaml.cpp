@@ -3,8 +3,8 @@
 #include <array>
 #include <string_view>
 
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::hardware_interface {
 namespace {

@@ -3,7 +3,7 @@
 #include <limits>
 
 #include "joint_limits_handle_support.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::hardware_interface {
 

@@ -16,8 +16,8 @@
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop {
 namespace {

@@ -3,8 +3,8 @@
 #include <limits>
 #include <string>
 
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::sim_bullet {
 namespace {

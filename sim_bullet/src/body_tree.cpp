@@ -2,7 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::sim_bullet::detail {
 namespace {

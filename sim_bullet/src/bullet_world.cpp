@@ -23,7 +23,7 @@
 #include <btBulletCollisionCommon.h>
 
 #include "body_tree.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "stl_mesh.hpp"
 
 static_assert(std::is_same_v<btScalar, double>,

@@ -6,7 +6,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::sim_bullet::detail {
 namespace {

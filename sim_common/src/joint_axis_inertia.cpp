@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::sim_common {
 namespace {

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 

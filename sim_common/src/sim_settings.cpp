@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string_view>
 
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::sim_common {
 namespace {

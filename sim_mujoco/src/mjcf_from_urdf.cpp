@@ -9,7 +9,7 @@
 
 #include <Eigen/Geometry>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "stl_vertices.hpp"
 
 namespace servoloop::sim_mujoco {

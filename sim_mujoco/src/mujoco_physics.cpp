@@ -8,7 +8,7 @@
 
 #include <mujoco/mujoco.h>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
 
 namespace servoloop::sim_mujoco {

@@ -32,6 +32,9 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include "child_process.hpp"
+#include "temp_dir.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -40,12 +43,7 @@ using nlohmann::json;
 const fs::path kRobots = fs::path(SERVOLOOP_SOURCE_DIR) / "robots";
 constexpr double kG = 9.81;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using servoloop::testing::readFile;
 
 struct CliResult {
   int status = -1;
@@ -54,33 +52,21 @@ struct CliResult {
 };
 
 // A private folder per test; `servoloop` runs in it without SERVOLOOP_PLUGIN_PATH
-// (the build's own plugin folder is found next to the executable).
+// (the build's own plugin folder is found next to the executable), bounded in time.
 class CliRun {
  public:
-  CliRun() {
-    std::string pattern = (fs::temp_directory_path() / "servoloop-backends-XXXXXX").string();
-    if (::mkdtemp(pattern.data()) != nullptr) dir_ = pattern;
-  }
-  ~CliRun() {
-    std::error_code error;
-    if (!dir_.empty()) fs::remove_all(dir_, error);
-  }
-  CliRun(const CliRun&) = delete;
-  CliRun& operator=(const CliRun&) = delete;
-
   CliResult run(const std::string& args) const {
-    const fs::path out = dir_ / "stdout.txt";
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string command = "cd '" + dir_.string() + "' && env -u SERVOLOOP_PLUGIN_PATH SERVOLOOP_RUN_DIR='" +
-                                dir_.string() + "' '" + SERVOLOOP_CLI_EXE + "' " + args + " >'" + out.string() +
-                                "' 2>'" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(out), readFile(err)};
+    const auto result = servoloop::testing::runShell(
+        std::string("exec '") + SERVOLOOP_CLI_EXE + "' " + args,
+        {dir(), dir(), {{"SERVOLOOP_PLUGIN_PATH", std::nullopt}, {"SERVOLOOP_RUN_DIR", dir().string()}}},
+        600.0);
+    EXPECT_FALSE(result.timed_out) << args;
+    return {result.status, result.out, result.err};
   }
-  const fs::path& dir() const { return dir_; }
+  const fs::path& dir() const { return temp_.path(); }
 
  private:
-  fs::path dir_;
+  servoloop::testing::TempDir temp_{"servoloop-backends"};
 };
 
 bool backendBuilt(const std::string& backend) {

@@ -9,7 +9,7 @@
 
 #include "compare_run.hpp"
 #include "compare_trajectory.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {

@@ -14,48 +14,32 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "child_process.hpp"
+#include "temp_dir.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-struct CliResult {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
+using servoloop::testing::lineCount;
+using servoloop::testing::readFile;
+using CliResult = servoloop::testing::ProcessResult;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Runs `servoloop <args>` with SERVOLOOP_PLUGIN_PATH set to plugin_path
-// (unset when empty), capturing both streams.
+// Runs `servoloop <args>` (shell words) with SERVOLOOP_PLUGIN_PATH set to
+// plugin_path (unset when empty), capturing both streams in a private folder.
 CliResult runServoloop(const std::string& args, const std::string& plugin_path = "") {
-  const fs::path out = fs::temp_directory_path() / "servoloop_list_types_test.out";
-  const fs::path err = fs::temp_directory_path() / "servoloop_list_types_test.err";
-  std::string command = plugin_path.empty() ? "env -u SERVOLOOP_PLUGIN_PATH "
-                                            : "env SERVOLOOP_PLUGIN_PATH='" + plugin_path + "' ";
-  command += std::string("'") + SERVOLOOP_CLI_EXE + "' " + args + " >'" + out.string() + "' 2>'" +
-             err.string() + "'";
-  const int wait_status = std::system(command.c_str());
-  CliResult result;
-  result.status = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
-  result.out = readFile(out);
-  result.err = readFile(err);
-  return result;
+  const servoloop::testing::TempDir scratch("servoloop-list-types");
+  std::optional<std::string> path;
+  if (!plugin_path.empty()) path = plugin_path;
+  return servoloop::testing::runShell(std::string("exec '") + SERVOLOOP_CLI_EXE + "' " + args,
+                                      {scratch.path(), {}, {{"SERVOLOOP_PLUGIN_PATH", path}}}, 60.0);
 }
 
 fs::path caseDir(const std::string& name) { return fs::path(SERVOLOOP_TEST_PLUGIN_DIR) / name; }
 std::string caseLibrary(const std::string& name) {
   return fs::canonical(caseDir(name) / ("libfixture_" + name + ".so")).string();
-}
-int lineCount(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
 }
 
 TEST(ListTypes, PrintsATableOfTypeKindAndLibrary) {

@@ -13,7 +13,7 @@ namespace {
 using ::testing::HasSubstr;
 using nlohmann::json;
 
-const std::string kSeed = std::string(SERVOLOOP_SHARED_DIR) + "/seed/";
+const std::string kSeed = std::string(SERVOLOOP_SEED_DIR) + "/";
 
 class CheckUrdfTest : public ::testing::Test {
  protected:

@@ -16,8 +16,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "servoloop/controller_manager/ipc_connection.hpp"
-#include "servoloop/controller_manager/ipc_server.hpp"
+#include "child_process.hpp"
+#include "servoloop/ipc/ipc_connection.hpp"
+#include "servoloop/ipc/ipc_server.hpp"
+#include "temp_dir.hpp"
 
 namespace servoloop::cli::testing {
 
@@ -31,10 +33,10 @@ class ScopedRunDir {
   ScopedRunDir& operator=(const ScopedRunDir&) = delete;
   const std::filesystem::path& runDir() const { return run_dir_; }
   // A scratch folder for test files (not the run directory).
-  const std::filesystem::path& scratch() const { return base_; }
+  const std::filesystem::path& scratch() const { return base_.path(); }
 
  private:
-  std::filesystem::path base_;
+  servoloop::testing::TempDir base_{"servoloop-cli"};
   std::filesystem::path run_dir_;
 };
 
@@ -44,7 +46,7 @@ class FakeNode {
  public:
   using Handler =
       std::function<nlohmann::json(const nlohmann::json& request,
-                                   controller_manager::IpcConnection& connection)>;
+                                   servoloop::ipc::IpcConnection& connection)>;
 
   explicit FakeNode(const std::string& node_name);
   ~FakeNode();
@@ -60,51 +62,28 @@ class FakeNode {
 
  private:
   nlohmann::json handle(const nlohmann::json& request,
-                        controller_manager::IpcConnection& connection);
+                        servoloop::ipc::IpcConnection& connection);
 
   std::string node_name_;
   mutable std::mutex mutex_;
   std::map<std::string, Handler> handlers_;
   std::vector<nlohmann::json> requests_;
-  std::unique_ptr<controller_manager::IpcServer> server_;
+  std::unique_ptr<servoloop::ipc::IpcServer> server_;
 };
 
-struct CliResult {
-  int status = -1;  // exit status; -1 if killed by a signal or timed out
-  bool timed_out = false;
-  std::string out;
-  std::string err;
-  double elapsed_s = 0.0;
-};
+using CliResult = servoloop::testing::ProcessResult;
+using servoloop::testing::lineCount;
+using servoloop::testing::readFile;
 
-// A running `servoloop` child process with stdout/stderr going to files.
-class CliProcess {
+// A running `servoloop` child process with stdout/stderr going to files in
+// `scratch`.
+class CliProcess : public servoloop::testing::ChildProcess {
  public:
   CliProcess(const std::vector<std::string>& args, const std::filesystem::path& scratch);
-  ~CliProcess();
-  CliProcess(const CliProcess&) = delete;
-  CliProcess& operator=(const CliProcess&) = delete;
-
-  void signal(int signal_number);
-  // Waits up to `timeout_s` for stdout to contain `text`; false on timeout or exit.
-  bool waitForOutput(const std::string& text, double timeout_s);
-  // Waits up to `timeout_s` for exit (then kills it and sets timed_out).
-  CliResult wait(double timeout_s);
-  std::string currentOut() const;
-
- private:
-  pid_t pid_ = -1;
-  std::filesystem::path out_path_;
-  std::filesystem::path err_path_;
-  std::chrono::steady_clock::time_point start_;
-  bool finished_ = false;
 };
 
 // Runs `servoloop args...` to completion (bounded by timeout_s).
 CliResult runCli(const std::vector<std::string>& args, const std::filesystem::path& scratch,
                  double timeout_s = 20.0);
-
-std::string readFile(const std::filesystem::path& path);
-int lineCount(const std::string& text);
 
 }  // namespace servoloop::cli::testing

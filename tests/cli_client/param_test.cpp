@@ -100,8 +100,8 @@ TEST_F(ParamTest, SpawnModelGoesToTheWorldWithAbsolutePaths) {
   FakeNode robot("/other_robot");
   world.on("model.spawn", [](const json&, auto&) -> json { return {{"namespace", "/one_DOF_robot"}}; });
   const std::string urdf =
-      std::string(SERVOLOOP_SHARED_DIR) + "/seed/minimal_robot_description_w_jnt_ctl.urdf";
-  const std::string params = std::string(SERVOLOOP_SHARED_DIR) + "/seed/one_dof_ctl_params.yaml";
+      std::string(SERVOLOOP_SEED_DIR) + "/minimal_robot_description_w_jnt_ctl.urdf";
+  const std::string params = std::string(SERVOLOOP_SEED_DIR) + "/control_config/one_dof_ctl_params.yaml";
   const CliResult result = runCli(
       {"spawn-model", "--urdf", urdf, "--model", "one_DOF_robot", "--param", params},
       run_dir_.scratch());
@@ -118,7 +118,7 @@ TEST_F(ParamTest, SpawnModelGoesToTheWorldWithAbsolutePaths) {
 
 TEST_F(ParamTest, SpawnModelWithoutAWorldOrWithAMissingFile) {
   const std::string urdf =
-      std::string(SERVOLOOP_SHARED_DIR) + "/seed/minimal_robot_description.urdf";
+      std::string(SERVOLOOP_SEED_DIR) + "/minimal_robot_description.urdf";
   CliResult result = runCli({"spawn-model", "--urdf", urdf, "--model", "m"}, run_dir_.scratch());
   EXPECT_EQ(result.status, 1);
   EXPECT_THAT(result.err, HasSubstr("no servoloop world is running"));

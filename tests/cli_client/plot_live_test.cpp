@@ -9,12 +9,11 @@
 #include <gtest/gtest.h>
 
 #include "cli_client_support.hpp"
-#include "servoloop/controller_manager/ipc_protocol.hpp"
+#include "servoloop/ipc/ipc_protocol.hpp"
 
 namespace servoloop::cli::testing {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using nlohmann::json;
@@ -26,17 +25,17 @@ const std::string kPngSignature("\x89PNG\r\n\x1a\n", 8);
 // On topic.subscribe of the joint states, streams `count` JointState messages
 // stamped 0.02 k (k = 0, 1, ...); of the command, one Float64 at 0.
 void serveTopics(FakeNode& node, int count) {
-  node.on("topic.subscribe", [count](const json& request, cm::IpcConnection& connection) -> json {
+  node.on("topic.subscribe", [count](const json& request, servoloop::ipc::IpcConnection& connection) -> json {
     const std::string topic = request["topic"].get<std::string>();
     if (topic == kCommand) {
-      connection.send(cm::makeIpcStreamMessage(
+      connection.send(servoloop::ipc::makeIpcStreamMessage(
           topic, {{"type", "std_msgs/Float64"}, {"stamp", 0.0}, {"msg", {{"data", 1.0}}}}));
       return nullptr;
     }
     if (topic != kJointStates) return {{"ok", false}, {"error", "no topic '" + topic + "'"}};
     for (int k = 0; k < count; ++k) {
       const double stamp = 0.02 * k;
-      connection.send(cm::makeIpcStreamMessage(
+      connection.send(servoloop::ipc::makeIpcStreamMessage(
           topic, {{"type", "sensor_msgs/JointState"},
                   {"stamp", stamp},
                   {"msg",

@@ -107,7 +107,9 @@ TEST_F(SpawnerTest, NodeThatNeverAppearsFailsAfterTheTimeout) {
 TEST_F(SpawnerTest, WaitsForANodeThatStartsLater) {
   CliProcess spawner({"spawner", "--timeout", "20", "-N", "/one_DOF_robot", "a"},
                      run_dir_.scratch());
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  // The node comes up only once the spawner says it is waiting for it.
+  ASSERT_TRUE(spawner.waitForOutput("waiting for the servoloop node of namespace '/one_DOF_robot'", 20.0))
+      << spawner.currentOut() << spawner.currentErr();
   FakeNode node("/one_DOF_robot");
   const CliResult result = spawner.wait(20.0);
   ASSERT_EQ(result.status, 0) << result.err;

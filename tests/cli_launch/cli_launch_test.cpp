@@ -15,6 +15,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "child_process.hpp"
+#include "temp_dir.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -23,12 +26,7 @@ using nlohmann::json;
 const fs::path kOneDof = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
 const std::string kSeedLaunch = (kOneDof / "one_dof_w_jnt_ctl.launch.yaml").string();
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using servoloop::testing::readFile;
 
 struct CliResult {
   int status = -1;
@@ -38,30 +36,20 @@ struct CliResult {
 
 class CliLaunch : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "servoloop-cli-launch-XXXXXX").string();
-    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code error;
-    fs::remove_all(dir_, error);
-  }
-
-  // Runs `servoloop <args>` in dir_ with a private run directory.
+  // Runs `servoloop <args>` (shell words) in the test's folder with a private
+  // run directory and the build's own plugin folder, bounded in time.
   CliResult run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt";
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string command = "cd '" + dir_.string() + "' && env -u SERVOLOOP_PLUGIN_PATH SERVOLOOP_RUN_DIR='" +
-                                dir_.string() + "' '" + SERVOLOOP_CLI_EXE + "' " + args + " >'" + out.string() +
-                                "' 2>'" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(out), readFile(err)};
+    const auto result = servoloop::testing::runShell(
+        std::string("exec '") + SERVOLOOP_CLI_EXE + "' " + args,
+        {dir_, dir_, {{"SERVOLOOP_PLUGIN_PATH", std::nullopt}, {"SERVOLOOP_RUN_DIR", dir_.string()}}}, 300.0);
+    EXPECT_FALSE(result.timed_out) << args;
+    return {result.status, result.out, result.err};
   }
 
   static int lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
-  fs::path dir_;
+  servoloop::testing::TempDir temp_{"servoloop-cli-launch"};
+  fs::path dir_ = temp_.path();
 };
 
 TEST_F(CliLaunch, HeadlessRunPrintsJsonSummaryRecordsAndPlots) {

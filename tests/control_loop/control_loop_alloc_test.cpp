@@ -6,7 +6,7 @@
 #include "alloc_counter.hpp"
 #include "control_loop_test_support.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 
 namespace servoloop::controller_manager {
 namespace {
@@ -17,7 +17,7 @@ TEST(ControlLoopAllocation, HundredThousandSimulationCyclesAllocateNothing) {
   constexpr std::uint64_t kCycles = 100000;
   testing::LoopFixture f(0.001, 500.0);  // k = 2: steps with and without an update
   f.recorder->enabled = false;
-  TopicBus bus;
+  realtime::TopicBus bus;
   testing::RecordingHook hook(f.recorder);
   SimulationLoop::Options options;
   options.cycle_hook = &hook;

@@ -10,8 +10,8 @@
 
 #include "control_loop_test_support.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controller_manager {
 namespace {
@@ -404,7 +404,7 @@ TEST(SimulationLoop, HardwareDeactivateStopsTheLoopCleanly) {
 
 TEST(SimulationLoop, SetsTheTopicBusClockToSimulatedTime) {
   LoopFixture f(0.001);
-  TopicBus bus;
+  realtime::TopicBus bus;
   SimulationLoop::Options options;
   options.topic_bus = &bus;
   SimulationLoop loop(f.hw, f.manager, options);

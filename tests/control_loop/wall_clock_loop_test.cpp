@@ -10,7 +10,7 @@
 
 #include "control_loop_test_support.hpp"
 #include "servoloop/controller_manager/wall_clock_loop.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controller_manager {
 namespace {

@@ -21,7 +21,7 @@
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/controller_manager/multi_interface_controller.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::controller_manager::testing {
 

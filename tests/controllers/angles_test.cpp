@@ -7,7 +7,7 @@
 #include "controller_test_support.hpp"
 #include "servoloop/controllers/common/angles.hpp"
 #include "servoloop/controllers/common/joint_position_error.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "servoloop/controller_manager/controller_base.hpp"
 #include "servoloop/controller_manager/controller_context.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
@@ -104,7 +104,7 @@ inline YAML::Node seedControllerParams() {
 }
 
 inline cm::ControllerContext makeContext(const std::string& name, const std::string& params_yaml,
-                                         cm::TopicBus* topics,
+                                         servoloop::realtime::TopicBus* topics,
                                          std::shared_ptr<const urdf::ModelInterface> model = nullptr,
                                          const std::string& robot_namespace = "/robot") {
   cm::ControllerContext context;

@@ -25,8 +25,8 @@ namespace {
 using testing::initController;
 using testing::makeContext;
 using testing::TestJointsHW;
-using Float64 = controller_manager::std_msgs::Float64;
-using Float64MultiArray = controller_manager::std_msgs::Float64MultiArray;
+using Float64 = servoloop::std_msgs::Float64;
+using Float64MultiArray = servoloop::std_msgs::Float64MultiArray;
 
 constexpr int kCycles = 100000;
 constexpr int kCommandEvery = 100;
@@ -42,7 +42,7 @@ TEST(ControllersAllocation, CounterSeesAnAllocation) {
 }
 
 TEST(ControllersAllocation, NoAllocationOnTheControlThreadAfterStartUp) {
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw({"joint1", "joint2", "joint3", "joint4"});
 
   JointStateController joint_states;
@@ -62,7 +62,7 @@ TEST(ControllersAllocation, NoAllocationOnTheControlThreadAfterStartUp) {
   initController(group, hw, makeContext("group", "{joints: [joint3, joint4]}", &bus));
 
   std::uint64_t joint_state_messages = 0;
-  auto subscription = bus.subscribe<controller_manager::sensor_msgs::JointState>(
+  auto subscription = bus.subscribe<servoloop::sensor_msgs::JointState>(
       "/robot/joint_states", [&](const auto&) { ++joint_state_messages; });
   bus.start();
 

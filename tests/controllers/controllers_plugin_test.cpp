@@ -13,15 +13,15 @@
 #include "controller_test_support.hpp"
 #include "servoloop/controller_manager/controller_factory.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
-#include "servoloop/controller_manager/plugin_loader.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
 
 namespace servoloop::controllers {
 namespace {
 
 namespace cm = controller_manager;
 using testing::TestJointsHW;
-using Float64 = cm::std_msgs::Float64;
-using JointStateMsg = cm::sensor_msgs::JointState;
+using Float64 = servoloop::std_msgs::Float64;
+using JointStateMsg = servoloop::sensor_msgs::JointState;
 
 // Controllers from the plugin loader, as the node's factory makes them.
 class LoaderFactory : public cm::ControllerFactory {
@@ -31,7 +31,7 @@ class LoaderFactory : public cm::ControllerFactory {
   cm::ControllerPtr create(const std::string& type) override {
     if (!loader_.hasType(type)) return {};
     auto plugin = loader_.create<cm::ControllerBase>(type);
-    cm::PluginDeleter deleter = plugin.get_deleter();
+    servoloop::plugin::PluginDeleter deleter = plugin.get_deleter();
     return cm::ControllerPtr(plugin.release(), [deleter](cm::ControllerBase* c) { deleter(c); });
   }
   std::vector<std::string> types() override {
@@ -39,10 +39,10 @@ class LoaderFactory : public cm::ControllerFactory {
     for (const auto& info : loader_.listTypes(cm::ControllerBase::kPluginKind)) names.push_back(info.type);
     return names;
   }
-  cm::PluginLoader& loader() { return loader_; }
+  servoloop::plugin::PluginLoader& loader() { return loader_; }
 
  private:
-  cm::PluginLoader loader_;
+  servoloop::plugin::PluginLoader loader_;
 };
 
 TEST(ControllerPlugins, OneLibraryPerPackageProvidesEveryType) {
@@ -98,7 +98,7 @@ class SeedThroughManager : public ::testing::Test {
     manager->update(Time(0.001 * cycles), Duration(0.001));
   }
 
-  cm::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw{{"joint1"}};
   YAML::Node params;
   std::unique_ptr<cm::ControllerManager> manager;
@@ -132,7 +132,7 @@ TEST_F(SeedThroughManager, RawPdRunsAtItsOwnRateWithOrWithoutTheManagersHelp) {
   params["pd_rate"]["type"] = "minimal_joint_controller/MinimalJointController";
   params["pd_rate"]["update_rate"] = 100;  // here the manager runs it every 10th cycle
   std::map<std::string, int> effort_messages;
-  std::vector<cm::Subscription> subscriptions;
+  std::vector<servoloop::realtime::Subscription> subscriptions;
   for (const std::string name : {"pd_default", "pd_rate"}) {
     subscriptions.push_back(bus.subscribe<Float64>(
         "/one_DOF_robot/" + name + "/jnt_trq", [&effort_messages, name](const Float64&) { ++effort_messages[name]; }));

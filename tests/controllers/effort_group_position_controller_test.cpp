@@ -7,7 +7,7 @@
 
 #include "controller_test_support.hpp"
 #include "servoloop/controllers/effort_controllers/joint_group_position_controller.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 namespace {
@@ -16,7 +16,7 @@ using effort_controllers::JointGroupPositionController;
 using testing::initController;
 using testing::makeContext;
 using testing::TestJointsHW;
-using Float64MultiArray = controller_manager::std_msgs::Float64MultiArray;
+using Float64MultiArray = servoloop::std_msgs::Float64MultiArray;
 
 constexpr const char* kParams =
     "joints: [rev, cont]\n"
@@ -24,7 +24,7 @@ constexpr const char* kParams =
     "cont: {pid: {p: 1.0, i: 4.0, i_clamp: 1.0}}\n";
 
 TEST(EffortGroupPosition, PerJointPidAndSetpointRules) {
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw({"rev", "cont"});
   JointGroupPositionController controller;
   initController(controller, hw, makeContext("group", kParams, &bus, testing::testRobotModel()));
@@ -52,7 +52,7 @@ TEST(EffortGroupPosition, PerJointPidAndSetpointRules) {
 }
 
 TEST(EffortGroupPosition, EveryJointNeedsItsPid) {
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw({"rev", "cont"});
   JointGroupPositionController controller;
   std::vector<hardware_interface::InterfaceResources> claimed;

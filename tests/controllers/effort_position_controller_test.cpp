@@ -10,7 +10,7 @@
 
 #include "controller_test_support.hpp"
 #include "servoloop/controllers/effort_controllers/joint_position_controller.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 namespace {
@@ -19,8 +19,8 @@ using effort_controllers::JointPositionController;
 using testing::initController;
 using testing::makeContext;
 using testing::TestJointsHW;
-using StateMsg = controller_manager::control_msgs::JointControllerState;
-using Float64 = controller_manager::std_msgs::Float64;
+using StateMsg = servoloop::control_msgs::JointControllerState;
+using Float64 = servoloop::std_msgs::Float64;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -36,14 +36,14 @@ class EffortPositionTest : public ::testing::Test {
   double effortOf(const std::string& joint) { return hw.effort_command[hw.index(joint)]; }
   void command(double value) { bus.publish("/robot/pos/command", Float64{value}); }
 
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw{{"rev", "cont", "slide", "wide"}};
   JointPositionController controller;
 };
 
 TEST(EffortPositionSeed, OneUpdateOfTheSeedControllerMatchesControlToolbox) {
   // The seed's robot and YAML: joint1 revolute in [0, 2], pid p 10 i 10 d 10 i_clamp ±10.
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw({"joint1"});
   controller_manager::ControllerContext context;
   context.name = "joint1_position_controller";

@@ -14,11 +14,11 @@ using effort_controllers::JointVelocityController;
 using testing::initController;
 using testing::makeContext;
 using testing::TestJointsHW;
-using Float64 = controller_manager::std_msgs::Float64;
-using StateMsg = controller_manager::control_msgs::JointControllerState;
+using Float64 = servoloop::std_msgs::Float64;
+using StateMsg = servoloop::control_msgs::JointControllerState;
 
 TEST(EffortVelocityController, PidOnTheVelocityErrorStartingFromZero) {
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw({"wheel"});
   JointVelocityController controller;
   initController(controller, hw,

@@ -16,12 +16,12 @@ namespace {
 using testing::initController;
 using testing::makeContext;
 using testing::TestJointsHW;
-using Float64 = controller_manager::std_msgs::Float64;
-using Float64MultiArray = controller_manager::std_msgs::Float64MultiArray;
+using Float64 = servoloop::std_msgs::Float64;
+using Float64MultiArray = servoloop::std_msgs::Float64MultiArray;
 
 class ForwardTest : public ::testing::Test {
  protected:
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw{{"a", "b", "c"}};
 };
 

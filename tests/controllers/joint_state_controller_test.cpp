@@ -7,7 +7,7 @@
 
 #include "controller_test_support.hpp"
 #include "servoloop/controllers/joint_state_controller/joint_state_controller.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 namespace {
@@ -15,7 +15,7 @@ namespace {
 using testing::initController;
 using testing::makeContext;
 using testing::TestJointsHW;
-using JointStateMsg = controller_manager::sensor_msgs::JointState;
+using JointStateMsg = servoloop::sensor_msgs::JointState;
 
 class JointStateControllerTest : public ::testing::Test {
  protected:
@@ -43,10 +43,10 @@ class JointStateControllerTest : public ::testing::Test {
     return published;
   }
 
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw;
   std::vector<JointStateMsg> received;
-  controller_manager::Subscription subscription;
+  servoloop::realtime::Subscription subscription;
 };
 
 TEST_F(JointStateControllerTest, MissingPublishRateNamesControllerAndKey) {

@@ -9,7 +9,7 @@
 
 #include "controller_test_support.hpp"
 #include "servoloop/controllers/minimal_joint_controller/minimal_joint_controller.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 namespace {
@@ -17,8 +17,8 @@ namespace {
 using testing::initController;
 using testing::makeContext;
 using testing::TestJointsHW;
-using Float64 = controller_manager::std_msgs::Float64;
-using JointStateMsg = controller_manager::sensor_msgs::JointState;
+using Float64 = servoloop::std_msgs::Float64;
+using JointStateMsg = servoloop::sensor_msgs::JointState;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -29,7 +29,7 @@ class MinimalJointControllerTest : public ::testing::Test {
   }
   void command(double value) { bus.publish("/one_DOF_robot/pd/pos_cmd", Float64{value}); }
 
-  controller_manager::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   TestJointsHW hw{{"joint1", "joint2"}};
   MinimalJointController controller;
 };

@@ -12,7 +12,7 @@
 
 #include "alloc_counter.hpp"
 #include "servoloop/controllers/pid.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 using servoloop::controllers::Pid;
 

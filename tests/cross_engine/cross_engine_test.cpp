@@ -189,14 +189,14 @@ struct SeedPid {
 };
 
 SeedPid seedPidFromYaml() {
-  const YAML::Node yaml = YAML::LoadFile(std::string(SERVOLOOP_SHARED_DIR) + "/seed/one_dof_ctl_params.yaml");
+  const YAML::Node yaml = YAML::LoadFile(std::string(SERVOLOOP_SEED_DIR) + "/control_config/one_dof_ctl_params.yaml");
   const YAML::Node pid = yaml["one_DOF_robot"]["joint1_position_controller"]["pid"];
   return {pid["p"].as<double>(), pid["i"].as<double>(), pid["d"].as<double>(), pid["i_clamp_min"].as<double>(),
           pid["i_clamp_max"].as<double>()};
 }
 
 TEST(CrossEngine, SeedRobotUnderItsYamlPidAgreesOnBothEnginesAndTheReference) {
-  const std::string urdf = std::string(SERVOLOOP_SHARED_DIR) + "/seed/minimal_robot_description_w_jnt_ctl.urdf";
+  const std::string urdf = std::string(SERVOLOOP_SEED_DIR) + "/minimal_robot_description_w_jnt_ctl.urdf";
   const std::string yaml = "sim: {initial_positions: {joint1: 0.5}}";
   constexpr double kTarget = 1.2;
   constexpr int kSteps = 5000;

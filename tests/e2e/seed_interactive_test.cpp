@@ -17,14 +17,18 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_client_support.hpp"
+#include "wait_until.hpp"
 
 namespace servoloop::cli::testing {
 namespace {
+
+using servoloop::testing::waitUntil;
 
 using nlohmann::json;
 
 const char* const kCommandTopic = "/one_DOF_robot/joint1_position_controller/command";
 const char* const kJointStates = "/one_DOF_robot/joint_states";
+const char* const kControllerState = "/one_DOF_robot/joint1_position_controller/state";
 
 std::vector<json> jsonLines(const std::string& text) {
   std::vector<json> lines;
@@ -70,7 +74,27 @@ TEST(SeedInteractive, SpawnPublishEchoListThenSigint) {
   // At real time, a few seconds of the PID (p 10, i 10, d 10) pulling toward
   // 1.0: from 0 it overshoots to about 1.64 at 2.5 s, comes back to about 0.82
   // at 6 s and settles, so from 1 s on it is always nearer 1.0 than at the start.
-  std::this_thread::sleep_for(std::chrono::seconds(3));
+  // Wait, by simulated time, for the controller to hold the 1.0 set point and
+  // then for 3 s more of simulation (bounds for a loaded machine).
+  double command_stamp = -1.0;
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        const CliResult state = runCli({"topic", "echo", "-n", "1", "--json", kControllerState}, scratch, 30.0);
+        const auto lines = state.status == 0 ? jsonLines(state.out) : std::vector<json>{};
+        if (lines.empty() || lines[0]["set_point"].get<double>() != 1.0) return false;
+        command_stamp = lines[0]["stamp"].get<double>();
+        return true;
+      },
+      std::chrono::seconds(60), std::chrono::milliseconds(100)))
+      << pub.currentErr() << launch.currentOut();
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        const CliResult state = runCli({"topic", "echo", "-n", "1", "--json", kJointStates}, scratch, 30.0);
+        const auto lines = state.status == 0 ? jsonLines(state.out) : std::vector<json>{};
+        return !lines.empty() && lines[0]["stamp"].get<double>() > command_stamp + 3.0;
+      },
+      std::chrono::seconds(90), std::chrono::milliseconds(200)))
+      << launch.currentOut();
   const CliResult late = runCli({"topic", "echo", "-n", "5", "--json", kJointStates}, scratch, 30.0);
   ASSERT_EQ(late.status, 0) << late.err;
   const auto states = jsonLines(late.out);

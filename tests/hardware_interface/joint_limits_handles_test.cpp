@@ -10,7 +10,7 @@
 #include <limits>
 #include <string>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/interface_manager.hpp"
 #include "servoloop/hardware_interface/joint_limits_interface.hpp"
 

@@ -8,7 +8,7 @@
 #include <urdf_parser/urdf_parser.h>
 #include <yaml-cpp/yaml.h>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_limits_loader.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 #include "servoloop/hardware_interface/joint_limits_yaml.hpp"
@@ -17,7 +17,7 @@ namespace hi = servoloop::hardware_interface;
 
 namespace {
 
-const std::string kSeedDir = std::string(SERVOLOOP_SHARED_DIR) + "/seed/";
+const std::string kSeedDir = std::string(SERVOLOOP_SEED_DIR) + "/";
 
 urdf::ModelInterfaceSharedPtr loadSeed(const std::string& file) {
   auto model = urdf::parseURDFFile(kSeedDir + file);
@@ -284,7 +284,7 @@ TEST(JointLimitsYaml, SoftLimits) {
 
 TEST(JointLimitsLoader, SeedRobotWithSeedParamsUsesTheUrdf) {
   auto model = loadSeed("minimal_robot_description_w_jnt_ctl.urdf");
-  const YAML::Node params = YAML::LoadFile(kSeedDir + "one_dof_ctl_params.yaml");
+  const YAML::Node params = YAML::LoadFile(kSeedDir + "control_config/one_dof_ctl_params.yaml");
   const hi::RobotJointLimits all = hi::loadRobotJointLimits(*model, params["one_DOF_robot"]);
   ASSERT_EQ(all.size(), 1u);  // the fixed joint has no entry
   const hi::JointLimitsConfig& joint1 = all.at("joint1");

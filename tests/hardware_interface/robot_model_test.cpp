@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop {
 namespace {
@@ -17,7 +17,7 @@ namespace {
 #define EXPECT_CONTAINS(text, part) \
   EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
 
-const std::string kSeedDir = std::string(SERVOLOOP_SHARED_DIR) + "/seed/";
+const std::string kSeedDir = std::string(SERVOLOOP_SEED_DIR) + "/";
 const std::string kAssetsDir = std::string(SERVOLOOP_SOURCE_DIR) + "/tests/assets/";
 
 // A fixed-base one-link robot; `joint` and `link` are spliced in whole.

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "servoloop/hardware_interface/step_grid.hpp"
+#include "servoloop/core/step_grid.hpp"
 
 namespace {
 

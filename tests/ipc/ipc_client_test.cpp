@@ -12,9 +12,9 @@
 #include <sys/socket.h>
 
 #include "ipc_fixture.hpp"
-#include "servoloop/controller_manager/ipc_client.hpp"
+#include "servoloop/ipc/ipc_client.hpp"
 
-namespace servoloop::controller_manager {
+namespace servoloop::ipc {
 namespace {
 
 using testing::IpcServerFixture;
@@ -164,4 +164,4 @@ TEST_F(IpcClientTest, LatencyOfOneThousandRoundTrips) {
 }
 
 }  // namespace
-}  // namespace servoloop::controller_manager
+}  // namespace servoloop::ipc

@@ -20,12 +20,12 @@
 #include <gtest/gtest.h>
 
 #include "ipc_test_support.hpp"
-#include "servoloop/controller_manager/ipc_protocol.hpp"
-#include "servoloop/controller_manager/ipc_server.hpp"
-#include "servoloop/controller_manager/ipc_socket_path.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/ipc/ipc_protocol.hpp"
+#include "servoloop/ipc/ipc_server.hpp"
+#include "servoloop/ipc/ipc_socket_path.hpp"
+#include "servoloop/core/errors.hpp"
 
-namespace servoloop::controller_manager::testing {
+namespace servoloop::ipc::testing {
 
 inline constexpr const char* kTestNode = "/one_DOF_robot";
 
@@ -97,4 +97,4 @@ class IpcServerFixture : public ::testing::Test {
   std::vector<std::thread> deferred_threads_;  // service thread only, joined in TearDown
 };
 
-}  // namespace servoloop::controller_manager::testing
+}  // namespace servoloop::ipc::testing

@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "ipc_fixture.hpp"
-#include "servoloop/controller_manager/ipc_client.hpp"
+#include "servoloop/ipc/ipc_client.hpp"
 
-namespace servoloop::controller_manager {
+namespace servoloop::ipc {
 namespace {
 
 using testing::eventually;
@@ -306,4 +306,4 @@ TEST_F(IpcServerTest, SecondServerForTheSameNamespaceIsRefused) {
 }
 
 }  // namespace
-}  // namespace servoloop::controller_manager
+}  // namespace servoloop::ipc

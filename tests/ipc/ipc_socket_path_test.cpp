@@ -11,12 +11,12 @@
 #include <unistd.h>
 
 #include "ipc_test_support.hpp"
-#include "servoloop/controller_manager/ipc_client.hpp"
-#include "servoloop/controller_manager/ipc_server.hpp"
-#include "servoloop/controller_manager/ipc_socket_path.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/ipc/ipc_client.hpp"
+#include "servoloop/ipc/ipc_server.hpp"
+#include "servoloop/ipc/ipc_socket_path.hpp"
+#include "servoloop/core/errors.hpp"
 
-namespace servoloop::controller_manager {
+namespace servoloop::ipc {
 namespace {
 
 using testing::ScopedRunDir;
@@ -215,4 +215,4 @@ TEST(IpcSocketPath, ListNodesReportsLiveAndStaleSockets) {
 }
 
 }  // namespace
-}  // namespace servoloop::controller_manager
+}  // namespace servoloop::ipc

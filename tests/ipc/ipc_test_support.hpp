@@ -17,9 +17,9 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include "servoloop/controller_manager/ipc_unix_socket.hpp"
+#include "servoloop/ipc/ipc_unix_socket.hpp"
 
-namespace servoloop::controller_manager::testing {
+namespace servoloop::ipc::testing {
 
 // Sets SERVOLOOP_RUN_DIR to "<fresh /tmp dir>/run" (not created yet) for the
 // test's lifetime and restores the previous value afterwards. The path stays
@@ -160,4 +160,4 @@ bool eventually(Condition condition, double timeout_s = 5.0) {
   return condition();
 }
 
-}  // namespace servoloop::controller_manager::testing
+}  // namespace servoloop::ipc::testing

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <string>
 
-#include "servoloop/controller_manager/node/launch_file.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using namespace servoloop::controller_manager::node;
+using namespace servoloop::node;
 
 const fs::path kOneDof = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
 

@@ -11,15 +11,15 @@
 #include <nlohmann/json.hpp>
 
 #include "node_test_support.hpp"
-#include "servoloop/controller_manager/ipc_client.hpp"
-#include "servoloop/controller_manager/ipc_socket_path.hpp"
-#include "servoloop/controller_manager/node/node.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/ipc/ipc_client.hpp"
+#include "servoloop/ipc/ipc_socket_path.hpp"
+#include "servoloop/node/node.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace {
 
 using namespace servoloop::controller_manager;
-using namespace servoloop::controller_manager::node;
+using namespace servoloop::node;
 using namespace servoloop::node_test;
 using nlohmann::json;
 
@@ -34,8 +34,8 @@ class NodeIpc : public ::testing::Test {
     options.real_time_factor = 4.0;  // no duration: runs until shut down
     node_ = std::make_unique<Node>(seedLaunch("mock"), options);
     node_->start();
-    ASSERT_TRUE(waitForNode(kNamespace, 5.0));
-    client_ = IpcClient::connectToNode(kNamespace);
+    ASSERT_TRUE(servoloop::ipc::waitForNode(kNamespace, 5.0));
+    client_ = servoloop::ipc::IpcClient::connectToNode(kNamespace);
   }
   void TearDown() override {
     client_.close();
@@ -54,7 +54,7 @@ class NodeIpc : public ::testing::Test {
 
   TempDir run_dir_{"servoloop-node-ipc"};
   std::unique_ptr<Node> node_;
-  IpcClient client_;
+  servoloop::ipc::IpcClient client_;
 };
 
 TEST_F(NodeIpc, PingNamesTheRobot) {
@@ -174,7 +174,7 @@ TEST_F(NodeIpc, WorldShutdownEndsTheRun) {
   node_->waitUntilDone();  // returns at once: the shutdown was requested
   EXPECT_TRUE(node_->shutdownRequested());
   node_->shutdown();
-  EXPECT_FALSE(fs::exists(socketPathFor(kNamespace)));
+  EXPECT_FALSE(fs::exists(servoloop::ipc::socketPathFor(kNamespace)));
 }
 
 TEST(NodeIpcWorld, EmptyWorldServesDefaultSocketAndSpawnsAModel) {
@@ -187,8 +187,8 @@ TEST(NodeIpcWorld, EmptyWorldServesDefaultSocketAndSpawnsAModel) {
     NodeOptions options;
     Node node(launch, options);
     node.start();
-    ASSERT_TRUE(waitForNode("/", 5.0));
-    IpcClient world = IpcClient::connectToNode("/");
+    ASSERT_TRUE(servoloop::ipc::waitForNode("/", 5.0));
+    servoloop::ipc::IpcClient world = servoloop::ipc::IpcClient::connectToNode("/");
     EXPECT_EQ(world.call("ping")["robots"], json::array());
     const json reply =
         world.call("model.spawn", {{"urdf", (oneDofDir() / "minimal_robot_description_w_jnt_ctl.urdf").string()},
@@ -196,8 +196,8 @@ TEST(NodeIpcWorld, EmptyWorldServesDefaultSocketAndSpawnsAModel) {
                                    {"params", {(oneDofDir() / "control_config" / "one_dof_ctl_params.yaml").string()}}},
                    20.0);
     EXPECT_EQ(reply["namespace"], kNamespace);
-    ASSERT_TRUE(waitForNode(kNamespace, 5.0));
-    IpcClient robot = IpcClient::connectToNode(kNamespace);
+    ASSERT_TRUE(servoloop::ipc::waitForNode(kNamespace, 5.0));
+    servoloop::ipc::IpcClient robot = servoloop::ipc::IpcClient::connectToNode(kNamespace);
     robot.call("control.load", {{"name", "joint_state_controller"}});
     robot.call("control.switch", {{"start", {"joint_state_controller"}}});
     EXPECT_EQ(robot.call("control.list")["controllers"][0]["state"], "running");

@@ -4,7 +4,8 @@
 #include <filesystem>
 #include <string>
 
-#include "servoloop/controller_manager/node/launch_file.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "temp_dir.hpp"
 
 namespace servoloop::node_test {
 
@@ -14,25 +15,14 @@ namespace fs = std::filesystem;
 fs::path oneDofDir();
 // The seed launch file (robots/one_dof/one_dof_w_jnt_ctl.launch.yaml) with
 // the backend replaced.
-controller_manager::node::LaunchFile seedLaunch(const std::string& backend);
+servoloop::node::LaunchFile seedLaunch(const std::string& backend);
 
-// A fresh, private (0700) folder under the system temp folder, removed when
-// the object dies.
-class TempDir {
- public:
-  explicit TempDir(const std::string& prefix);
-  ~TempDir();
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+// A fresh, private folder under the system temp folder, removed when it dies.
+using TempDir = servoloop::testing::TempDir;
 
 // True if the plugin folder has a robot_hw backend of that type.
 bool backendAvailable(const std::string& backend);
 
-std::string readFile(const fs::path& path);
+using servoloop::testing::readFile;
 
 }  // namespace servoloop::node_test

@@ -16,11 +16,11 @@
 #include <vector>
 
 #include "node_test_support.hpp"
-#include "servoloop/controller_manager/node/node.hpp"
+#include "servoloop/node/node.hpp"
 
 namespace {
 
-using namespace servoloop::controller_manager::node;
+using namespace servoloop::node;
 using namespace servoloop::node_test;
 
 constexpr const char* kCommandTopic = "/one_DOF_robot/joint1_position_controller/command";

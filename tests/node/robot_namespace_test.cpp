@@ -5,13 +5,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "servoloop/controller_manager/node/robot_namespace.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/node/robot_namespace.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace {
 
-using servoloop::controller_manager::node::resolveRobotNamespace;
-using servoloop::controller_manager::node::urdfRobotNamespace;
+using servoloop::node::resolveRobotNamespace;
+using servoloop::node::urdfRobotNamespace;
 
 std::string urdfWithPlugin(const std::string& plugin) {
   return "<robot name='arm'><link name='base'/>" + plugin + "</robot>";

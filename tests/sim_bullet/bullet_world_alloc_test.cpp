@@ -29,8 +29,8 @@ const bool kBulletHookInstalled = [] {
 }();
 
 TEST(BulletWorldAllocation, SteadyStateStepAllocatesNothing) {
-  const auto model = loadRobotModelFile(std::string(SERVOLOOP_SHARED_DIR) +
-                                        "/seed/minimal_robot_description_w_jnt_ctl.urdf");
+  const auto model = loadRobotModelFile(std::string(SERVOLOOP_SEED_DIR) +
+                                        "/minimal_robot_description_w_jnt_ctl.urdf");
   WorldSettings settings;
   settings.ground_plane = true;
   BulletWorld world(*model, settings);

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "reference_ode.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
 

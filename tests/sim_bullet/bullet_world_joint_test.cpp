@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "reference_ode.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
 
@@ -24,7 +24,7 @@ namespace {
 using testing::integrateRk4;
 
 constexpr double kG = 9.81;
-const std::string kSeedDir = std::string(SERVOLOOP_SHARED_DIR) + "/seed/";
+const std::string kSeedDir = std::string(SERVOLOOP_SEED_DIR) + "/";
 
 std::shared_ptr<const urdf::ModelInterface> seedPendulum() {  // continuous joint1, no damping
   return loadRobotModelFile(kSeedDir + "minimal_robot_description.urdf");

@@ -24,7 +24,7 @@ constexpr double kSeedDamping = 1.0;   // N m s/rad
 constexpr double kSeedGravityTorque = 1.0 * kG * 0.5;  // m g d, N m (times sin q; q = 0 upright)
 
 std::shared_ptr<const urdf::ModelInterface> seedWithControl() {
-  return loadRobotModelFile(std::string(SERVOLOOP_SHARED_DIR) + "/seed/minimal_robot_description_w_jnt_ctl.urdf");
+  return loadRobotModelFile(std::string(SERVOLOOP_SEED_DIR) + "/minimal_robot_description_w_jnt_ctl.urdf");
 }
 
 WorldSettings noGravity() {

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "reference_ode.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
 
@@ -20,7 +20,7 @@ namespace {
 constexpr double kG = 9.81;
 
 std::shared_ptr<const urdf::ModelInterface> seedPendulum() {  // continuous joint1, no damping
-  return loadRobotModelFile(std::string(SERVOLOOP_SHARED_DIR) + "/seed/minimal_robot_description.urdf");
+  return loadRobotModelFile(std::string(SERVOLOOP_SEED_DIR) + "/minimal_robot_description.urdf");
 }
 constexpr double kSeedInertia = 0.35;  // kg m², link2 about joint1
 constexpr double kSeedGravityTorque = 1.0 * kG * 0.5;

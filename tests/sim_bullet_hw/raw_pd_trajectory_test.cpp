@@ -78,10 +78,10 @@
 #include "rk4_reference.hpp"
 #include "servoloop/controller_manager/controller_factory.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
-#include "servoloop/controller_manager/messages.hpp"
-#include "servoloop/controller_manager/node/launch_file.hpp"
+#include "servoloop/realtime/messages.hpp"
+#include "servoloop/node/launch_file.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/controllers/joint_state_controller/joint_state_controller.hpp"
 #include "servoloop/controllers/minimal_joint_controller/minimal_joint_controller.hpp"
 #include "servoloop/hardware_interface/hardware_info.hpp"
@@ -179,9 +179,9 @@ void startBeforeTimeZero(hi::SimulatedRobotHW& hw, cm::ControllerManager& manage
 // step time_step_s (the launch file's, unless given).
 template <class Backend>
 ScenarioRun runScenario(double time_step_s = 0.0) {
-  const cm::node::LaunchFile launch = cm::node::loadLaunchFile(kLaunchFile);
+  const servoloop::node::LaunchFile launch = servoloop::node::loadLaunchFile(kLaunchFile);
   require(launch.robots.size() == 1 && launch.robots[0].params.size() == 1, "one robot with one parameter file");
-  const cm::node::RobotSpec& robot = launch.robots[0];
+  const servoloop::node::RobotSpec& robot = launch.robots[0];
   require(robot.urdf.filename() == "minimal_robot_description.urdf", "the first seed URDF");
   require(robot.robot_namespace == "/one_DOF_robot", "namespace /one_DOF_robot");
   const double dt = time_step_s > 0.0 ? time_step_s : launch.world.time_step_s;
@@ -204,7 +204,7 @@ ScenarioRun runScenario(double time_step_s = 0.0) {
   Backend hw;
   hw.init(info);
 
-  cm::TopicBus bus;
+  servoloop::realtime::TopicBus bus;
   auto factory = std::make_shared<cm::InProcessControllerFactory>();
   factory->add<controllers::MinimalJointController>("minimal_joint_controller/MinimalJointController");
   factory->add<controllers::JointStateController>("joint_state_controller/JointStateController");
@@ -224,7 +224,7 @@ ScenarioRun runScenario(double time_step_s = 0.0) {
   }
   startBeforeTimeZero(hw, manager, loop, robot.controllers);
   // After the start: a controller's starting() forgets earlier commands.
-  bus.publish(kCommandTopic, cm::std_msgs::Float64{kCommand});
+  bus.publish(kCommandTopic, servoloop::std_msgs::Float64{kCommand});
 
   const auto* pd = dynamic_cast<const controllers::MinimalJointController*>(
       manager.getController("minimal_joint_controller"));

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "servoloop/controller_manager/plugin_loader.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 #include "sim_test_support.hpp"
@@ -17,7 +17,7 @@ namespace servoloop::sim_testing {
 // robot with a 2 ms step and 50 N·m asked of its 10 N·m joint.
 inline void expectSeedRobotRunsOnPlugin(const std::string& plugin_dir, const std::string& type) {
   namespace hi = hardware_interface;
-  controller_manager::PluginLoader loader({plugin_dir});
+  servoloop::plugin::PluginLoader loader({plugin_dir});
   auto robot = loader.create<hi::RobotHW>(type);
   ASSERT_NE(robot, nullptr);
   auto* simulated = dynamic_cast<hi::SimulatedRobotHW*>(robot.get());

@@ -2,7 +2,7 @@
 // parallel-axis theorem.
 #include <gtest/gtest.h>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/sim_common/joint_axis_inertia.hpp"
 #include "sim_test_support.hpp"

@@ -2,7 +2,7 @@
 // build's plugin folder, then driven through the RobotHW/SimulatedRobotHW interface.
 #include <gtest/gtest.h>
 
-#include "servoloop/controller_manager/plugin_loader.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 #include "sim_test_support.hpp"
@@ -18,7 +18,7 @@ using sim_testing::makeInfo;
 constexpr Duration kPeriod(0.001);
 
 TEST(MockBackendPlugin, LoadsByTypeNameFromThePluginFolder) {
-  controller_manager::PluginLoader loader({SERVOLOOP_PLUGIN_DIR});
+  servoloop::plugin::PluginLoader loader({SERVOLOOP_PLUGIN_DIR});
   auto robot = loader.create<hi::RobotHW>("mock");
   ASSERT_NE(robot, nullptr);
   auto* simulated = dynamic_cast<hi::SimulatedRobotHW*>(robot.get());

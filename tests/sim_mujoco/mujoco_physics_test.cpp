@@ -17,7 +17,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "rk4_reference.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
 #include "servoloop/sim_mujoco/mujoco_physics.hpp"
@@ -31,7 +31,7 @@ using sim_testing::integrateRk4;
 
 constexpr double kG = 9.81;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-const std::string kSeedDir = std::string(SERVOLOOP_SHARED_DIR) + "/seed/";
+const std::string kSeedDir = std::string(SERVOLOOP_SEED_DIR) + "/";
 const std::string kAssetsDir = std::string(SERVOLOOP_SOURCE_DIR) + "/tests/assets/";
 
 std::shared_ptr<const urdf::ModelInterface> seedPendulum() {  // continuous joint1, no damping

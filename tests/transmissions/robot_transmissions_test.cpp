@@ -11,10 +11,10 @@
 #include <string>
 
 #include "servoloop/hardware_interface/actuator_interfaces.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/interface_manager.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace hi = servoloop::hardware_interface;
 namespace st = servoloop::transmissions;
@@ -26,7 +26,7 @@ namespace {
 constexpr double kTol = 1e-12;
 
 std::string readSeed(const std::string& name) {
-  std::ifstream file(std::string(SERVOLOOP_SHARED_DIR) + "/seed/" + name);
+  std::ifstream file(std::string(SERVOLOOP_SEED_DIR) + "/" + name);
   EXPECT_TRUE(file.good()) << name;
   std::stringstream text;
   text << file.rdbuf();

@@ -1,5 +1,5 @@
-// The three transmissions against the numeric cases of
-// shared/reference/ros_control_semantics.md ("Transmissions"), plus inverse
+// The three transmissions against hand-computed cases of ros_control's
+// transmission_interface formulas, plus inverse
 // round trips and rejection of zero reductions.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <random>
 #include <string>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/transmissions/differential_transmission.hpp"
 #include "servoloop/transmissions/four_bar_linkage_transmission.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"

@@ -11,14 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace st = servoloop::transmissions;
 
 namespace {
 
 std::string readSeed(const std::string& name) {
-  const std::string path = std::string(SERVOLOOP_SHARED_DIR) + "/seed/" + name;
+  const std::string path = std::string(SERVOLOOP_SEED_DIR) + "/" + name;
   std::ifstream file(path);
   EXPECT_TRUE(file.good()) << "cannot open " << path;
   std::stringstream text;

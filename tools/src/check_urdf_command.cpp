@@ -19,8 +19,8 @@
 
 #include "command_registry.hpp"
 #include "node_connection.hpp"
-#include "servoloop/controller_manager/message_json.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/node/message_json.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/transmissions/robot_transmissions.hpp"
@@ -32,7 +32,7 @@ namespace {
 namespace hi = servoloop::hardware_interface;
 namespace tr = servoloop::transmissions;
 using nlohmann::ordered_json;
-using servoloop::controller_manager::formatDouble;
+using servoloop::formatDouble;
 
 struct CheckUrdfOptions {
   std::string file;

@@ -23,15 +23,15 @@
 #include "compare_plot.hpp"
 #include "compare_run.hpp"
 #include "compare_trajectory.hpp"
-#include "servoloop/controller_manager/node/launch_file.hpp"
-#include "servoloop/controller_manager/node/run_summary.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/run_summary.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace node = servoloop::controller_manager::node;
+namespace node = servoloop::node;
 namespace fs = std::filesystem;
 using nlohmann::json;
 

@@ -8,17 +8,17 @@
 
 #include <urdf_model/model.h>
 
-#include "servoloop/controller_manager/messages.hpp"
-#include "servoloop/controller_manager/node/node.hpp"
-#include "servoloop/controller_manager/plugin_loader.hpp"
-#include "servoloop/controller_manager/plugin_path.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/realtime/messages.hpp"
+#include "servoloop/node/node.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
+#include "servoloop/plugin/plugin_path.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace node = controller_manager::node;
+namespace node = servoloop::node;
 using nlohmann::json;
 
 // The messages of one topic, filled on the robot's delivery thread (or the
@@ -76,9 +76,9 @@ std::string joinedNamespaces(node::Node& world) {
 }  // namespace
 
 std::vector<std::string> availableBackends(const std::vector<std::filesystem::path>& plugin_directories) {
-  controller_manager::PluginLoader loader(controller_manager::pluginSearchPath(plugin_directories));
+  servoloop::plugin::PluginLoader loader(servoloop::plugin::pluginSearchPath(plugin_directories));
   std::vector<std::string> names;
-  for (const controller_manager::PluginTypeInfo& info : loader.listTypes(hardware_interface::RobotHW::kPluginKind)) {
+  for (const servoloop::plugin::PluginTypeInfo& info : loader.listTypes(hardware_interface::RobotHW::kPluginKind)) {
     names.push_back(info.type);
   }
   std::sort(names.begin(), names.end());
@@ -111,7 +111,7 @@ BackendRun runOnBackend(const BackendRunRequest& request) {
 
   // Declared before the node: the callbacks point into them.
   std::vector<std::unique_ptr<TopicCapture>> captures;
-  std::vector<controller_manager::Subscription> subscriptions;
+  std::vector<servoloop::realtime::Subscription> subscriptions;
   node::Node world(std::move(launch), options);
 
   std::vector<std::string> topics = request.topics;
@@ -130,8 +130,8 @@ BackendRun runOnBackend(const BackendRunRequest& request) {
     captures.push_back(std::make_unique<TopicCapture>());
     captures.back()->trajectory.topic = topic;
     TopicCapture* capture = captures.back().get();
-    subscriptions.push_back(robot->topics().subscribeJson(
-        topic, [capture](Time stamp, const json& msg) { addMessage(*capture, stamp, msg); }));
+    subscriptions.push_back(servoloop::node::subscribeJson(
+        robot->topics(), topic, [capture](Time stamp, const json& msg) { addMessage(*capture, stamp, msg); }));
   }
 
   // The URDFs, for the joints' units once the robots are gone.
@@ -152,7 +152,7 @@ BackendRun runOnBackend(const BackendRunRequest& request) {
   run.summary = world.summary();
   for (std::size_t k = 0; k < topics.size(); ++k) {
     std::lock_guard lock(captures[k]->mutex);
-    if (!topic_types[k].empty() && topic_types[k] != controller_manager::sensor_msgs::JointState::kTypeName) {
+    if (!topic_types[k].empty() && topic_types[k] != servoloop::sensor_msgs::JointState::kTypeName) {
       throw Error("topic '" + topics[k] + "' carries " + topic_types[k] +
                   "; compare reads sensor_msgs/JointState topics (e.g. <namespace>/joint_states)");
     }

@@ -7,15 +7,15 @@
 #include <vector>
 
 #include "compare_trajectory.hpp"
-#include "servoloop/controller_manager/node/launch_file.hpp"
-#include "servoloop/controller_manager/node/run_summary.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/run_summary.hpp"
 
 namespace servoloop::cli {
 
 struct BackendRunRequest {
   // The launch file with the command line's publications applied; its own
   // record: and plot: entries are ignored (a comparison writes no CSV).
-  controller_manager::node::LaunchFile launch;
+  servoloop::node::LaunchFile launch;
   std::string backend;  // robot_hw plugin type
   double duration_s = 10.0;
   // sensor_msgs/JointState topics to capture; empty: every robot's
@@ -26,7 +26,7 @@ struct BackendRunRequest {
 
 struct BackendRun {
   std::string backend;
-  controller_manager::node::RunSummary summary;
+  servoloop::node::RunSummary summary;
   std::vector<JointTrajectory> trajectories;  // one per topic, in request order
 };
 

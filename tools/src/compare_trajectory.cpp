@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {

@@ -12,12 +12,11 @@
 
 #include "command_registry.hpp"
 #include "node_connection.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 
 // A switch is carried out by the real-time thread at its next cycle.
 constexpr double kSwitchCallTimeoutS = 30.0;
@@ -60,7 +59,7 @@ void printControllers(const nlohmann::json& controllers) {
 }
 
 void runList(const ControlOptions& options) {
-  cm::IpcClient client = connectToRobotNode(options.ns);
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
   const auto reply = client.call("control.list");
   const auto controllers = reply.value("controllers", nlohmann::json::array());
   if (options.json) {
@@ -71,7 +70,7 @@ void runList(const ControlOptions& options) {
 }
 
 void runListJoints(const ControlOptions& options) {
-  cm::IpcClient client = connectToRobotNode(options.ns);
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
   const auto reply = client.call("control.list_joints");
   const auto joints = reply.value("joints", nlohmann::json::array());
   if (options.json) {
@@ -91,7 +90,7 @@ void runListJoints(const ControlOptions& options) {
 
 // load/unload each name in order; the first failure ends the command.
 void runEach(const ControlOptions& options, const char* op, const char* done) {
-  cm::IpcClient client = connectToRobotNode(options.ns);
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
   for (const auto& name : options.names) {
     client.call(op, {{"name", name}});
     std::cout << done << " '" << name << "'\n";
@@ -102,7 +101,7 @@ void runSwitch(const ControlOptions& options) {
   if (options.start.empty() && options.stop.empty()) {
     throw Error("nothing to switch: give --start and/or --stop controller names");
   }
-  cm::IpcClient client = connectToRobotNode(options.ns);
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
   client.call("control.switch",
               {{"start", options.start},
                {"stop", options.stop},
@@ -123,7 +122,7 @@ void runSwitch(const ControlOptions& options) {
 }
 
 void runReloadLibraries(const ControlOptions& options) {
-  cm::IpcClient client = connectToRobotNode(options.ns);
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
   client.call("control.reload_libraries", {{"force_kill", options.force_kill}},
               kSwitchCallTimeoutS);
   std::cout << "Reloaded controller libraries\n";

@@ -12,14 +12,13 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.hpp"
-#include "servoloop/controller_manager/plugin_loader.hpp"
-#include "servoloop/controller_manager/plugin_path.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
+#include "servoloop/plugin/plugin_path.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 namespace fs = std::filesystem;
 
 struct ListTypesOptions {
@@ -28,7 +27,7 @@ struct ListTypesOptions {
   std::vector<std::string> plugin_dirs;
 };
 
-void printTable(const std::vector<cm::PluginTypeInfo>& types) {
+void printTable(const std::vector<servoloop::plugin::PluginTypeInfo>& types) {
   if (types.empty()) return;
   std::size_t type_width = 4;
   std::size_t kind_width = 4;
@@ -44,7 +43,7 @@ void printTable(const std::vector<cm::PluginTypeInfo>& types) {
   for (const auto& type : types) row(type.type, type.kind, type.library.string());
 }
 
-void printJson(const std::vector<cm::PluginTypeInfo>& types) {
+void printJson(const std::vector<servoloop::plugin::PluginTypeInfo>& types) {
   nlohmann::json array = nlohmann::json::array();
   for (const auto& type : types) {
     array.push_back({{"type", type.type}, {"kind", type.kind}, {"library", type.library.string()}});
@@ -62,7 +61,7 @@ void runListTypes(const ListTypesOptions& options) {
     }
     explicit_dirs.emplace_back(dir);
   }
-  const cm::PluginLoader loader(cm::pluginSearchPath(explicit_dirs));
+  const servoloop::plugin::PluginLoader loader(servoloop::plugin::pluginSearchPath(explicit_dirs));
   const auto types = loader.listTypes(options.kind);
   if (options.json) {
     printJson(types);

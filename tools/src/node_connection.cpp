@@ -12,25 +12,24 @@
 #include <sstream>
 #include <thread>
 
-#include "servoloop/controller_manager/ipc_socket_path.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/ipc/ipc_socket_path.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 
 const char* const kStartHint = "start one with `servoloop launch <launch file>`";
 
-std::vector<cm::IpcNodeEntry> acceptingNodes() {
-  std::vector<cm::IpcNodeEntry> accepting;
-  for (auto& entry : cm::listNodes()) {
+std::vector<servoloop::ipc::IpcNodeEntry> acceptingNodes() {
+  std::vector<servoloop::ipc::IpcNodeEntry> accepting;
+  for (auto& entry : servoloop::ipc::listNodes()) {
     if (entry.accepting) accepting.push_back(std::move(entry));
   }
   return accepting;
 }
 
-std::string joinNames(const std::vector<cm::IpcNodeEntry>& nodes) {
+std::string joinNames(const std::vector<servoloop::ipc::IpcNodeEntry>& nodes) {
   std::string names;
   for (const auto& node : nodes) {
     if (!names.empty()) names += ", ";
@@ -41,8 +40,8 @@ std::string joinNames(const std::vector<cm::IpcNodeEntry>& nodes) {
 
 // The only robot node, or the world's socket when nothing else is served;
 // nullopt when no node runs. Throws when several robot nodes run.
-std::optional<cm::IpcNodeEntry> onlyNode(const std::vector<cm::IpcNodeEntry>& accepting) {
-  std::vector<cm::IpcNodeEntry> robots;
+std::optional<servoloop::ipc::IpcNodeEntry> onlyNode(const std::vector<servoloop::ipc::IpcNodeEntry>& accepting) {
+  std::vector<servoloop::ipc::IpcNodeEntry> robots;
   for (const auto& node : accepting) {
     if (node.node_name != "/") robots.push_back(node);
   }
@@ -55,8 +54,8 @@ std::optional<cm::IpcNodeEntry> onlyNode(const std::vector<cm::IpcNodeEntry>& ac
   return std::nullopt;
 }
 
-cm::IpcClient connectTo(const cm::IpcNodeEntry& node) {
-  cm::IpcClient client;
+servoloop::ipc::IpcClient connectTo(const servoloop::ipc::IpcNodeEntry& node) {
+  servoloop::ipc::IpcClient client;
   client.connect(node.socket_path);
   return client;
 }
@@ -104,27 +103,27 @@ CLI::Option* addNamespaceOption(CLI::App& command, std::string& ns) {
 std::string describeRunningNodes() {
   const auto accepting = acceptingNodes();
   if (accepting.empty()) {
-    return "no servoloop node is running (run directory " + cm::ipcRunDirectory().string() + ")";
+    return "no servoloop node is running (run directory " + servoloop::ipc::ipcRunDirectory().string() + ")";
   }
   return "running nodes: " + joinNames(accepting);
 }
 
-cm::IpcClient connectToRobotNode(const std::string& ns_option, double wait_s, bool wait) {
+servoloop::ipc::IpcClient connectToRobotNode(const std::string& ns_option, double wait_s, bool wait) {
   const std::string ns = normalizeNamespace(ns_option);
   if (!ns.empty()) {
-    if (wait && !cm::waitForNode(ns, wait_s)) {
+    if (wait && !servoloop::ipc::waitForNode(ns, wait_s)) {
       throw Error("no servoloop node for namespace '" + ns + "' appeared within " +
                   formatSeconds(wait_s) + " s (" + describeRunningNodes() + "); " + kStartHint +
                   " or raise --timeout");
     }
     try {
-      return cm::IpcClient::connectToNode(ns);
+      return servoloop::ipc::IpcClient::connectToNode(ns);
     } catch (const Error& error) {
       // With no node at all, say so plainly: files a node left behind (its
       // .lock, a socket nobody accepts on) are not worth the user's attention.
       if (std::string_view(error.what()).starts_with("no servoloop node") && acceptingNodes().empty()) {
         throw Error("no servoloop node is running (looked for namespace '" + ns + "' in run directory " +
-                    cm::ipcRunDirectory().string() + "); " + kStartHint);
+                    servoloop::ipc::ipcRunDirectory().string() + "); " + kStartHint);
       }
       throw Error(std::string(error.what()) + " (" + describeRunningNodes() + ")");
     }
@@ -139,15 +138,15 @@ cm::IpcClient connectToRobotNode(const std::string& ns_option, double wait_s, bo
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   std::string message = "no servoloop node is running (run directory " +
-                        cm::ipcRunDirectory().string() + ")";
+                        servoloop::ipc::ipcRunDirectory().string() + ")";
   if (wait) message += " after waiting " + formatSeconds(wait_s) + " s";
   throw Error(message + "; " + kStartHint);
 }
 
-cm::IpcClient connectForName(const std::string& name, const std::string& ns_option) {
+servoloop::ipc::IpcClient connectForName(const std::string& name, const std::string& ns_option) {
   if (!normalizeNamespace(ns_option).empty()) return connectToRobotNode(ns_option);
   const auto accepting = acceptingNodes();
-  const cm::IpcNodeEntry* best = nullptr;
+  const servoloop::ipc::IpcNodeEntry* best = nullptr;
   for (const auto& node : accepting) {
     if (isPrefixNamespace(node.node_name, name) &&
         (best == nullptr || node.node_name.size() > best->node_name.size())) {
@@ -157,17 +156,17 @@ cm::IpcClient connectForName(const std::string& name, const std::string& ns_opti
   if (best != nullptr) return connectTo(*best);
   if (auto node = onlyNode(accepting)) return connectTo(*node);
   throw Error("no servoloop node is running for '" + name + "' (run directory " +
-              cm::ipcRunDirectory().string() + "); " + kStartHint);
+              servoloop::ipc::ipcRunDirectory().string() + "); " + kStartHint);
 }
 
-cm::IpcClient connectToWorld() {
+servoloop::ipc::IpcClient connectToWorld() {
   const auto accepting = acceptingNodes();
   for (const auto& node : accepting) {
     if (node.node_name == "/") return connectTo(node);
   }
   if (accepting.size() == 1) return connectTo(accepting.front());
   if (accepting.empty()) {
-    throw Error("no servoloop world is running (run directory " + cm::ipcRunDirectory().string() +
+    throw Error("no servoloop world is running (run directory " + servoloop::ipc::ipcRunDirectory().string() +
                 "); " + kStartHint);
   }
   throw Error("several servoloop nodes are running (" + joinNames(accepting) +
@@ -181,7 +180,7 @@ std::vector<std::string> runningNodeNames() {
   return names;
 }
 
-cm::IpcClient connectToNodeNamed(const std::string& node_name) {
+servoloop::ipc::IpcClient connectToNodeNamed(const std::string& node_name) {
   for (const auto& node : acceptingNodes()) {
     if (node.node_name == node_name) return connectTo(node);
   }

@@ -17,7 +17,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "servoloop/controller_manager/ipc_client.hpp"
+#include "servoloop/ipc/ipc_client.hpp"
 
 namespace servoloop::cli {
 
@@ -39,23 +39,23 @@ std::string describeRunningNodes();
 // robot node running. Waits up to `wait_s` seconds for such a node to accept
 // (0 with wait == true: forever; wait == false: a single look). Throws
 // servoloop::Error naming the namespace, the running nodes and the fix.
-controller_manager::IpcClient connectToRobotNode(const std::string& ns, double wait_s = 0.0,
+servoloop::ipc::IpcClient connectToRobotNode(const std::string& ns, double wait_s = 0.0,
                                                  bool wait = false);
 
 // Connects to the node serving `name` (a topic or parameter, absolute): the
 // --namespace node if `ns` is set, else the longest running namespace that
 // prefixes `name`, else the only robot node (or the world's socket).
-controller_manager::IpcClient connectForName(const std::string& name, const std::string& ns);
+servoloop::ipc::IpcClient connectForName(const std::string& name, const std::string& ns);
 
 // Connects to the world: default.sock if it is served, else the only node.
-controller_manager::IpcClient connectToWorld();
+servoloop::ipc::IpcClient connectToWorld();
 
 // The name of every node accepting connections now, sorted (e.g. "/arm/left",
 // "/one_DOF_robot"; "/" for a world's socket).
 std::vector<std::string> runningNodeNames();
 
 // Connects to the running node of that exact name (as runningNodeNames gives it).
-controller_manager::IpcClient connectToNodeNamed(const std::string& node_name);
+servoloop::ipc::IpcClient connectToNodeNamed(const std::string& node_name);
 
 // One message a node pushed on a `topic.subscribe` stream. The node sends
 // {"stream": TOPIC, "type": T, "stamp": S, "msg": {...}}; fields given inline

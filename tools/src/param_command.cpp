@@ -14,12 +14,11 @@
 
 #include "command_registry.hpp"
 #include "node_connection.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 
 struct ParamOptions {
   std::string ns;  // --namespace: which node
@@ -66,14 +65,14 @@ std::string namespaceArgument(const ParamOptions& options) {
 void runLoad(const ParamOptions& options) {
   const std::string file = existingFileArgument(options.file, "parameter file");
   const std::string ns = namespaceArgument(options);
-  cm::IpcClient client = connectForName(ns == "/" ? "/" : ns + "/", options.ns);
+  servoloop::ipc::IpcClient client = connectForName(ns == "/" ? "/" : ns + "/", options.ns);
   client.call("param.load", {{"file", file}, {"namespace", ns}});
   std::cout << "Loaded " << file << " into " << ns << "\n";
 }
 
 void runGet(const ParamOptions& options) {
   const std::string name = resolveName(options.ns, options.name);
-  cm::IpcClient client = connectForName(name, options.ns);
+  servoloop::ipc::IpcClient client = connectForName(name, options.ns);
   const auto value = client.call("param.get", {{"name", name}}).value("value", nlohmann::json());
   if (options.json) {
     std::cout << value.dump() << "\n";
@@ -86,7 +85,7 @@ void runGet(const ParamOptions& options) {
 
 void runSet(const ParamOptions& options) {
   const std::string name = resolveName(options.ns, options.name);
-  cm::IpcClient client = connectForName(name, options.ns);
+  servoloop::ipc::IpcClient client = connectForName(name, options.ns);
   // Sent as text: the node types it as YAML would (1 → int, 1.0 → double,
   // "1" → string), exactly like a value in a parameter file.
   client.call("param.set", {{"name", name}, {"value", options.value}});
@@ -94,7 +93,7 @@ void runSet(const ParamOptions& options) {
 
 void runDump(const ParamOptions& options) {
   const std::string ns = namespaceArgument(options);
-  cm::IpcClient client = connectForName(ns == "/" ? "/" : ns + "/", options.ns);
+  servoloop::ipc::IpcClient client = connectForName(ns == "/" ? "/" : ns + "/", options.ns);
   const std::string yaml = client.call("param.dump", {{"namespace", ns}}).value("yaml", "");
   if (options.output.empty()) {
     std::cout << yaml << (yaml.empty() || yaml.back() == '\n' ? "" : "\n");
@@ -108,7 +107,7 @@ void runDump(const ParamOptions& options) {
 
 void runList(const ParamOptions& options) {
   const std::string ns = namespaceArgument(options);
-  cm::IpcClient client = connectForName(ns == "/" ? "/" : ns + "/", options.ns);
+  servoloop::ipc::IpcClient client = connectForName(ns == "/" ? "/" : ns + "/", options.ns);
   const auto names = client.call("param.list", {{"namespace", ns}})
                          .value("names", nlohmann::json::array());
   if (options.json) {

@@ -20,7 +20,7 @@
 #include "node_connection.hpp"
 #include "plot_gnuplot.hpp"
 #include "plot_live.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {

@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "plot_csv.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 

@@ -5,14 +5,13 @@
 #include <memory>
 
 #include "node_connection.hpp"
-#include "servoloop/controller_manager/ipc_client.hpp"
-#include "servoloop/controller_manager/message_json.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/ipc/ipc_client.hpp"
+#include "servoloop/node/message_json.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 using Clock = std::chrono::steady_clock;
 
 // How long one pass over the subscriptions waits for a message, in total.
@@ -20,7 +19,7 @@ constexpr double kPollSlice_s = 0.02;
 
 struct Capture {
   LiveRecording recording;
-  cm::IpcClient client;
+  servoloop::ipc::IpcClient client;
   std::ofstream out;
 };
 
@@ -33,9 +32,9 @@ void writeMessage(Capture& capture, const StreamMessage& message) {
       throw Error("cannot write '" + recording.csv.string() + "' (recording topic '" + recording.topic +
                   "'); choose a writable folder");
     }
-    capture.out << cm::csvHeader(message.type, message.msg) << '\n';
+    capture.out << servoloop::node::csvHeader(message.type, message.msg) << '\n';
   }
-  capture.out << cm::csvRow(message.type, Time(message.stamp.value_or(0.0)), message.msg) << '\n';
+  capture.out << servoloop::node::csvRow(message.type, Time(message.stamp.value_or(0.0)), message.msg) << '\n';
   ++recording.messages;
 }
 

@@ -10,12 +10,11 @@
 
 #include "command_registry.hpp"
 #include "node_connection.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 
 // Spawning loads the model, its hardware and plugins on the node.
 constexpr double kSpawnCallTimeoutS = 60.0;
@@ -36,7 +35,7 @@ void runSpawnModel(const SpawnModelOptions& options) {
   if (!options.ns.empty()) request["namespace"] = normalizeNamespace(options.ns);
   if (!params.empty()) request["params"] = params;
 
-  cm::IpcClient client = connectToWorld();
+  servoloop::ipc::IpcClient client = connectToWorld();
   const auto reply = client.call("model.spawn", request, kSpawnCallTimeoutS);
   std::cout << "Spawned model '" << options.model << "' in namespace "
             << reply.value("namespace", normalizeNamespace(options.ns)) << "\n";

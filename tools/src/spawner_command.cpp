@@ -3,6 +3,7 @@
 // reported and skipped), then starts every loaded one in one STRICT switch.
 // YAML file arguments are loaded into the parameters first. Unlike ros_control,
 // a controller manager that never appears is an error (non-zero exit).
+#include <algorithm>
 #include <csignal>
 
 #include <filesystem>
@@ -16,12 +17,11 @@
 
 #include "command_registry.hpp"
 #include "node_connection.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 namespace fs = std::filesystem;
 
 struct SpawnerOptions {
@@ -60,7 +60,7 @@ nlohmann::json strictSwitch(const std::vector<std::string>& start,
 
 // Stops the spawned controllers (STRICT) and unloads them in reverse order.
 // Returns false if any step failed (each failure is reported on stderr).
-bool stopAndUnload(cm::IpcClient& client, const std::vector<std::string>& loaded, bool started,
+bool stopAndUnload(servoloop::ipc::IpcClient& client, const std::vector<std::string>& loaded, bool started,
                    double timeout_s) {
   bool ok = true;
   const double call_timeout_s = timeout_s > 0.0 ? timeout_s : 0.0;
@@ -91,7 +91,19 @@ void runSpawner(const SpawnerOptions& options) {
   // leads to a clean unload of what was spawned so far.
   if (options.unload_on_kill) installStopSignalHandlers();
 
-  cm::IpcClient client = connectToRobotNode(options.ns, options.timeout_s, /*wait=*/true);
+  // As ROS's spawner says "Waiting for service ...": a user who started the
+  // spawner before the node sees what it is waiting for.
+  const std::string ns = normalizeNamespace(options.ns);
+  const auto running = runningNodeNames();
+  const bool present = ns.empty() ? !running.empty()
+                                  : std::find(running.begin(), running.end(), ns) != running.end();
+  if (!present) {
+    std::cout << "spawner: waiting for the servoloop node"
+              << (ns.empty() ? std::string() : " of namespace '" + ns + "'");
+    if (options.timeout_s > 0.0) std::cout << " (up to " << options.timeout_s << " s)";
+    std::cout << std::endl;
+  }
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns, options.timeout_s, /*wait=*/true);
 
   // YAML files first, whatever their position among the names.
   std::vector<std::string> names;

@@ -20,14 +20,13 @@
 
 #include "command_registry.hpp"
 #include "node_connection.hpp"
-#include "servoloop/controller_manager/message_json.hpp"
-#include "servoloop/controller_manager/messages.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/node/message_json.hpp"
+#include "servoloop/realtime/messages.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
 namespace {
 
-namespace cm = servoloop::controller_manager;
 using Clock = std::chrono::steady_clock;
 
 struct TopicOptions {
@@ -46,20 +45,20 @@ struct TopicOptions {
 // The message in its full JSON form, checked against its type; throws
 // servoloop::Error naming the type and field for a bad value or unknown type.
 nlohmann::json normalizeMessage(const std::string& type, const nlohmann::json& value) {
-  if (type == cm::std_msgs::Float64::kTypeName) {
-    return cm::toJson(cm::messageFromJson<cm::std_msgs::Float64>(value));
+  if (type == servoloop::std_msgs::Float64::kTypeName) {
+    return servoloop::node::toJson(servoloop::node::messageFromJson<servoloop::std_msgs::Float64>(value));
   }
-  if (type == cm::std_msgs::Float64MultiArray::kTypeName) {
-    return cm::toJson(cm::messageFromJson<cm::std_msgs::Float64MultiArray>(value));
+  if (type == servoloop::std_msgs::Float64MultiArray::kTypeName) {
+    return servoloop::node::toJson(servoloop::node::messageFromJson<servoloop::std_msgs::Float64MultiArray>(value));
   }
-  if (type == cm::sensor_msgs::JointState::kTypeName) {
-    return cm::toJson(cm::messageFromJson<cm::sensor_msgs::JointState>(value));
+  if (type == servoloop::sensor_msgs::JointState::kTypeName) {
+    return servoloop::node::toJson(servoloop::node::messageFromJson<servoloop::sensor_msgs::JointState>(value));
   }
-  if (type == cm::control_msgs::JointControllerState::kTypeName) {
-    return cm::toJson(cm::messageFromJson<cm::control_msgs::JointControllerState>(value));
+  if (type == servoloop::control_msgs::JointControllerState::kTypeName) {
+    return servoloop::node::toJson(servoloop::node::messageFromJson<servoloop::control_msgs::JointControllerState>(value));
   }
   std::string known;
-  for (const auto& name : cm::knownMessageTypes()) known += (known.empty() ? "" : ", ") + name;
+  for (const auto& name : servoloop::node::knownMessageTypes()) known += (known.empty() ? "" : ", ") + name;
   throw Error("unknown message type '" + type + "'; known types: " + known);
 }
 
@@ -88,8 +87,8 @@ std::string dumpSpaced(const nlohmann::ordered_json& value) {
 // `echo --json` line: a JointState as {"stamp", "name", "position", "velocity",
 // "effort"} in that order; other types with their fields as the node sent them.
 std::string echoJsonLine(const StreamMessage& message) {
-  if (message.type == cm::sensor_msgs::JointState::kTypeName) {
-    const auto state = cm::messageFromJson<cm::sensor_msgs::JointState>(message.msg);
+  if (message.type == servoloop::sensor_msgs::JointState::kTypeName) {
+    const auto state = servoloop::node::messageFromJson<servoloop::sensor_msgs::JointState>(message.msg);
     nlohmann::ordered_json line;
     line["stamp"] = message.msg.contains("stamp") ? state.stamp : message.stamp.value_or(0.0);
     line["name"] = state.name;
@@ -102,8 +101,8 @@ std::string echoJsonLine(const StreamMessage& message) {
 }
 
 std::string echoText(const StreamMessage& message) {
-  std::string text = cm::isKnownMessageType(message.type)
-                         ? cm::messageToText(message.type, message.msg)
+  std::string text = servoloop::node::isKnownMessageType(message.type)
+                         ? servoloop::node::messageToText(message.type, message.msg)
                          : message.msg.dump();
   while (!text.empty() && text.back() == '\n') text.pop_back();
   return text;
@@ -113,10 +112,10 @@ std::string echoText(const StreamMessage& message) {
 
 void runPub(const TopicOptions& options) {
   const std::string topic = resolveName(options.ns, options.topic);
-  const auto msg = normalizeMessage(options.type, cm::parseMessageText(options.value, "VALUE"));
+  const auto msg = normalizeMessage(options.type, servoloop::node::parseMessageText(options.value, "VALUE"));
   if (options.rate_hz < 0.0) throw Error("-r/--rate must be > 0 (messages per second)");
   if (options.count < 0) throw Error("-n/--count must be >= 0");
-  cm::IpcClient client = connectForName(topic, options.ns);
+  servoloop::ipc::IpcClient client = connectForName(topic, options.ns);
   const nlohmann::json request{{"topic", topic}, {"type", options.type}, {"msg", msg}};
 
   if (options.rate_hz == 0.0) {
@@ -147,7 +146,7 @@ void runPub(const TopicOptions& options) {
 // Subscribes `client` to `topic` and hands each message to `on_message` until
 // it returns false, a stop is requested, or the node goes away.
 template <class OnMessage>
-void forEachMessage(cm::IpcClient& client, const std::string& topic, OnMessage on_message) {
+void forEachMessage(servoloop::ipc::IpcClient& client, const std::string& topic, OnMessage on_message) {
   installStopSignalHandlers();
   client.call("topic.subscribe", {{"topic", topic}});
   while (!stopRequested()) {
@@ -166,7 +165,7 @@ void forEachMessage(cm::IpcClient& client, const std::string& topic, OnMessage o
 void runEcho(const TopicOptions& options) {
   if (options.count < 0) throw Error("-n/--count must be >= 0");
   const std::string topic = resolveName(options.ns, options.topic);
-  cm::IpcClient client = connectForName(topic, options.ns);
+  servoloop::ipc::IpcClient client = connectForName(topic, options.ns);
   int received = 0;
   forEachMessage(client, topic, [&](const StreamMessage& message) {
     if (options.json) {
@@ -181,7 +180,7 @@ void runEcho(const TopicOptions& options) {
 
 // One node's topics, each tagged with the node ({name, type, publishers,
 // subscribers, node}).
-nlohmann::json nodeTopics(cm::IpcClient& client, const std::string& node_name) {
+nlohmann::json nodeTopics(servoloop::ipc::IpcClient& client, const std::string& node_name) {
   nlohmann::json topics = client.call("topic.list").value("topics", nlohmann::json::array());
   for (auto& topic : topics) topic["node"] = node_name;
   return topics;
@@ -193,7 +192,7 @@ nlohmann::json nodeTopics(cm::IpcClient& client, const std::string& node_name) {
 // goes away while it is asked is skipped. Fails only when no node answered.
 nlohmann::json listTopics(const std::string& ns_option) {
   if (!normalizeNamespace(ns_option).empty()) {
-    cm::IpcClient client = connectToRobotNode(ns_option);
+    servoloop::ipc::IpcClient client = connectToRobotNode(ns_option);
     return nodeTopics(client, normalizeNamespace(ns_option));
   }
   const std::vector<std::string> nodes = runningNodeNames();
@@ -203,7 +202,7 @@ nlohmann::json listTopics(const std::string& ns_option) {
   bool answered = false;
   for (const std::string& node_name : nodes) {
     try {
-      cm::IpcClient client = connectToNodeNamed(node_name);
+      servoloop::ipc::IpcClient client = connectToNodeNamed(node_name);
       for (auto& topic : nodeTopics(client, node_name)) topics.push_back(std::move(topic));
       answered = true;
     } catch (const Error& error) {
@@ -299,7 +298,7 @@ void runHz(const TopicOptions& options) {
   if (options.count < 0) throw Error("-n/--count must be >= 0");
   if (options.window == 0) throw Error("--window must be at least 1");
   const std::string topic = resolveName(options.ns, options.topic);
-  cm::IpcClient client = connectForName(topic, options.ns);
+  servoloop::ipc::IpcClient client = connectForName(topic, options.ns);
   IntervalWindow sim(options.window);
   IntervalWindow wall(options.window);
   const auto start = Clock::now();

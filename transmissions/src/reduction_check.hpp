@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::transmissions::detail {
 

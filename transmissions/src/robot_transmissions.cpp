@@ -6,8 +6,8 @@
 #include <string_view>
 #include <utility>
 
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 

@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "servoloop/controller_manager/topic_bus.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::controllers {
 
-namespace cm = controller_manager;
 
 namespace {
 bool allFinite(const std::vector<double>& values) {
@@ -16,16 +15,16 @@ bool allFinite(const std::vector<double>& values) {
 }
 }  // namespace
 
-void ScalarCommandInput::connect(cm::TopicBus* bus, const std::string& topic,
+void ScalarCommandInput::connect(servoloop::realtime::TopicBus* bus, const std::string& topic,
                                  const std::string& controller_name) {
   topic_ = topic;
   if (bus == nullptr) return;
-  input_ = bus->commandInput<cm::std_msgs::Float64>(topic);
+  input_ = bus->commandInput<servoloop::std_msgs::Float64>(topic);
   // Runs on the delivery thread: it may log. Only the first bad command is
   // logged, so a publisher stuck on NaN does not flood the log.
   auto logged = std::make_shared<std::atomic<bool>>(false);
-  checker_ = bus->subscribe<cm::std_msgs::Float64>(
-      topic, [topic, controller_name, logged](const cm::std_msgs::Float64& msg) {
+  checker_ = bus->subscribe<servoloop::std_msgs::Float64>(
+      topic, [topic, controller_name, logged](const servoloop::std_msgs::Float64& msg) {
         if (!std::isfinite(msg.data) && !logged->exchange(true)) {
           logger().warn("controller '{}': ignoring non-finite command {} on {} (the previous "
                         "command stays; further ones are only counted)",
@@ -36,7 +35,7 @@ void ScalarCommandInput::connect(cm::TopicBus* bus, const std::string& topic,
 
 bool ScalarCommandInput::takeNew(double& value) noexcept {
   if (!input_.hasNewMessage()) return false;
-  const cm::std_msgs::Float64* msg = input_.latest();
+  const servoloop::std_msgs::Float64* msg = input_.latest();
   if (msg == nullptr) return false;
   if (!std::isfinite(msg->data)) {
     rejected_->non_finite.fetch_add(1, std::memory_order_relaxed);
@@ -46,19 +45,19 @@ bool ScalarCommandInput::takeNew(double& value) noexcept {
   return true;
 }
 
-void ArrayCommandInput::connect(cm::TopicBus* bus, const std::string& topic, std::size_t size,
+void ArrayCommandInput::connect(servoloop::realtime::TopicBus* bus, const std::string& topic, std::size_t size,
                                 const std::string& controller_name) {
   topic_ = topic;
   size_ = size;
   if (bus == nullptr) return;
-  cm::std_msgs::Float64MultiArray prototype;
+  servoloop::std_msgs::Float64MultiArray prototype;
   prototype.data.assign(size, 0.0);
-  input_ = bus->commandInput<cm::std_msgs::Float64MultiArray>(topic, prototype);
+  input_ = bus->commandInput<servoloop::std_msgs::Float64MultiArray>(topic, prototype);
   auto logged_size = std::make_shared<std::atomic<bool>>(false);
   auto logged_non_finite = std::make_shared<std::atomic<bool>>(false);
-  checker_ = bus->subscribe<cm::std_msgs::Float64MultiArray>(
+  checker_ = bus->subscribe<servoloop::std_msgs::Float64MultiArray>(
       topic, [topic, controller_name, size, logged_size,
-              logged_non_finite](const cm::std_msgs::Float64MultiArray& msg) {
+              logged_non_finite](const servoloop::std_msgs::Float64MultiArray& msg) {
         if (msg.data.size() != size) {
           if (!logged_size->exchange(true)) {
             logger().warn("controller '{}': ignoring a command with {} values on {}: it drives {} "
@@ -75,7 +74,7 @@ void ArrayCommandInput::connect(cm::TopicBus* bus, const std::string& topic, std
 
 bool ArrayCommandInput::takeNew(std::vector<double>& values) noexcept {
   if (!input_.hasNewMessage()) return false;
-  const cm::std_msgs::Float64MultiArray* msg = input_.latest();
+  const servoloop::std_msgs::Float64MultiArray* msg = input_.latest();
   if (msg == nullptr) return false;
   if (msg->data.size() != size_ || values.size() != size_) {
     rejected_->wrong_size.fetch_add(1, std::memory_order_relaxed);

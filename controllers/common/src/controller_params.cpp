@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "servoloop/controller_manager/topic_bus.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 
@@ -41,12 +41,12 @@ std::string parameterPath(const ControllerContext& context, const std::string& k
 }
 
 std::string controllerTopic(const ControllerContext& context, const std::string& leaf) {
-  return controller_manager::TopicBus::normalizeTopicName(context.robot_namespace + "/" +
+  return servoloop::realtime::TopicBus::normalizeTopicName(context.robot_namespace + "/" +
                                                           context.name + "/" + leaf);
 }
 
 std::string namespaceTopic(const ControllerContext& context, const std::string& leaf) {
-  return controller_manager::TopicBus::normalizeTopicName(context.robot_namespace + "/" + leaf);
+  return servoloop::realtime::TopicBus::normalizeTopicName(context.robot_namespace + "/" + leaf);
 }
 
 std::string requireString(const ControllerContext& context, const std::string& key,

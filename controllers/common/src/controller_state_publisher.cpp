@@ -1,10 +1,10 @@
 #include "servoloop/controllers/common/controller_state_publisher.hpp"
 
-#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 
 namespace servoloop::controllers {
 
-void ControllerStatePublisher::advertise(controller_manager::TopicBus* bus, const std::string& topic) {
+void ControllerStatePublisher::advertise(servoloop::realtime::TopicBus* bus, const std::string& topic) {
   if (bus == nullptr) return;
   publisher_ = bus->advertise<Message>(topic);
 }

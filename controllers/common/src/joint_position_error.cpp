@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "servoloop/controllers/common/angles.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_limits.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 

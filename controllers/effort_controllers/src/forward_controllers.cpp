@@ -2,7 +2,7 @@
 // templates in controllers/common).
 #include "servoloop/controllers/effort_controllers/forward_controllers.hpp"
 
-#include "servoloop/controller_manager/plugin_register.hpp"
+#include "servoloop/plugin/plugin_register.hpp"
 
 SERVOLOOP_REGISTER_PLUGIN(servoloop::controllers::effort_controllers::JointEffortController,
                           servoloop::controller_manager::ControllerBase,

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <string>
 
-#include "servoloop/controller_manager/plugin_register.hpp"
+#include "servoloop/plugin/plugin_register.hpp"
 #include "servoloop/controllers/common/controller_params.hpp"
 #include "servoloop/controllers/common/joint_handles.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::controllers::effort_controllers {
 

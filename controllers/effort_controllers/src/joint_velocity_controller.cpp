@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "servoloop/controller_manager/plugin_register.hpp"
+#include "servoloop/plugin/plugin_register.hpp"
 #include "servoloop/controllers/common/controller_params.hpp"
 #include "servoloop/controllers/common/joint_handles.hpp"
 

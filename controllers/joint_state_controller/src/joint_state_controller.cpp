@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <string>
 
-#include "servoloop/controller_manager/plugin_register.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/plugin/plugin_register.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/controllers/common/controller_params.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
-#include "servoloop/hardware_interface/logging.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::controllers {
 
@@ -20,7 +20,7 @@ bool JointStateController::init(hardware_interface::JointStateInterface* hw,
   std::vector<std::string> names = hw->getNames();
   std::sort(names.begin(), names.end());
   joints_.clear();
-  prototype_ = cm::sensor_msgs::JointState{};
+  prototype_ = servoloop::sensor_msgs::JointState{};
   for (const auto& name : names) {
     joints_.push_back(hw->getHandle(name));
     prototype_.name.push_back(name);
@@ -31,7 +31,7 @@ bool JointStateController::init(hardware_interface::JointStateInterface* hw,
   readExtraJoints(context);
 
   if (context.topics != nullptr) {
-    publisher_ = context.topics->advertise<cm::sensor_msgs::JointState>(
+    publisher_ = context.topics->advertise<servoloop::sensor_msgs::JointState>(
         namespaceTopic(context, "joint_states"), prototype_);
     // The staging message starts as the prototype: names and the extra
     // joints' constants are in place, update() only writes the measured values.
@@ -91,7 +91,7 @@ ReturnType JointStateController::update(const Time& time, const Duration& period
   // A busy staging message (another thread inspecting it) only skips this
   // publication, as realtime_tools does.
   if (!publisher_.trylock()) return ReturnType::ok;
-  cm::sensor_msgs::JointState& msg = publisher_.msg();
+  servoloop::sensor_msgs::JointState& msg = publisher_.msg();
   msg.stamp = time.seconds;
   for (std::size_t i = 0; i < joints_.size(); ++i) {
     msg.position[i] = joints_[i].getPosition();

@@ -2,12 +2,12 @@
 
 #include <string>
 
-#include "servoloop/controller_manager/plugin_register.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
+#include "servoloop/plugin/plugin_register.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/controllers/common/angles.hpp"
 #include "servoloop/controllers/common/controller_params.hpp"
 #include "servoloop/controllers/common/joint_handles.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 
@@ -28,16 +28,16 @@ bool MinimalJointController::init(hardware_interface::EffortJointInterface* hw,
 
   command_input_.connect(context.topics, controllerTopic(context, "pos_cmd"), context.name);
   if (context.topics != nullptr) {
-    cm::TopicBus& topics = *context.topics;
+    servoloop::realtime::TopicBus& topics = *context.topics;
     position_publisher_ = topics.advertise<Float64>(controllerTopic(context, "jnt_pos"));
     velocity_publisher_ = topics.advertise<Float64>(controllerTopic(context, "jnt_vel"));
     effort_publisher_ = topics.advertise<Float64>(controllerTopic(context, "jnt_trq"));
     // As the seed's node: one joint, position and velocity only.
-    cm::sensor_msgs::JointState joint_state;
+    servoloop::sensor_msgs::JointState joint_state;
     joint_state.name = {joint_name};
     joint_state.position = {0.0};
     joint_state.velocity = {0.0};
-    joint_state_publisher_ = topics.advertise<cm::sensor_msgs::JointState>(
+    joint_state_publisher_ = topics.advertise<servoloop::sensor_msgs::JointState>(
         namespaceTopic(context, "joint_states"), joint_state);
     joint_state_publisher_.msg() = joint_state;
   }

@@ -5,7 +5,7 @@
 #include <thread>
 #include <type_traits>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 namespace {

@@ -2,7 +2,7 @@
 // controllers/common).
 #include "servoloop/controllers/position_controllers/forward_controllers.hpp"
 
-#include "servoloop/controller_manager/plugin_register.hpp"
+#include "servoloop/plugin/plugin_register.hpp"
 
 SERVOLOOP_REGISTER_PLUGIN(servoloop::controllers::position_controllers::JointPositionController,
                           servoloop::controller_manager::ControllerBase,

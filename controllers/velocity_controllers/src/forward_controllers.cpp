@@ -2,7 +2,7 @@
 // controllers/common).
 #include "servoloop/controllers/velocity_controllers/forward_controllers.hpp"
 
-#include "servoloop/controller_manager/plugin_register.hpp"
+#include "servoloop/plugin/plugin_register.hpp"
 
 SERVOLOOP_REGISTER_PLUGIN(servoloop::controllers::velocity_controllers::JointVelocityController,
                           servoloop::controller_manager::ControllerBase,

@@ -18,16 +18,15 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "servoloop/controller_manager/plugin_loader.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/hardware_interface/actuator_interfaces.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 
 namespace {
 
-namespace cm = servoloop::controller_manager;
 namespace hi = servoloop::hardware_interface;
 using servoloop::Duration;
 using servoloop::ReturnType;
@@ -50,7 +49,7 @@ class FirstOrderBackendTest : public ::testing::Test {
  protected:
   // The build folder first; SERVOLOOP_PLUGIN_PATH and the installed plugin
   // folder follow, as in a running node.
-  FirstOrderBackendTest() : loader_(cm::pluginSearchPath({MY_BACKENDS_PLUGIN_BUILD_DIR})) {}
+  FirstOrderBackendTest() : loader_(servoloop::plugin::pluginSearchPath({MY_BACKENDS_PLUGIN_BUILD_DIR})) {}
 
   // Creates the backend by type name and initialises it as a node would.
   void create(const std::string& urdf_xml, const std::string& urdf_path, const std::string& ns,
@@ -87,8 +86,8 @@ class FirstOrderBackendTest : public ::testing::Test {
     return hw_->get<hi::JointStateInterface>()->getHandle(joint);
   }
 
-  cm::PluginLoader loader_;
-  cm::PluginPtr<hi::RobotHW> hw_;
+  servoloop::plugin::PluginLoader loader_;
+  servoloop::plugin::PluginPtr<hi::RobotHW> hw_;
   hi::SimulatedRobotHW* sim_ = nullptr;
 };
 
@@ -97,9 +96,9 @@ class FirstOrderBackendTest : public ::testing::Test {
 const std::string kSeedParams = "{sim: {time_step: 0.01}, first_order: {time_constant: 0.1, damping: 2.0}}";
 
 TEST_F(FirstOrderBackendTest, ThePluginLoaderListsItAsARobotHwFromTheBuildFolder) {
-  const std::vector<cm::PluginTypeInfo> backends = loader_.listTypes("robot_hw");
+  const std::vector<servoloop::plugin::PluginTypeInfo> backends = loader_.listTypes("robot_hw");
   const auto it = std::find_if(backends.begin(), backends.end(),
-                               [](const cm::PluginTypeInfo& info) { return info.type == kType; });
+                               [](const servoloop::plugin::PluginTypeInfo& info) { return info.type == kType; });
   ASSERT_NE(it, backends.end()) << kType << " is not listed as a robot_hw type";
   EXPECT_EQ(std::filesystem::canonical(it->library).parent_path(),
             std::filesystem::canonical(MY_BACKENDS_PLUGIN_BUILD_DIR));

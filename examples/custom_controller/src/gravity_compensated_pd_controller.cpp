@@ -6,9 +6,9 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "servoloop/controller_manager/plugin_register.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/plugin/plugin_register.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace my_controllers {
 
@@ -101,9 +101,9 @@ bool GravityCompensatedPDController::init(hi::EffortJointInterface* hw, const cm
   joint_ = hw->getHandle(joint_name);
 
   // The command input is made here, off the real-time thread; update() only reads it.
-  command_topic_ = cm::TopicBus::normalizeTopicName(context.robot_namespace + "/" + context.name + "/command");
+  command_topic_ = servoloop::realtime::TopicBus::normalizeTopicName(context.robot_namespace + "/" + context.name + "/command");
   if (context.topics != nullptr) {
-    command_ = context.topics->commandInput<cm::std_msgs::Float64>(command_topic_);
+    command_ = context.topics->commandInput<servoloop::std_msgs::Float64>(command_topic_);
   }
   return true;
 }
@@ -118,7 +118,7 @@ servoloop::ReturnType GravityCompensatedPDController::update(const servoloop::Ti
                                                              const servoloop::Duration& /*period*/) {
   // Take the newest command, if one came; a non-finite one is ignored and the
   // previous setpoint stays.
-  if (const cm::std_msgs::Float64* command = command_.latest()) {
+  if (const servoloop::std_msgs::Float64* command = command_.latest()) {
     if (std::isfinite(command->data)) position_setpoint_ = command->data;
   }
 

@@ -15,9 +15,9 @@
 
 #include "servoloop/controller_manager/controller_base.hpp"
 #include "servoloop/controller_manager/controller_context.hpp"
-#include "servoloop/controller_manager/plugin_loader.hpp"
-#include "servoloop/controller_manager/topic_bus.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 
@@ -54,7 +54,7 @@ class GravityCompensatedPDTest : public ::testing::Test {
  protected:
   // The build folder first; SERVOLOOP_PLUGIN_PATH and the installed plugin
   // folder follow, as in a running node.
-  GravityCompensatedPDTest() : loader_(cm::pluginSearchPath({MY_CONTROLLERS_PLUGIN_BUILD_DIR})) {}
+  GravityCompensatedPDTest() : loader_(servoloop::plugin::pluginSearchPath({MY_CONTROLLERS_PLUGIN_BUILD_DIR})) {}
 
   cm::ControllerContext context(const std::string& params_yaml) {
     cm::ControllerContext ctx;
@@ -66,14 +66,14 @@ class GravityCompensatedPDTest : public ::testing::Test {
   }
 
   // Loads and initialises the controller as the manager's loadController does.
-  cm::PluginPtr<cm::ControllerBase> load(const std::string& params_yaml) {
+  servoloop::plugin::PluginPtr<cm::ControllerBase> load(const std::string& params_yaml) {
     auto controller = loader_.create<cm::ControllerBase>(kType);
     EXPECT_TRUE(controller->initRequest(&hw_, context(params_yaml), claimed_));
     return controller;
   }
 
-  cm::PluginLoader loader_;
-  cm::TopicBus bus_;
+  servoloop::plugin::PluginLoader loader_;
+  servoloop::realtime::TopicBus bus_;
   OneJointHW hw_;
   std::vector<hi::InterfaceResources> claimed_;
 };
@@ -81,9 +81,9 @@ class GravityCompensatedPDTest : public ::testing::Test {
 const std::string kParams = "{joint: joint1, kp: 20.0, kd: 2.0, gravity_torque: 4.905}";
 
 TEST_F(GravityCompensatedPDTest, PluginLoaderFindsTheTypeInTheBuiltLibrary) {
-  const std::vector<cm::PluginTypeInfo> controllers = loader_.listTypes("controller");
+  const std::vector<servoloop::plugin::PluginTypeInfo> controllers = loader_.listTypes("controller");
   const auto it = std::find_if(controllers.begin(), controllers.end(),
-                               [](const cm::PluginTypeInfo& info) { return info.type == kType; });
+                               [](const servoloop::plugin::PluginTypeInfo& info) { return info.type == kType; });
   ASSERT_NE(it, controllers.end()) << kType << " is not listed as a controller type";
   EXPECT_EQ(std::filesystem::canonical(it->library).parent_path(),
             std::filesystem::canonical(MY_CONTROLLERS_PLUGIN_BUILD_DIR));
@@ -111,7 +111,7 @@ TEST_F(GravityCompensatedPDTest, TracksTheCommandTopicWithPdPlusGravityCompensat
   auto controller = load(kParams);
   ASSERT_TRUE(controller->startRequest(Time(0.0)));
   ASSERT_TRUE(bus_.hasTopic("/robot/arm_pd/command"));
-  bus_.publish("/robot/arm_pd/command", cm::std_msgs::Float64{1.0});
+  bus_.publish("/robot/arm_pd/command", servoloop::std_msgs::Float64{1.0});
   hw_.velocity = 0.5;
   ASSERT_EQ(controller->updateRequest(Time(0.01), Duration(0.01)), servoloop::ReturnType::ok);
   // 20·(1.0 − 0.3) − 2·0.5 − 4.905·sin(0.3) = 14 − 1 − 1.4495266137 = 11.5504733863 N·m.
@@ -121,10 +121,10 @@ TEST_F(GravityCompensatedPDTest, TracksTheCommandTopicWithPdPlusGravityCompensat
 TEST_F(GravityCompensatedPDTest, ClampsTheEffortToMaxEffort) {
   auto controller = load("{joint: joint1, kp: 20.0, max_effort: 5.0}");
   ASSERT_TRUE(controller->startRequest(Time(0.0)));
-  bus_.publish("/robot/arm_pd/command", cm::std_msgs::Float64{1.0});
+  bus_.publish("/robot/arm_pd/command", servoloop::std_msgs::Float64{1.0});
   controller->updateRequest(Time(0.01), Duration(0.01));
   EXPECT_DOUBLE_EQ(hw_.effort_command, 5.0);  // 20·1.0 = 20 N·m, clamped
-  bus_.publish("/robot/arm_pd/command", cm::std_msgs::Float64{-1.0});
+  bus_.publish("/robot/arm_pd/command", servoloop::std_msgs::Float64{-1.0});
   controller->updateRequest(Time(0.02), Duration(0.01));
   EXPECT_DOUBLE_EQ(hw_.effort_command, -5.0);
 }

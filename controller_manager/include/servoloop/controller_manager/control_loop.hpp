@@ -26,14 +26,17 @@
 
 #include "servoloop/controller_manager/loop_hardware_errors.hpp"
 #include "servoloop/controller_manager/loop_statistics.hpp"
-#include "servoloop/hardware_interface/return_type.hpp"
+#include "servoloop/core/return_type.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/time.hpp"
+
+namespace servoloop::realtime {
+class TopicBus;  // servoloop/realtime/topic_bus.hpp
+}
 
 namespace servoloop::controller_manager {
 
 class ControllerManager;  // controller_manager.hpp
-class TopicBus;           // topic_bus.hpp
 
 // What a node plugs into the loop to do its own real-time work each control
 // cycle (e.g. publish the loop's clock, poll an emergency-stop input).
@@ -53,7 +56,7 @@ struct LoopCommonOptions {
   // When set, its clock is set to the control time at the start of every
   // cycle, so messages published by controllers carry control (simulated) time.
   // May be null. Must outlive the loop.
-  TopicBus* topic_bus = nullptr;
+  realtime::TopicBus* topic_bus = nullptr;
   // Stop the loop after this many cycles in a row with a hardware error;
   // 0 (default): never stop for errors, only count and report them.
   std::uint64_t stop_after_failed_cycles = 0;

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "servoloop/controller_manager/controller_base.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controller_manager {
 

@@ -19,9 +19,9 @@
 #include "servoloop/hardware_interface/actuator_interfaces.hpp"
 #include "servoloop/hardware_interface/controller_info.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
-#include "servoloop/hardware_interface/return_type.hpp"
+#include "servoloop/core/return_type.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/time.hpp"
 
 namespace servoloop::controller_manager {
 

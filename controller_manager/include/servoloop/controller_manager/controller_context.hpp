@@ -6,10 +6,14 @@
 #include <urdf_model/model.h>
 #include <yaml-cpp/yaml.h>
 
-namespace servoloop::controller_manager {
+namespace servoloop::realtime {
+class TopicBus;  // servoloop/realtime/topic_bus.hpp
+}
+namespace servoloop::params {
+class ParameterStore;  // servoloop/params/parameter_store.hpp
+}
 
-class TopicBus;        // topic_bus.hpp
-class ParameterStore;  // parameter_store.hpp
+namespace servoloop::controller_manager {
 
 // Handed to ControllerBase::initRequest (non-real-time). The manager fills one
 // per controller from its own template: name and params are the controller's,
@@ -18,8 +22,8 @@ struct ControllerContext {
   std::string name;              // controller name, e.g. "joint1_position_controller"
   std::string robot_namespace;   // e.g. "/one_DOF_robot"
   YAML::Node params;             // the controller's own parameter subtree (<ns>/<name>)
-  TopicBus* topics = nullptr;    // may be null (tests)
-  const ParameterStore* parameters = nullptr;  // whole store; may be null
+  realtime::TopicBus* topics = nullptr;    // may be null (tests)
+  const params::ParameterStore* parameters = nullptr;  // whole store; may be null
   std::shared_ptr<const urdf::ModelInterface> robot_model;  // may be null
   double manager_update_rate_hz = 0.0;  // 0 when the manager runs at no fixed rate
 };

@@ -30,7 +30,7 @@
 #include "servoloop/controller_manager/controller_spec.hpp"
 #include "servoloop/controller_manager/switch_request.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/time.hpp"
 
 namespace servoloop::controller_manager {
 

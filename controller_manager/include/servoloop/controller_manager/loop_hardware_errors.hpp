@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "servoloop/hardware_interface/return_type.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/return_type.hpp"
+#include "servoloop/core/time.hpp"
 
 namespace servoloop::controller_manager {
 

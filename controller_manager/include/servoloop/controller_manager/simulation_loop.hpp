@@ -34,7 +34,7 @@
 
 #include "servoloop/controller_manager/control_loop.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
-#include "servoloop/hardware_interface/step_grid.hpp"
+#include "servoloop/core/step_grid.hpp"
 
 namespace servoloop::controller_manager {
 

@@ -25,8 +25,8 @@
 #include <string>
 
 #include "servoloop/controller_manager/controller.hpp"
-#include "servoloop/controller_manager/messages.hpp"
-#include "servoloop/controller_manager/realtime_subscriber.hpp"
+#include "servoloop/realtime/messages.hpp"
+#include "servoloop/realtime/realtime_subscriber.hpp"
 #include "servoloop/hardware_interface/joint_handle.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 
@@ -61,7 +61,7 @@ class GravityCompensatedPDController
 
   servoloop::hardware_interface::JointHandle joint_;
   std::string command_topic_;
-  servoloop::controller_manager::RealtimeSubscriber<servoloop::controller_manager::std_msgs::Float64> command_;
+  servoloop::realtime::RealtimeSubscriber<servoloop::std_msgs::Float64> command_;
 
   // Joint position to hold (rad); only the real-time thread touches it.
   double position_setpoint_ = 0.0;

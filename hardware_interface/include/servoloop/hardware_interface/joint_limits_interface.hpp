@@ -8,11 +8,11 @@
 
 #include "servoloop/hardware_interface/effort_joint_saturation_handle.hpp"
 #include "servoloop/hardware_interface/effort_joint_soft_limits_handle.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/hardware_interface.hpp"
 #include "servoloop/hardware_interface/position_joint_saturation_handle.hpp"
 #include "servoloop/hardware_interface/position_joint_soft_limits_handle.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/time.hpp"
 #include "servoloop/hardware_interface/velocity_joint_saturation_handle.hpp"
 #include "servoloop/hardware_interface/velocity_joint_soft_limits_handle.hpp"
 

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/hardware_interface.hpp"
 
 namespace servoloop::hardware_interface {

@@ -4,8 +4,8 @@
 #include "servoloop/hardware_interface/controller_info.hpp"
 #include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/hardware_interface/interface_manager.hpp"
-#include "servoloop/hardware_interface/return_type.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/return_type.hpp"
+#include "servoloop/core/time.hpp"
 
 namespace servoloop::hardware_interface {
 

@@ -3,7 +3,7 @@
 
 #include "servoloop/hardware_interface/joint_handle.hpp"
 #include "servoloop/hardware_interface/joint_limits.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/time.hpp"
 
 namespace servoloop::hardware_interface {
 

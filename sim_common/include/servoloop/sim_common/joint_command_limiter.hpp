@@ -9,7 +9,7 @@
 
 #include "servoloop/hardware_interface/joint_limits_loader.hpp"
 #include "servoloop/hardware_interface/joint_limits_interface.hpp"
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/time.hpp"
 #include "servoloop/sim_common/physics_engine.hpp"
 #include "servoloop/transmissions/robot_transmissions.hpp"
 

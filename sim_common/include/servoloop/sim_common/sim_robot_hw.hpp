@@ -36,7 +36,7 @@
 
 #include "servoloop/hardware_interface/joint_limits_loader.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
-#include "servoloop/hardware_interface/strong_index.hpp"
+#include "servoloop/core/strong_index.hpp"
 #include "servoloop/sim_common/joint_command_limiter.hpp"
 #include "servoloop/sim_common/physics_engine.hpp"
 #include "servoloop/sim_common/sim_settings.hpp"

@@ -42,7 +42,7 @@
 #include "servoloop/hardware_interface/actuator_interfaces.hpp"
 #include "servoloop/hardware_interface/interface_manager.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
-#include "servoloop/hardware_interface/strong_index.hpp"
+#include "servoloop/core/strong_index.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
 #include "servoloop/transmissions/transmission.hpp"
 #include "servoloop/transmissions/transmission_info.hpp"

@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "servoloop/controller_manager/messages.hpp"
-#include "servoloop/controller_manager/realtime_subscriber.hpp"
-#include "servoloop/controller_manager/topic_subscription.hpp"
+#include "servoloop/realtime/messages.hpp"
+#include "servoloop/realtime/realtime_subscriber.hpp"
+#include "servoloop/realtime/topic_subscription.hpp"
 
-namespace servoloop::controller_manager {
+namespace servoloop::realtime {
 class TopicBus;
 }
 
@@ -37,7 +37,7 @@ class ScalarCommandInput {
 
   // Non-real-time. Subscribes to topic on bus (nothing happens when bus is
   // null: the input then never has a command). controller_name is used in log messages.
-  void connect(controller_manager::TopicBus* bus, const std::string& topic,
+  void connect(servoloop::realtime::TopicBus* bus, const std::string& topic,
                const std::string& controller_name);
 
   // Real-time. Forgets commands published so far (a controller's starting()).
@@ -59,8 +59,8 @@ class ScalarCommandInput {
 
  private:
   std::string topic_;
-  controller_manager::RealtimeSubscriber<controller_manager::std_msgs::Float64> input_;
-  controller_manager::Subscription checker_;  // logs the first bad command, off the real-time thread
+  servoloop::realtime::RealtimeSubscriber<servoloop::std_msgs::Float64> input_;
+  servoloop::realtime::Subscription checker_;  // logs the first bad command, off the real-time thread
   std::shared_ptr<RejectedCommands> rejected_ = std::make_shared<RejectedCommands>();
 };
 
@@ -72,7 +72,7 @@ class ArrayCommandInput {
   ArrayCommandInput& operator=(const ArrayCommandInput&) = delete;
 
   // Non-real-time. size: the number of values a command must have.
-  void connect(controller_manager::TopicBus* bus, const std::string& topic, std::size_t size,
+  void connect(servoloop::realtime::TopicBus* bus, const std::string& topic, std::size_t size,
                const std::string& controller_name);
 
   void clear() noexcept { input_.clear(); }
@@ -94,8 +94,8 @@ class ArrayCommandInput {
  private:
   std::string topic_;
   std::size_t size_ = 0;
-  controller_manager::RealtimeSubscriber<controller_manager::std_msgs::Float64MultiArray> input_;
-  controller_manager::Subscription checker_;
+  servoloop::realtime::RealtimeSubscriber<servoloop::std_msgs::Float64MultiArray> input_;
+  servoloop::realtime::Subscription checker_;
   std::shared_ptr<RejectedCommands> rejected_ = std::make_shared<RejectedCommands>();
 };
 

@@ -5,11 +5,11 @@
 #include <cstdint>
 #include <string>
 
-#include "servoloop/controller_manager/messages.hpp"
-#include "servoloop/controller_manager/realtime_publisher.hpp"
+#include "servoloop/realtime/messages.hpp"
+#include "servoloop/realtime/realtime_publisher.hpp"
 #include "servoloop/controllers/pid.hpp"
 
-namespace servoloop::controller_manager {
+namespace servoloop::realtime {
 class TopicBus;
 }
 
@@ -17,11 +17,11 @@ namespace servoloop::controllers {
 
 class ControllerStatePublisher {
  public:
-  using Message = controller_manager::control_msgs::JointControllerState;
+  using Message = servoloop::control_msgs::JointControllerState;
   static constexpr std::uint64_t kPublishEveryNthUpdate = 10;
 
   // Non-real-time. Nothing is published when bus is null.
-  void advertise(controller_manager::TopicBus* bus, const std::string& topic);
+  void advertise(servoloop::realtime::TopicBus* bus, const std::string& topic);
 
   // Real-time: the next update publishes (call from starting()).
   void reset() noexcept { update_count_ = 0; }
@@ -62,7 +62,7 @@ class ControllerStatePublisher {
   const std::string& topic() const noexcept { return publisher_.topic(); }
 
  private:
-  controller_manager::RealtimePublisher<Message> publisher_;
+  servoloop::realtime::RealtimePublisher<Message> publisher_;
   std::uint64_t update_count_ = 0;
 };
 

@@ -6,7 +6,7 @@
 
 #include "servoloop/controller_manager/controller_context.hpp"
 #include "servoloop/controllers/common/controller_params.hpp"
-#include "servoloop/hardware_interface/errors.hpp"
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::controllers {
 

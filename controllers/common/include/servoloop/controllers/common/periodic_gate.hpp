@@ -6,7 +6,7 @@
 // control period of the next due time, so 50 Hz at a 1 kHz control rate is due
 // exactly every 20th cycle despite rounding in the accumulated time.
 // Real-time safe.
-#include "servoloop/hardware_interface/time.hpp"
+#include "servoloop/core/time.hpp"
 
 namespace servoloop::controllers {
 

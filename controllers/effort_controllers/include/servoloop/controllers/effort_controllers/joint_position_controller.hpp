@@ -20,7 +20,7 @@
 #include <cstdint>
 
 #include "servoloop/controller_manager/controller.hpp"
-#include "servoloop/controller_manager/realtime_buffer.hpp"
+#include "servoloop/realtime/realtime_buffer.hpp"
 #include "servoloop/controllers/common/command_input.hpp"
 #include "servoloop/controllers/common/controller_state_publisher.hpp"
 #include "servoloop/controllers/common/joint_position_error.hpp"
@@ -73,7 +73,7 @@ class JointPositionController
   JointPositionError position_error_;
   Pid pid_;
   ScalarCommandInput command_input_;
-  controller_manager::RealtimeBuffer<Command> direct_command_;  // from setCommand()
+  servoloop::realtime::RealtimeBuffer<Command> direct_command_;  // from setCommand()
   ControllerStatePublisher state_publisher_;
 
   // Controller-thread state.

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "servoloop/controller_manager/controller.hpp"
-#include "servoloop/controller_manager/messages.hpp"
-#include "servoloop/controller_manager/realtime_publisher.hpp"
+#include "servoloop/realtime/messages.hpp"
+#include "servoloop/realtime/realtime_publisher.hpp"
 #include "servoloop/controllers/common/periodic_gate.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 
@@ -46,8 +46,8 @@ class JointStateController
   void readExtraJoints(const controller_manager::ControllerContext& context);
 
   std::vector<hardware_interface::JointStateHandle> joints_;  // sorted by name
-  controller_manager::sensor_msgs::JointState prototype_;     // names + extra joints' values
-  controller_manager::RealtimePublisher<controller_manager::sensor_msgs::JointState> publisher_;
+  servoloop::sensor_msgs::JointState prototype_;     // names + extra joints' values
+  servoloop::realtime::RealtimePublisher<servoloop::sensor_msgs::JointState> publisher_;
   PeriodicGate gate_;
 };
 

@@ -20,8 +20,8 @@
 #include <cstdint>
 
 #include "servoloop/controller_manager/controller.hpp"
-#include "servoloop/controller_manager/messages.hpp"
-#include "servoloop/controller_manager/realtime_publisher.hpp"
+#include "servoloop/realtime/messages.hpp"
+#include "servoloop/realtime/realtime_publisher.hpp"
 #include "servoloop/controllers/common/command_input.hpp"
 #include "servoloop/controllers/common/periodic_gate.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
@@ -57,17 +57,17 @@ class MinimalJointController
   std::uint64_t rejectedNonFiniteCommands() const noexcept { return command_input_.rejectedNonFinite(); }
 
  private:
-  using Float64 = controller_manager::std_msgs::Float64;
+  using Float64 = servoloop::std_msgs::Float64;
 
   hardware_interface::JointHandle joint_;
   double kp_ = kDefaultKp;
   double kv_ = kDefaultKv;
   PeriodicGate gate_;
   ScalarCommandInput command_input_;
-  controller_manager::RealtimePublisher<Float64> position_publisher_;
-  controller_manager::RealtimePublisher<Float64> velocity_publisher_;
-  controller_manager::RealtimePublisher<Float64> effort_publisher_;
-  controller_manager::RealtimePublisher<controller_manager::sensor_msgs::JointState> joint_state_publisher_;
+  servoloop::realtime::RealtimePublisher<Float64> position_publisher_;
+  servoloop::realtime::RealtimePublisher<Float64> velocity_publisher_;
+  servoloop::realtime::RealtimePublisher<Float64> effort_publisher_;
+  servoloop::realtime::RealtimePublisher<servoloop::sensor_msgs::JointState> joint_state_publisher_;
 
   double position_command_ = 0.0;  // rad
   double effort_ = 0.0;            // held between control updates

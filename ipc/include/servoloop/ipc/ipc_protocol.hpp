@@ -1,0 +1,75 @@
+#pragma once
+// The wire protocol between a running servoloop node (`servoloop launch`) and
+// the command line (`servoloop spawner`, `control`, `topic`, `param`,
+// `spawn-model`). The full description with examples is docs/ipc_protocol.md.
+//
+// Transport: one Unix stream socket per node, `<run dir>/<node>.sock` (see
+// ipc_socket_path.hpp). Messages are newline-delimited JSON: one JSON value
+// per line, UTF-8, terminated by '\n'. A line may not exceed
+// kIpcMaxRequestLineBytes.
+//
+// Request (client -> node), a JSON object:
+//   {"id": <int>, "op": "<string>", ...op-specific arguments}
+// Reply (node -> client), exactly one per request, carrying the same id:
+//   {"id": <same>, "ok": true, ...op-specific results}
+//   {"id": <same>, "ok": false, "error": "<one clear line>"}
+// Replies may arrive in a different order than the requests when a handler
+// answers later (see IpcServer::Handler); match them by id. A request the node
+// could not parse is answered with "id": null.
+//
+// Stream message (node -> client), pushed unsolicited to a connection that
+// subscribed to something (e.g. `topic echo`); it has a "stream" key and no
+// "id":
+//   {"stream": "<name>", ...payload}
+//
+// Connection rules the node enforces:
+//   - a line that is not JSON, not an object, or lacks a string "op" gets an
+//     error reply; the connection stays open;
+//   - a line over kIpcMaxRequestLineBytes (or that much data without a
+//     newline) gets an error reply, then the node closes the connection;
+//   - a partial line followed by end-of-file is discarded without a reply;
+//   - a client that does not read what the node sends, until more than
+//     kIpcMaxPendingOutputBytes wait for it, is disconnected.
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+namespace servoloop::ipc {
+
+// Longest request line the node accepts, in bytes, not counting the '\n'.
+inline constexpr std::size_t kIpcMaxRequestLineBytes = std::size_t{1} << 20;  // 1 MiB
+
+// Most bytes the node keeps queued for one connection that is not reading.
+inline constexpr std::size_t kIpcMaxPendingOutputBytes = std::size_t{8} << 20;  // 8 MiB
+
+// Longest message line the client accepts from the node, in bytes.
+inline constexpr std::size_t kIpcMaxReplyLineBytes = std::size_t{64} << 20;  // 64 MiB
+
+// Field names, spelled once.
+inline constexpr std::string_view kIpcIdKey = "id";
+inline constexpr std::string_view kIpcOpKey = "op";
+inline constexpr std::string_view kIpcOkKey = "ok";
+inline constexpr std::string_view kIpcErrorKey = "error";
+inline constexpr std::string_view kIpcStreamKey = "stream";
+
+// {"id": id, "ok": true} plus the fields of `results` (an object or null).
+nlohmann::json makeIpcOkReply(const nlohmann::json& id, const nlohmann::json& results = nullptr);
+
+// {"id": id, "ok": false, "error": message}; line breaks in `message` become spaces
+// so the error stays one line on the client's terminal.
+nlohmann::json makeIpcErrorReply(const nlohmann::json& id, std::string_view message);
+
+// {"stream": name} plus the fields of `payload` (an object or null).
+nlohmann::json makeIpcStreamMessage(std::string_view stream_name,
+                                    const nlohmann::json& payload = nullptr);
+
+// One wire line: compact JSON followed by '\n'. Invalid UTF-8 in strings is
+// replaced rather than thrown about, so a bad byte cannot kill a reply.
+std::string encodeIpcLine(const nlohmann::json& message);
+
+// The JSON type name as a user would say it ("an array", "a number", ...).
+std::string describeJsonType(const nlohmann::json& value);
+
+}  // namespace servoloop::ipc

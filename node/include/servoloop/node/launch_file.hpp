@@ -1,0 +1,105 @@
+#pragma once
+// A servoloop launch file: the world (simulation backend and its settings),
+// the robots to spawn into it, a script of timed publications and what to
+// record. The YAML form is documented in docs/launch_files.md:
+//
+//   world: {backend: bullet, time_step: 0.001, gravity: [0, 0, -9.81], ground_plane: false}
+//   controller_manager: {update_rate: 1000}
+//   robots:
+//     - urdf: minimal_robot_description_w_jnt_ctl.urdf
+//       model: one_DOF_robot
+//       params: [control_config/one_dof_ctl_params.yaml]
+//       controllers: [joint_state_controller, joint1_position_controller]
+//   publish: [{topic: /one_DOF_robot/joint1_position_controller/command, value: 1.0, time: 0.5}]
+//   record: [{topic: /one_DOF_robot/joint_states, file: joint_states.csv}]
+//   plot: one_dof.png
+//
+// Paths in the file are relative to the file's folder. Everything here is
+// non-real-time; errors are servoloop::ConfigError naming the launch file, the
+// line, the key and the fix.
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace servoloop::node {
+
+// The simulated world every robot of the launch file is spawned into.
+struct WorldSettings {
+  std::string backend = "bullet";  // plugin type name of kind robot_hw
+  double time_step_s = 0.001;      // physics step, s
+  std::array<double, 3> gravity{0.0, 0.0, -9.81};  // m/s², world frame
+  bool ground_plane = false;
+  // Simulated seconds per wall second; unset: 0 with a --duration, 1 without.
+  std::optional<double> real_time_factor;
+};
+
+struct ControllerManagerSettings {
+  // Rate of ControllerManager::update in Hz; 0: one update per physics step.
+  double update_rate_hz = 0.0;
+};
+
+// One robot to spawn.
+struct RobotSpec {
+  std::filesystem::path urdf;  // absolute
+  std::string model;           // model name; "" = the URDF's robot name
+  std::string robot_namespace; // "" = not given (see robot_namespace.hpp)
+  std::vector<std::filesystem::path> params;  // absolute; loaded at "/" unchanged
+  std::vector<std::string> controllers;          // loaded and started
+  std::vector<std::string> stopped_controllers;  // loaded only
+};
+
+// A message published once, at simulated time time_s.
+struct TimedPublication {
+  std::string topic;
+  std::string type = "std_msgs/Float64";
+  nlohmann::json message;  // JSON form (message_json.hpp), checked against type
+  double time_s = 0.0;
+};
+
+// A topic recorded to CSV.
+struct RecordSpec {
+  std::string topic;
+  std::filesystem::path file;  // absolute
+};
+
+struct LaunchFile {
+  std::filesystem::path source;  // the launch file itself ("" when parsed from text)
+  WorldSettings world;
+  ControllerManagerSettings controller_manager;
+  std::vector<RobotSpec> robots;
+  std::vector<TimedPublication> publish;
+  std::vector<RecordSpec> record;
+  std::filesystem::path plot;  // absolute; empty: no plot
+};
+
+// Reads and checks a launch file. Throws ConfigError if it cannot be read, is
+// not YAML, has an unknown key, a value of the wrong type or range, or names a
+// URDF or parameter file that does not exist.
+LaunchFile loadLaunchFile(const std::filesystem::path& path);
+
+// The same for YAML text; relative paths resolve against base_directory and
+// errors name source_name.
+LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name,
+                           const std::filesystem::path& base_directory);
+
+// The message a --pub value stands for: a number → std_msgs/Float64, a list →
+// std_msgs/Float64MultiArray, anything else → `type` as given (must be known).
+// Throws servoloop::Error naming `where` when the value does not fit the type.
+TimedPublication makeTimedPublication(std::string topic, std::string type, const nlohmann::json& value,
+                                      double time_s, std::string_view where);
+
+// "TOPIC:=VALUE[@TIME]" (the --pub flag). VALUE is YAML (1.0, [1, 2], {data: 1});
+// TIME in simulated seconds, default 0. Relative paths: none. Throws
+// servoloop::Error naming the flag and the expected form.
+TimedPublication parsePubFlag(std::string_view text);
+
+// "TOPIC=FILE.csv" (the --record flag); a relative FILE resolves against the
+// current directory. Throws servoloop::Error naming the flag and the expected form.
+RecordSpec parseRecordFlag(std::string_view text);
+
+}  // namespace servoloop::node

@@ -1,0 +1,146 @@
+#pragma once
+// A running servoloop node: one simulated world with its robots (each a
+// RobotInstance with its own controller manager, topic bus and real-time loop
+// thread), the parameter store they share, the recorders of the launch file,
+// and the IPC servers the command line talks to (docs/node_operations.md).
+//
+//   Node node(loadLaunchFile("robots/one_dof/one_dof_w_jnt_ctl.launch.yaml"), options);
+//   node.start();
+//   node.waitUntilDone();   // until the duration has run, or requestShutdown()
+//   node.shutdown();
+//   std::cout << toText(node.summary());
+//
+// Threads: one loop thread per robot (its real-time thread; see
+// robot_instance.hpp for why robots do not share one), one delivery thread per
+// robot's bus, one service thread per IPC socket plus a worker for operations
+// that wait on a loop (load, unload, switch), and the caller's thread, which
+// waits in waitUntilDone() and logs the controllers' and hardware's faults.
+// Public members are non-real-time and safe from any thread unless noted.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "servoloop/ipc/ipc_server.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/robot_instance.hpp"
+#include "servoloop/node/run_summary.hpp"
+#include "servoloop/node/topic_recorder.hpp"
+#include "servoloop/params/parameter_store.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
+
+namespace servoloop::node {
+
+class NodeOperations;  // node_operations.hpp
+
+struct NodeOptions {
+  // Simulated seconds to run, then end; unset: run until requestShutdown().
+  std::optional<double> duration_s;
+  // Overrides the launch file's world.real_time_factor; when neither is set:
+  // 0 (free-running) with a duration, 1 without.
+  std::optional<double> real_time_factor;
+  // Overrides the launch file's world.backend.
+  std::optional<std::string> backend;
+  // Serve the IPC sockets (one per robot namespace; default.sock when the
+  // world has no robot). Off for in-process tests that need no socket.
+  bool serve_ipc = true;
+  // Searched before SERVOLOOP_PLUGIN_PATH and the default plugin folder.
+  std::vector<std::filesystem::path> plugin_directories;
+};
+
+class Node {
+ public:
+  // Builds the world: loads every robot's parameter files, spawns the robots
+  // (backend, controllers), creates the recorders and queues the timed
+  // publications. Nothing runs yet. Throws ConfigError naming the launch file
+  // (or URDF, YAML, backend) and the fix.
+  Node(LaunchFile launch, NodeOptions options);
+  // shutdown().
+  ~Node();
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  // Starts the IPC servers and every robot's loop. Throws servoloop::Error if
+  // a socket is taken by another node.
+  void start();
+
+  // Blocks until every robot has run its duration, the loops stopped on their
+  // own, or requestShutdown() was called. Every `tick_period` it logs the
+  // controllers' and hardware's new faults and calls `tick` (progress display).
+  // Without a duration and with no robots, only requestShutdown() ends it.
+  void waitUntilDone(const std::function<void()>& tick = {},
+                     std::chrono::milliseconds tick_period = std::chrono::milliseconds(100));
+
+  // Any thread, async-signal-safe (one atomic store): ends waitUntilDone().
+  void requestShutdown() noexcept { shutdown_requested_.store(true); }
+  bool shutdownRequested() const noexcept { return shutdown_requested_.load(); }
+
+  // Closes the sockets, stops every loop, captures the summary, delivers what
+  // is still queued on the buses and closes the recordings, then stops and
+  // unloads every controller. Idempotent; call from the thread that owns the
+  // node (not from an IPC handler: use requestShutdown there).
+  void shutdown();
+
+  // The end-of-run summary; captured by shutdown(), or taken now (loops
+  // possibly running) before it.
+  RunSummary summary();
+
+  // model.spawn: adds a robot to the world (loading its params files first)
+  // and, once the node runs, starts its loop and its IPC server. Returns its
+  // namespace. Throws ConfigError like the constructor, or servoloop::Error if
+  // a robot with that namespace exists.
+  std::string spawnRobot(const RobotSpec& spec);
+
+  // The robot of a namespace, or nullptr. Robots live until the node is destroyed.
+  RobotInstance* findRobot(const std::string& robot_namespace);
+  std::vector<std::string> robotNamespaces() const;
+  std::vector<RobotInstance*> robots() const;
+
+  params::ParameterStore& parameters() { return parameters_; }
+  plugin::PluginLoader& plugins() { return *plugins_; }
+  // Longest simulated time of any robot, s.
+  double simTime() const;
+  const std::optional<double>& duration() const { return options_.duration_s; }
+  double realTimeFactor() const { return real_time_factor_; }
+  const LaunchFile& launchFile() const { return launch_; }
+  // The recordings, with their files (for plotting after the run).
+  const std::vector<RecordSpec>& recordings() const { return launch_.record; }
+
+ private:
+  void startRobotLocked(RobotInstance& robot);
+  void startServer(const std::string& socket_namespace, RobotInstance* robot);
+  RobotInstance* robotForTopic(const std::string& topic);
+
+  LaunchFile launch_;
+  NodeOptions options_;
+  double real_time_factor_ = 0.0;
+  std::shared_ptr<plugin::PluginLoader> plugins_;
+  params::ParameterStore parameters_;
+
+  // Woken by a robot whose loop has ended (declared before robots_, whose
+  // loop threads call into it, so that it outlives them).
+  std::mutex finished_mutex_;
+  std::condition_variable finished_wake_;
+  bool robot_finished_ = false;  // under finished_mutex_
+
+  mutable std::mutex robots_mutex_;
+  std::vector<std::unique_ptr<RobotInstance>> robots_;
+  std::vector<std::unique_ptr<TopicRecorder>> recorders_;
+  std::vector<std::unique_ptr<NodeOperations>> operations_;
+  std::vector<std::unique_ptr<ipc::IpcServer>> servers_;
+  bool started_ = false;
+  bool shut_down_ = false;
+  bool accepting_robots_ = true;  // cleared (under robots_mutex_) when shutdown begins
+  std::chrono::steady_clock::time_point start_time_{};
+  std::optional<RunSummary> final_summary_;
+
+  std::atomic<bool> shutdown_requested_{false};
+};
+
+}  // namespace servoloop::node

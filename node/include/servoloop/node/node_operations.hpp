@@ -1,0 +1,79 @@
+#pragma once
+// The request handler behind one IPC socket of a node: every operation of
+// docs/node_operations.md, acting on the socket's robot (or, on the world's
+// default.sock, on the only robot if there is exactly one). Non-real-time.
+//
+// Operations that wait for a robot's loop (control.load, control.unload,
+// control.switch, control.reload_libraries) run on this object's worker
+// thread and reply when done, so the socket's service thread keeps serving
+// other clients (and `topic echo` streams) meanwhile.
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "servoloop/ipc/ipc_connection.hpp"
+#include "servoloop/realtime/topic_subscription.hpp"
+
+namespace servoloop::node {
+
+class Node;
+class RobotInstance;
+
+class NodeOperations {
+ public:
+  // robot: the socket's robot; nullptr for the world socket.
+  NodeOperations(Node& node, RobotInstance* robot, std::string socket_namespace);
+  // Drops every stream subscription and joins the worker (after the job in
+  // progress). The IPC server using handle() must be stopped before.
+  ~NodeOperations();
+  NodeOperations(const NodeOperations&) = delete;
+  NodeOperations& operator=(const NodeOperations&) = delete;
+
+  // The IpcServer::Handler.
+  nlohmann::json handle(const nlohmann::json& request, ipc::IpcConnection& connection);
+
+ private:
+  using Job = std::function<void()>;
+
+  RobotInstance& robotFor(const std::string& op);
+  nlohmann::json deferToWorker(const nlohmann::json& request, ipc::IpcConnection& connection,
+                               std::function<nlohmann::json()> work);
+  void workerLoop();
+
+  nlohmann::json ping();
+  nlohmann::json controlList(RobotInstance& robot);
+  nlohmann::json controlListTypes();
+  nlohmann::json controlListJoints(RobotInstance& robot);
+  nlohmann::json paramOp(const std::string& op, const nlohmann::json& request);
+  nlohmann::json topicList(RobotInstance& robot);
+  nlohmann::json topicPub(RobotInstance& robot, const nlohmann::json& request);
+  nlohmann::json topicSubscribe(RobotInstance& robot, const nlohmann::json& request, ipc::IpcConnection& connection);
+  nlohmann::json topicUnsubscribe(const nlohmann::json& request, ipc::IpcConnection& connection);
+  nlohmann::json modelSpawn(const nlohmann::json& request);
+
+  Node& node_;
+  RobotInstance* robot_;
+  std::string socket_namespace_;
+
+  std::mutex subscriptions_mutex_;
+  std::map<std::pair<std::uint64_t, std::string>, realtime::Subscription> subscriptions_;  // (connection, topic)
+  std::set<std::uint64_t> watched_connections_;  // onClose registered
+
+  std::mutex jobs_mutex_;
+  std::condition_variable jobs_changed_;
+  std::deque<Job> jobs_;
+  bool stopping_ = false;
+  std::thread worker_;
+};
+
+}  // namespace servoloop::node

@@ -1,0 +1,157 @@
+#pragma once
+// One robot of a running node: its simulated hardware (a backend plugin), its
+// topic bus, its controller manager and the real-time thread that runs its
+// SimulationLoop.
+//
+// Threads. The robot's loop thread is its real-time thread. It runs the loop
+// in segments (SimulationLoop::runFor) and between two segments, with no
+// cycle in progress, does the non-real-time work that must land on an exact
+// simulated time:
+//   - timed publications: a publication at time T is published after the last
+//     physics step before T, so the first control update at a simulated time
+//     >= T sees it (exact to the control cycle; the loop thread pauses for the
+//     microseconds a publish takes, between cycles, never inside one);
+//   - before the first physics step, the launch file's controllers are
+//     started (see startLaunchControllers), so that their starting(), which
+//     resets a controller's command to the measured state as in ros_control,
+//     comes before the publications at t = 0: those are seen by the first
+//     control update, at t = 0, and stamped 0;
+//   - when free-running (real-time factor 0), the bus is flushed every 10 ms
+//     of simulated time, so subscribers (recorders, `topic echo`) get every
+//     message even when the loop runs a thousand times faster than the bus's
+//     delivery thread wakes up.
+// Paced runs without pending publications run in one piece.
+//
+// Each robot has its own TopicBus, stamped with its own simulated time, and
+// its own simulated time (counted from when it was spawned): backends
+// simulate one robot each, so robots of a world never interact physically.
+// Everything here is non-real-time except what runs on the loop thread.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <urdf_model/model.h>
+
+#include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/plugin_controller_factory.hpp"
+#include "servoloop/params/parameter_store.hpp"
+#include "servoloop/plugin/plugin_loader.hpp"
+#include "servoloop/controller_manager/simulation_loop.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/hardware_interface/robot_hw.hpp"
+#include "servoloop/hardware_interface/simulated_robot_hw.hpp"
+
+namespace servoloop::node {
+
+// What a robot needs from the world it is spawned into.
+struct RobotWorld {
+  std::shared_ptr<plugin::PluginLoader> plugins;  // backends and controllers
+  params::ParameterStore* parameters = nullptr;   // the node's store (params files already loaded)
+  WorldSettings world;                    // backend, physics step, gravity, ground plane
+  double update_rate_hz = 0.0;            // controller manager rate; 0: 1 / time step
+  double real_time_factor = 0.0;          // 0: free-running
+};
+
+struct JointReading {
+  std::string name;
+  double position = 0.0;  // rad or m
+  double velocity = 0.0;  // rad/s or m/s
+  double effort = 0.0;    // N·m or N
+};
+
+class RobotInstance {
+ public:
+  // Reads the URDF, resolves the namespace (robot_namespace.hpp), writes the
+  // world settings to <ns>/sim/{time_step,gravity,ground_plane}, creates and
+  // initialises the backend, the bus (delivery started), the manager and the
+  // loop, and loads spec's controllers and stopped_controllers (a controller
+  // that fails to load is logged and left out; the robot carries on). The
+  // loop thread starts the controllers before its first physics step. Throws
+  // ConfigError naming the URDF, backend or setting at fault.
+  RobotInstance(const RobotSpec& spec, const RobotWorld& world);
+  // stop(), then stops and unloads every controller.
+  ~RobotInstance();
+  RobotInstance(const RobotInstance&) = delete;
+  RobotInstance& operator=(const RobotInstance&) = delete;
+
+  // Before start(): a message to publish at a simulated time.
+  void addTimedPublication(const TimedPublication& publication);
+
+  // Starts the loop thread; with a duration it ends after that much simulated
+  // time, else when stopped (or when the hardware asks to stop).
+  void start(std::optional<double> duration_s);
+  // Any thread. Ends the loop after its current cycle; joins the loop thread.
+  void stop();
+  // True once the loop thread has ended (or was never started).
+  bool finished() const { return !loop_thread_.joinable() || loop_done_.load(); }
+  // Non-real-time, before start(): called on the loop thread right after its
+  // loop has ended (finished() is then true), e.g. to wake whoever waits for it.
+  void setFinishedCallback(std::function<void()> callback) { on_finished_ = std::move(callback); }
+
+  // Non-real-time, with the loop stopped: stops every running controller (their
+  // stopping() runs) and unloads every controller. Idempotent.
+  void shutdownControllers();
+
+  const std::string& robotNamespace() const { return namespace_; }
+  const std::string& robotName() const { return robot_name_; }
+  const std::filesystem::path& urdfPath() const { return urdf_path_; }
+  controller_manager::ControllerManager& manager() { return *manager_; }
+  realtime::TopicBus& topics() { return *bus_; }
+  hardware_interface::SimulatedRobotHW& hardware() { return *sim_hw_; }
+  controller_manager::SimulationLoop& loop() { return *loop_; }
+  const std::shared_ptr<const urdf::ModelInterface>& model() const { return model_; }
+  const std::string& backendName() const { return backend_name_; }
+
+  // Any thread: simulated time the loop has advanced, s.
+  double simTime() const;
+  // Joint state from the joint state interface. Exact once the loop has
+  // stopped; while it runs, values may be one cycle apart.
+  std::vector<JointReading> joints() const;
+  // Joints with the interfaces offering them (JointStateInterface,
+  // EffortJointInterface, ...).
+  std::vector<std::pair<std::string, std::vector<std::string>>> jointInterfaces() const;
+
+ private:
+  void driveLoop(std::optional<double> duration_s);
+  std::uint64_t stepsAt(double time_s) const;
+  void publishDue(std::uint64_t steps_taken);
+  void loadControllers(const RobotSpec& spec);
+  void startLaunchControllers();
+
+  std::string namespace_;
+  std::string robot_name_;
+  std::filesystem::path urdf_path_;
+  std::string backend_name_;
+  double real_time_factor_ = 0.0;
+  std::shared_ptr<const urdf::ModelInterface> model_;
+
+  // Destruction order matters: loop, manager (controllers), bus, backend.
+  plugin::PluginPtr<hardware_interface::RobotHW> backend_;
+  hardware_interface::SimulatedRobotHW* sim_hw_ = nullptr;
+  std::unique_ptr<realtime::TopicBus> bus_;
+  std::unique_ptr<controller_manager::ControllerManager> manager_;
+  std::unique_ptr<controller_manager::SimulationLoop> loop_;
+
+  // Loaded controllers of spec.controllers, started by the loop thread before
+  // its first physics step.
+  std::vector<std::string> launch_controllers_;
+  std::vector<TimedPublication> publications_;  // sorted by time before start
+  std::size_t next_publication_ = 0;            // loop thread only
+
+  std::mutex lifecycle_mutex_;
+  std::thread loop_thread_;
+  std::atomic<bool> stop_requested_{false};
+  std::atomic<bool> loop_done_{false};
+  std::function<void()> on_finished_;
+  bool controllers_shut_down_ = false;
+};
+
+}  // namespace servoloop::node

@@ -1,0 +1,21 @@
+#pragma once
+// Which namespace a robot's controllers, parameters, topics and IPC socket
+// live under. Non-real-time.
+#include <string>
+
+namespace servoloop::node {
+
+// The robotNamespace a URDF gives its gazebo_ros_control plugin
+// (<gazebo><plugin filename="libgazebo_ros_control.so"><robotNamespace>), as
+// the seed's URDF does; "" when there is none. Throws servoloop::ConfigError
+// naming source_name when the text is not XML.
+std::string urdfRobotNamespace(const std::string& urdf_xml, const std::string& source_name);
+
+// The rule of the command line's contract (CLI.md, "Robot namespace"): the
+// URDF's robotNamespace wins, else launch_namespace, else "/<robot_name>".
+// The result is normalised ("/one_DOF_robot"); robot_name is the model name
+// given at spawn time, or the URDF's <robot name> when none was given.
+std::string resolveRobotNamespace(const std::string& urdf_xml, const std::string& source_name,
+                                  const std::string& launch_namespace, const std::string& robot_name);
+
+}  // namespace servoloop::node

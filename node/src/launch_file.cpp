@@ -1,0 +1,357 @@
+// Launch file parsing: every problem becomes one ConfigError naming the file,
+// line, key and fix.
+#include "servoloop/node/launch_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+#include <spdlog/fmt/fmt.h>
+#include <yaml-cpp/yaml.h>
+
+#include "servoloop/node/message_json.hpp"
+#include "servoloop/params/parameter_store.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/core/errors.hpp"
+
+namespace servoloop::node {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kFloat64 = "std_msgs/Float64";
+constexpr const char* kFloat64MultiArray = "std_msgs/Float64MultiArray";
+
+// Where a node sits in the file, for error messages.
+class Parser {
+ public:
+  Parser(std::string_view source_name, fs::path base_directory)
+      : source_(source_name), base_(std::move(base_directory)) {}
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& problem) const {
+    std::string where = source_;
+    if (node.IsDefined() && node.Mark().line >= 0) {
+      where += fmt::format(":{}:{}", node.Mark().line + 1, node.Mark().column + 1);
+    }
+    throw ConfigError(where + ": " + (key.empty() ? "" : key + ": ") + problem);
+  }
+
+  void requireMap(const YAML::Node& node, const std::string& key, const char* example) const {
+    if (!node.IsMap()) fail(node, key, fmt::format("expected a map, e.g. {}, got {}", example, describe(node)));
+  }
+
+  void checkKeys(const YAML::Node& map, const std::string& key, std::initializer_list<const char*> known) const {
+    for (const auto& entry : map) {
+      const std::string name = entry.first.Scalar();
+      bool ok = false;
+      for (const char* k : known) ok |= (name == k);
+      if (ok) continue;
+      std::string list;
+      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      fail(entry.first, key.empty() ? name : key + "." + name,
+           fmt::format("unknown key '{}'; the keys here are: {} (check the spelling)", name, list));
+    }
+  }
+
+  static std::string describe(const YAML::Node& node) {
+    if (!node.IsDefined() || node.IsNull()) return "nothing";
+    if (node.IsScalar()) return "'" + node.Scalar() + "'";
+    if (node.IsSequence()) return "a list";
+    return "a map";
+  }
+
+  double number(const YAML::Node& node, const std::string& key) const {
+    const params::ParamType type = node.IsDefined() ? params::paramTypeOf(node) : params::ParamType::null;
+    if (type != params::ParamType::integer && type != params::ParamType::floating) {
+      fail(node, key, "expected a number, got " + describe(node));
+    }
+    const double value = params::paramDoubleValue(node);
+    if (!std::isfinite(value)) fail(node, key, "expected a finite number, got " + describe(node));
+    return value;
+  }
+
+  double positiveNumber(const YAML::Node& node, const std::string& key, const char* unit) const {
+    const double value = number(node, key);
+    if (!(value > 0.0)) fail(node, key, fmt::format("expected a value > 0 {}, got {}", unit, describe(node)));
+    return value;
+  }
+
+  double nonNegativeNumber(const YAML::Node& node, const std::string& key, const char* unit) const {
+    const double value = number(node, key);
+    if (value < 0.0) fail(node, key, fmt::format("expected a value >= 0 {}, got {}", unit, describe(node)));
+    return value;
+  }
+
+  bool boolean(const YAML::Node& node, const std::string& key) const {
+    if (params::paramTypeOf(node) != params::ParamType::boolean) fail(node, key, "expected true or false, got " + describe(node));
+    return node.as<bool>();
+  }
+
+  std::string string(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar() || node.Scalar().empty()) fail(node, key, "expected a non-empty string, got " + describe(node));
+    return node.Scalar();
+  }
+
+  // A list of strings; a single string is taken as a list of one.
+  std::vector<std::string> strings(const YAML::Node& node, const std::string& key) const {
+    std::vector<std::string> values;
+    if (!node.IsDefined() || node.IsNull()) return values;
+    if (node.IsScalar()) return {string(node, key)};
+    if (!node.IsSequence()) fail(node, key, "expected a list of names, e.g. [a, b], got " + describe(node));
+    for (std::size_t i = 0; i < node.size(); ++i) values.push_back(string(node[i], fmt::format("{}[{}]", key, i)));
+    return values;
+  }
+
+  fs::path path(const YAML::Node& node, const std::string& key) const {
+    const fs::path given = string(node, key);
+    return (given.is_absolute() ? given : base_ / given).lexically_normal();
+  }
+
+  fs::path existingFile(const YAML::Node& node, const std::string& key, const char* what) const {
+    const fs::path file = path(node, key);
+    if (!fs::is_regular_file(file)) {
+      fail(node, key,
+           fmt::format("{} '{}' does not exist (looked for {}); paths are relative to the launch file's folder",
+                       what, node.Scalar(), file.string()));
+    }
+    return file;
+  }
+
+  std::string topic(const YAML::Node& node, const std::string& key) const {
+    const std::string name = string(node, key);
+    try {
+      return realtime::TopicBus::normalizeTopicName(name);
+    } catch (const Error& e) {
+      fail(node, key, e.what());
+    }
+  }
+
+  WorldSettings world(const YAML::Node& node) const {
+    WorldSettings world;
+    if (!node.IsDefined() || node.IsNull()) return world;
+    requireMap(node, "world", "{backend: bullet, time_step: 0.001}");
+    checkKeys(node, "world", {"backend", "time_step", "gravity", "ground_plane", "real_time_factor"});
+    if (node["backend"]) world.backend = string(node["backend"], "world.backend");
+    if (node["time_step"]) world.time_step_s = positiveNumber(node["time_step"], "world.time_step", "s");
+    if (const YAML::Node gravity = node["gravity"]) {
+      if (!gravity.IsSequence() || gravity.size() != 3) {
+        fail(gravity, "world.gravity", "expected 3 numbers [x, y, z] in m/s², got " + describe(gravity));
+      }
+      for (std::size_t i = 0; i < 3; ++i) world.gravity[i] = number(gravity[i], fmt::format("world.gravity[{}]", i));
+    }
+    if (node["ground_plane"]) world.ground_plane = boolean(node["ground_plane"], "world.ground_plane");
+    if (node["real_time_factor"]) {
+      world.real_time_factor = nonNegativeNumber(node["real_time_factor"], "world.real_time_factor",
+                                                 "(0 runs as fast as possible)");
+    }
+    return world;
+  }
+
+  ControllerManagerSettings controllerManager(const YAML::Node& node) const {
+    ControllerManagerSettings settings;
+    if (!node.IsDefined() || node.IsNull()) return settings;
+    requireMap(node, "controller_manager", "{update_rate: 1000}");
+    checkKeys(node, "controller_manager", {"update_rate"});
+    if (node["update_rate"]) {
+      settings.update_rate_hz = positiveNumber(node["update_rate"], "controller_manager.update_rate", "Hz");
+    }
+    return settings;
+  }
+
+  RobotSpec robot(const YAML::Node& node, const std::string& key) const {
+    requireMap(node, key, "{urdf: robot.urdf, controllers: [joint_state_controller]}");
+    checkKeys(node, key, {"urdf", "model", "namespace", "params", "controllers", "stopped_controllers"});
+    RobotSpec robot;
+    if (!node["urdf"]) fail(node, key, "missing 'urdf': give the robot description, e.g. urdf: robot.urdf");
+    robot.urdf = existingFile(node["urdf"], key + ".urdf", "URDF file");
+    if (node["model"]) robot.model = string(node["model"], key + ".model");
+    if (node["namespace"]) {
+      const std::string ns = string(node["namespace"], key + ".namespace");
+      try {
+        // Namespaces follow the rules of topic names (they prefix every topic).
+        robot.robot_namespace = realtime::TopicBus::normalizeTopicName(ns);
+      } catch (const Error& e) {
+        fail(node["namespace"], key + ".namespace", e.what());
+      }
+    }
+    const YAML::Node params = node["params"];
+    if (params.IsDefined() && !params.IsNull()) {
+      if (params.IsScalar()) {
+        robot.params.push_back(existingFile(params, key + ".params", "parameter file"));
+      } else if (!params.IsSequence()) {
+        fail(params, key + ".params", "expected a list of YAML files, got " + describe(params));
+      }
+      for (std::size_t i = 0; params.IsSequence() && i < params.size(); ++i) {
+        robot.params.push_back(existingFile(params[i], fmt::format("{}.params[{}]", key, i), "parameter file"));
+      }
+    }
+    robot.controllers = strings(node["controllers"], key + ".controllers");
+    robot.stopped_controllers = strings(node["stopped_controllers"], key + ".stopped_controllers");
+    return robot;
+  }
+
+  TimedPublication publication(const YAML::Node& node, const std::string& key) const {
+    requireMap(node, key, "{topic: /robot/controller/command, value: 1.0, time: 0.5}");
+    checkKeys(node, key, {"topic", "type", "value", "time"});
+    if (!node["topic"]) fail(node, key, "missing 'topic'");
+    if (!node["value"]) fail(node, key, "missing 'value': the message to publish, e.g. value: 1.0");
+    const std::string topic_name = topic(node["topic"], key + ".topic");
+    const std::string type = node["type"] ? string(node["type"], key + ".type") : "";
+    const double time_s = node["time"] ? nonNegativeNumber(node["time"], key + ".time", "s of simulated time") : 0.0;
+    try {
+      return makeTimedPublication(topic_name, type, yamlToJson(node["value"]), time_s, "");
+    } catch (const Error& e) {
+      fail(node["value"], key + ".value", e.what());
+    }
+  }
+
+  RecordSpec record(const YAML::Node& node, const std::string& key) const {
+    requireMap(node, key, "{topic: /robot/joint_states, file: joint_states.csv}");
+    checkKeys(node, key, {"topic", "file"});
+    if (!node["topic"]) fail(node, key, "missing 'topic'");
+    if (!node["file"]) fail(node, key, "missing 'file': the CSV file to write, e.g. file: joint_states.csv");
+    return RecordSpec{topic(node["topic"], key + ".topic"), path(node["file"], key + ".file")};
+  }
+
+  template <class Item>
+  std::vector<Item> list(const YAML::Node& node, const std::string& key,
+                         Item (Parser::*parse_item)(const YAML::Node&, const std::string&) const) const {
+    std::vector<Item> items;
+    if (!node.IsDefined() || node.IsNull()) return items;
+    if (!node.IsSequence()) fail(node, key, "expected a list (entries start with '- '), got " + describe(node));
+    for (std::size_t i = 0; i < node.size(); ++i) items.push_back((this->*parse_item)(node[i], fmt::format("{}[{}]", key, i)));
+    return items;
+  }
+
+ private:
+  std::string source_;
+  fs::path base_;
+};
+
+bool checkMessage(const std::string& type, const nlohmann::json& value) {
+  if (type == kFloat64) return (void)messageFromJson<std_msgs::Float64>(value), true;
+  if (type == kFloat64MultiArray) return (void)messageFromJson<std_msgs::Float64MultiArray>(value), true;
+  if (type == sensor_msgs::JointState::kTypeName) return (void)messageFromJson<sensor_msgs::JointState>(value), true;
+  if (type == control_msgs::JointControllerState::kTypeName) {
+    return (void)messageFromJson<control_msgs::JointControllerState>(value), true;
+  }
+  return false;
+}
+
+std::string knownTypesList() {
+  std::string list;
+  for (const std::string& type : knownMessageTypes()) list += (list.empty() ? "" : ", ") + type;
+  return list;
+}
+
+}  // namespace
+
+TimedPublication makeTimedPublication(std::string topic, std::string type, const nlohmann::json& value,
+                                      double time_s, std::string_view where) {
+  const std::string prefix = where.empty() ? "" : std::string(where) + ": ";
+  if (type.empty()) type = value.is_array() ? kFloat64MultiArray : kFloat64;
+  if (!isKnownMessageType(type)) {
+    throw Error(fmt::format("{}unknown message type '{}' (known types: {})", prefix, type, knownTypesList()));
+  }
+  bool publishable = false;
+  try {
+    publishable = checkMessage(type, value);
+  } catch (const Error& e) {
+    throw Error(prefix + e.what());
+  }
+  if (!publishable) {
+    throw Error(fmt::format("{}message type '{}' cannot be published from a launch file", prefix, type));
+  }
+  return TimedPublication{std::move(topic), std::move(type), value, time_s};
+}
+
+LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, const fs::path& base_directory) {
+  const Parser parser(source_name, base_directory);
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml));
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(fmt::format("{}:{}:{}: not valid YAML: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg));
+  }
+  LaunchFile launch;
+  if (root.IsNull() || !root.IsDefined()) return launch;
+  parser.requireMap(root, "", "world: {backend: bullet} and robots: [...]");
+  parser.checkKeys(root, "", {"world", "controller_manager", "robots", "publish", "record", "plot"});
+  launch.world = parser.world(root["world"]);
+  launch.controller_manager = parser.controllerManager(root["controller_manager"]);
+  launch.robots = parser.list(root["robots"], "robots", &Parser::robot);
+  launch.publish = parser.list(root["publish"], "publish", &Parser::publication);
+  launch.record = parser.list(root["record"], "record", &Parser::record);
+  if (root["plot"] && !root["plot"].IsNull()) launch.plot = parser.path(root["plot"], "plot");
+  return launch;
+}
+
+LaunchFile loadLaunchFile(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) {
+    throw ConfigError(fmt::format("launch file '{}' cannot be read ({}); check the path",
+                                  path.string(), fs::exists(path) ? "permission denied" : "no such file"));
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  const fs::path absolute = fs::absolute(path).lexically_normal();
+  LaunchFile launch = parseLaunchFile(text.str(), path.string(), absolute.parent_path());
+  launch.source = absolute;
+  return launch;
+}
+
+TimedPublication parsePubFlag(std::string_view text) {
+  const std::string flag = fmt::format("--pub '{}'", text);
+  const std::string form = "expected TOPIC:=VALUE[@TIME], e.g. /robot/controller/command:=1.0@0.5";
+  const std::size_t assign = text.find(":=");
+  if (assign == std::string_view::npos || assign == 0 || assign + 2 == text.size()) {
+    throw Error(flag + ": " + form);
+  }
+  std::string topic;
+  try {
+    topic = realtime::TopicBus::normalizeTopicName(text.substr(0, assign));
+  } catch (const Error& e) {
+    throw Error(flag + ": " + e.what());
+  }
+  std::string_view value_text = text.substr(assign + 2);
+  double time_s = 0.0;
+  if (const std::size_t at = value_text.rfind('@'); at != std::string_view::npos) {
+    const std::string time_text(value_text.substr(at + 1));
+    std::size_t used = 0;
+    try {
+      time_s = std::stod(time_text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != time_text.size() || !std::isfinite(time_s) || time_s < 0.0) {
+      throw Error(fmt::format("{}: TIME '{}' must be simulated seconds >= 0; {}", flag, time_text, form));
+    }
+    value_text = value_text.substr(0, at);
+  }
+  nlohmann::json value;
+  try {
+    value = parseMessageText(value_text, "--pub value");
+  } catch (const Error& e) {
+    throw Error(flag + ": " + e.what());
+  }
+  return makeTimedPublication(std::move(topic), "", value, time_s, flag);
+}
+
+RecordSpec parseRecordFlag(std::string_view text) {
+  const std::string flag = fmt::format("--record '{}'", text);
+  const std::size_t equals = text.find('=');
+  if (equals == std::string_view::npos || equals == 0 || equals + 1 == text.size()) {
+    throw Error(flag + ": expected TOPIC=FILE.csv, e.g. /robot/joint_states=joint_states.csv");
+  }
+  RecordSpec spec;
+  try {
+    spec.topic = realtime::TopicBus::normalizeTopicName(text.substr(0, equals));
+  } catch (const Error& e) {
+    throw Error(flag + ": " + e.what());
+  }
+  spec.file = fs::absolute(fs::path(std::string(text.substr(equals + 1)))).lexically_normal();
+  return spec;
+}
+
+}  // namespace servoloop::node

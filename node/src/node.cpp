@@ -1,0 +1,235 @@
+// The node: a world of robots, its recorders and its IPC sockets.
+#include "servoloop/node/node.hpp"
+
+#include <algorithm>
+#include <thread>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "servoloop/ipc/ipc_socket_path.hpp"
+#include "servoloop/node/node_operations.hpp"
+#include "servoloop/plugin/plugin_path.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
+
+namespace servoloop::node {
+namespace {
+
+// True if topic lies under namespace ns ("/a" holds "/a/b", "/" holds everything).
+bool topicUnder(const std::string& topic, const std::string& ns) {
+  if (ns == "/") return true;
+  return topic.size() > ns.size() && topic.compare(0, ns.size(), ns) == 0 && topic[ns.size()] == '/';
+}
+
+}  // namespace
+
+Node::Node(LaunchFile launch, NodeOptions options) : launch_(std::move(launch)), options_(std::move(options)) {
+  if (options_.backend) launch_.world.backend = *options_.backend;
+  real_time_factor_ = options_.real_time_factor.value_or(
+      launch_.world.real_time_factor.value_or(options_.duration_s ? 0.0 : 1.0));
+  if (options_.duration_s && !(*options_.duration_s >= 0.0)) {
+    throw Error(fmt::format("the duration {} s must be >= 0", *options_.duration_s));
+  }
+  if (!(real_time_factor_ >= 0.0)) {
+    throw Error(fmt::format("the real-time factor {} must be >= 0 (0 runs as fast as possible)", real_time_factor_));
+  }
+  plugins_ = std::make_shared<plugin::PluginLoader>(plugin::pluginSearchPath(options_.plugin_directories));
+
+  for (const RobotSpec& spec : launch_.robots) spawnRobot(spec);
+
+  for (const TimedPublication& publication : launch_.publish) {
+    RobotInstance* robot = robotForTopic(publication.topic);
+    if (robot == nullptr) {
+      throw ConfigError(fmt::format("{}: publication on '{}': the world has no robot to publish to; add one under robots:",
+                                    launch_.source.string(), publication.topic));
+    }
+    robot->addTimedPublication(publication);
+  }
+  for (const RecordSpec& record : launch_.record) {
+    RobotInstance* robot = robotForTopic(record.topic);
+    if (robot == nullptr) {
+      throw ConfigError(fmt::format("{}: recording '{}': the world has no robot whose topics could be recorded",
+                                    launch_.source.string(), record.topic));
+    }
+    recorders_.push_back(std::make_unique<TopicRecorder>(robot->topics(), record.topic, record.file));
+  }
+}
+
+Node::~Node() {
+  try {
+    shutdown();
+  } catch (const std::exception& e) {
+    logger().error("shutting the node down failed: {}", e.what());
+  }
+}
+
+RobotInstance* Node::robotForTopic(const std::string& topic) {
+  std::lock_guard lock(robots_mutex_);
+  RobotInstance* best = nullptr;
+  std::size_t best_length = 0;
+  for (const auto& robot : robots_) {
+    const std::string& ns = robot->robotNamespace();
+    if (topicUnder(topic, ns) && (best == nullptr || ns.size() > best_length)) {
+      best = robot.get();
+      best_length = ns.size();
+    }
+  }
+  // A topic outside every robot namespace goes to the first robot's bus.
+  if (best == nullptr && !robots_.empty()) best = robots_.front().get();
+  return best;
+}
+
+std::string Node::spawnRobot(const RobotSpec& spec) {
+  for (const auto& file : spec.params) parameters_.loadFile(file.string(), "/");
+  RobotWorld world;
+  world.plugins = plugins_;
+  world.parameters = &parameters_;
+  world.world = launch_.world;
+  world.update_rate_hz = launch_.controller_manager.update_rate_hz;
+  world.real_time_factor = real_time_factor_;
+  auto robot = std::make_unique<RobotInstance>(spec, world);
+  robot->setFinishedCallback([this] {
+    {
+      std::lock_guard lock(finished_mutex_);
+      robot_finished_ = true;
+    }
+    finished_wake_.notify_all();
+  });
+  const std::string ns = robot->robotNamespace();
+
+  std::lock_guard lock(robots_mutex_);
+  if (!accepting_robots_) throw Error("the node is shutting down; no robot can be spawned any more");
+  for (const auto& existing : robots_) {
+    if (existing->robotNamespace() == ns) {
+      throw Error(fmt::format("a robot with namespace '{}' exists already; give the new one another --namespace", ns));
+    }
+  }
+  logger().info("spawned robot '{}' ({}) from {} on the {} backend", robot->robotName(), ns, spec.urdf.string(),
+                robot->backendName());
+  RobotInstance& added = *robots_.emplace_back(std::move(robot));
+  if (started_) startRobotLocked(added);
+  return ns;
+}
+
+void Node::startServer(const std::string& socket_namespace, RobotInstance* robot) {
+  auto operations = std::make_unique<NodeOperations>(*this, robot, socket_namespace);
+  NodeOperations* handler = operations.get();
+  auto server = std::make_unique<ipc::IpcServer>(
+      ipc::socketPathFor(socket_namespace),
+      [handler](const nlohmann::json& request, ipc::IpcConnection& connection) { return handler->handle(request, connection); });
+  server->start();
+  logger().info("serving {} on {}", socket_namespace, server->socketPath().string());
+  operations_.push_back(std::move(operations));
+  servers_.push_back(std::move(server));
+}
+
+void Node::startRobotLocked(RobotInstance& robot) {
+  // The socket opens once the launch file's controllers run (start() waits for them).
+  robot.start(options_.duration_s);
+  if (options_.serve_ipc) startServer(robot.robotNamespace(), &robot);
+}
+
+void Node::start() {
+  std::lock_guard lock(robots_mutex_);
+  if (started_) return;
+  started_ = true;
+  start_time_ = std::chrono::steady_clock::now();
+  if (options_.serve_ipc && robots_.empty()) startServer("/", nullptr);
+  for (const auto& robot : robots_) startRobotLocked(*robot);
+}
+
+void Node::waitUntilDone(const std::function<void()>& tick, std::chrono::milliseconds tick_period) {
+  while (!shutdownRequested()) {
+    bool all_finished = true;
+    bool any_robot = false;
+    for (RobotInstance* robot : robots()) {
+      any_robot = true;
+      robot->manager().processFaults();
+      robot->loop().logHardwareErrorReport();
+      all_finished &= robot->finished();
+    }
+    if (tick) tick();
+    if (options_.duration_s && (all_finished || !any_robot)) break;
+    if (!options_.duration_s && any_robot && all_finished) {
+      logger().warn("every robot's control loop has stopped (the hardware asked to stop); ending the run");
+      break;
+    }
+    // Until the next tick, or at once when a robot's loop ends (a short run
+    // is not kept waiting for the tick; a shutdown request from a signal
+    // handler is seen at the next tick).
+    std::unique_lock lock(finished_mutex_);
+    finished_wake_.wait_for(lock, tick_period, [this] { return robot_finished_; });
+    robot_finished_ = false;
+  }
+}
+
+RunSummary Node::summary() {
+  if (final_summary_) return *final_summary_;
+  RunSummary summary;
+  summary.wall_time_s =
+      started_ ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time_).count() : 0.0;
+  for (RobotInstance* robot : robots()) {
+    RobotSummary part = summarizeRobot(*robot);
+    summary.sim_time_s = std::max(summary.sim_time_s, robot->simTime());
+    summary.cycles += part.loop.cycles;
+    summary.robots.push_back(std::move(part));
+  }
+  summary.real_time_factor = summary.wall_time_s > 0.0 ? summary.sim_time_s / summary.wall_time_s : 0.0;
+  return summary;
+}
+
+void Node::shutdown() {
+  if (shut_down_) return;
+  shut_down_ = true;
+  {
+    // From here on servers_ and operations_ no longer grow.
+    std::lock_guard lock(robots_mutex_);
+    accepting_robots_ = false;
+  }
+  // No new requests while the world is taken down; open streams end here.
+  for (auto& server : servers_) server->stop();
+  operations_.clear();
+  for (RobotInstance* robot : robots()) robot->stop();
+  final_summary_ = summary();
+  for (RobotInstance* robot : robots()) {
+    robot->topics().flush();
+    robot->manager().processFaults();
+    robot->loop().logHardwareErrorReport();
+  }
+  for (auto& recorder : recorders_) recorder->close();
+  for (RobotInstance* robot : robots()) robot->shutdownControllers();
+  recorders_.clear();
+  servers_.clear();
+  std::lock_guard lock(robots_mutex_);
+  robots_.clear();
+}
+
+RobotInstance* Node::findRobot(const std::string& robot_namespace) {
+  std::lock_guard lock(robots_mutex_);
+  for (const auto& robot : robots_) {
+    if (robot->robotNamespace() == robot_namespace) return robot.get();
+  }
+  return nullptr;
+}
+
+std::vector<std::string> Node::robotNamespaces() const {
+  std::lock_guard lock(robots_mutex_);
+  std::vector<std::string> names;
+  for (const auto& robot : robots_) names.push_back(robot->robotNamespace());
+  return names;
+}
+
+std::vector<RobotInstance*> Node::robots() const {
+  std::lock_guard lock(robots_mutex_);
+  std::vector<RobotInstance*> list;
+  for (const auto& robot : robots_) list.push_back(robot.get());
+  return list;
+}
+
+double Node::simTime() const {
+  double time = 0.0;
+  for (RobotInstance* robot : robots()) time = std::max(time, robot->simTime());
+  return time;
+}
+
+}  // namespace servoloop::node

@@ -1,0 +1,357 @@
+// The operations a node serves over IPC (docs/node_operations.md).
+#include "servoloop/node/node_operations.hpp"
+
+#include <filesystem>
+#include <limits>
+
+#include <spdlog/fmt/fmt.h>
+#include <yaml-cpp/yaml.h>
+
+#include "servoloop/ipc/ipc_protocol.hpp"
+#include "servoloop/node/message_json.hpp"
+#include "servoloop/node/node.hpp"
+#include "servoloop/params/parameter_store.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
+
+namespace servoloop::node {
+namespace {
+
+using nlohmann::json;
+
+// A switch whose request says "timeout: 0" (wait forever) waits this long at
+// most, so a node shutting down never waits on a loop that has stopped.
+constexpr double kMaxSwitchWait_s = 10.0;
+
+std::string requireString(const json& request, const char* field) {
+  const auto it = request.find(field);
+  if (it == request.end() || !it->is_string() || it->get<std::string>().empty()) {
+    throw Error(fmt::format("'{}' needs a non-empty string field '{}'", request.value("op", ""), field));
+  }
+  return it->get<std::string>();
+}
+
+std::string optionalString(const json& request, const char* field, const std::string& fallback) {
+  const auto it = request.find(field);
+  if (it == request.end() || it->is_null()) return fallback;
+  if (!it->is_string()) {
+    throw Error(fmt::format("'{}': field '{}' must be a string, got {}", request.value("op", ""), field,
+                            ipc::describeJsonType(*it)));
+  }
+  return it->get<std::string>();
+}
+
+std::vector<std::string> stringList(const json& request, const char* field) {
+  std::vector<std::string> values;
+  const auto it = request.find(field);
+  if (it == request.end() || it->is_null()) return values;
+  if (!it->is_array()) {
+    throw Error(fmt::format("'{}': field '{}' must be a list of names, got {}", request.value("op", ""), field,
+                            ipc::describeJsonType(*it)));
+  }
+  for (const json& value : *it) {
+    if (!value.is_string()) throw Error(fmt::format("'{}': field '{}' must hold names only", request.value("op", ""), field));
+    values.push_back(value.get<std::string>());
+  }
+  return values;
+}
+
+void throwIfFailed(const controller_manager::ServiceResult& result) {
+  if (!result) throw Error(result.message);
+}
+
+}  // namespace
+
+NodeOperations::NodeOperations(Node& node, RobotInstance* robot, std::string socket_namespace)
+    : node_(node), robot_(robot), socket_namespace_(std::move(socket_namespace)) {
+  worker_ = std::thread([this] { workerLoop(); });
+}
+
+NodeOperations::~NodeOperations() {
+  {
+    std::lock_guard lock(jobs_mutex_);
+    stopping_ = true;
+  }
+  jobs_changed_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  std::map<std::pair<std::uint64_t, std::string>, realtime::Subscription> subscriptions;
+  {
+    std::lock_guard lock(subscriptions_mutex_);
+    subscriptions.swap(subscriptions_);
+  }
+  subscriptions.clear();  // unsubscribes, outside the lock
+}
+
+void NodeOperations::workerLoop() {
+  while (true) {
+    Job job;
+    {
+      std::unique_lock lock(jobs_mutex_);
+      jobs_changed_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+      if (jobs_.empty()) return;  // stopping, nothing left
+      job = std::move(jobs_.front());
+      jobs_.pop_front();
+    }
+    job();
+  }
+}
+
+json NodeOperations::deferToWorker(const json& request, ipc::IpcConnection& connection, std::function<json()> work) {
+  const json id = request.contains("id") ? request["id"] : json();
+  std::weak_ptr<ipc::IpcConnection> weak = connection.shared();
+  {
+    std::lock_guard lock(jobs_mutex_);
+    jobs_.push_back([id, weak, work = std::move(work)] {
+      json reply;
+      try {
+        reply = ipc::makeIpcOkReply(id, work());
+      } catch (const std::exception& e) {
+        reply = ipc::makeIpcErrorReply(id, e.what());
+      }
+      if (auto connection = weak.lock()) connection->send(reply);
+    });
+  }
+  jobs_changed_.notify_one();
+  return ipc::IpcServer::deferredReply();
+}
+
+RobotInstance& NodeOperations::robotFor(const std::string& op) {
+  if (robot_ != nullptr) return *robot_;
+  const std::vector<RobotInstance*> robots = node_.robots();
+  if (robots.size() == 1) return *robots.front();
+  if (robots.empty()) {
+    throw Error(fmt::format("'{}': this world has no robot yet; add one with `servoloop spawn-model --urdf FILE "
+                            "--model NAME`",
+                            op));
+  }
+  std::string names;
+  for (const RobotInstance* robot : robots) names += (names.empty() ? "" : ", ") + robot->robotNamespace();
+  throw Error(fmt::format("'{}': this world has several robots ({}); ask the robot's own socket with --namespace", op,
+                          names));
+}
+
+json NodeOperations::handle(const json& request, ipc::IpcConnection& connection) {
+  const std::string op = request.at("op").get<std::string>();
+  if (op == "ping") return ping();
+  if (op == "world.shutdown") {
+    logger().info("shutdown requested over IPC");
+    node_.requestShutdown();
+    return nullptr;
+  }
+  if (op == "model.spawn") {
+    return deferToWorker(request, connection, [this, request] { return modelSpawn(request); });
+  }
+  if (op.starts_with("param.")) return paramOp(op, request);
+  if (op == "control.list_types") return controlListTypes();
+
+  RobotInstance& robot = robotFor(op);
+  if (op == "control.list") return controlList(robot);
+  if (op == "control.list_joints") return controlListJoints(robot);
+  if (op == "control.load" || op == "control.unload") {
+    const std::string name = requireString(request, "name");
+    const bool load = op == "control.load";
+    return deferToWorker(request, connection, [&robot, name, load] {
+      throwIfFailed(load ? robot.manager().loadController(name) : robot.manager().unloadController(name));
+      return json(nullptr);
+    });
+  }
+  if (op == "control.switch") {
+    controller_manager::SwitchRequest switch_request;
+    switch_request.start_controllers = stringList(request, "start");
+    switch_request.stop_controllers = stringList(request, "stop");
+    const std::string strictness = optionalString(request, "strictness", "strict");
+    if (strictness == "strict" || strictness == "STRICT" || strictness == "2") {
+      switch_request.strictness = controller_manager::SwitchStrictness::STRICT;
+    } else if (strictness == "best_effort" || strictness == "BEST_EFFORT" || strictness == "1") {
+      switch_request.strictness = controller_manager::SwitchStrictness::BEST_EFFORT;
+    } else {
+      throw Error("'control.switch': strictness '" + strictness + "' must be \"strict\" or \"best_effort\"");
+    }
+    switch_request.start_asap = request.value("start_asap", false);
+    const double timeout_s = request.value("timeout", 0.0);
+    switch_request.timeout_s = timeout_s > 0.0 ? timeout_s : kMaxSwitchWait_s;
+    return deferToWorker(request, connection, [&robot, switch_request] {
+      if (robot.finished()) {
+        throw Error("robot '" + robot.robotNamespace() + "': its control loop has ended, so no switch can be carried out");
+      }
+      throwIfFailed(robot.manager().switchController(switch_request));
+      return json(nullptr);
+    });
+  }
+  if (op == "control.reload_libraries") {
+    const bool force_kill = request.value("force_kill", false);
+    return deferToWorker(request, connection, [&robot, force_kill] {
+      throwIfFailed(robot.manager().reloadControllerLibraries(force_kill));
+      return json(nullptr);
+    });
+  }
+  if (op == "topic.list") return topicList(robot);
+  if (op == "topic.pub") return topicPub(robot, request);
+  if (op == "topic.subscribe") return topicSubscribe(robot, request, connection);
+  if (op == "topic.unsubscribe") return topicUnsubscribe(request, connection);
+  throw Error("unknown op '" + op +
+              "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries}, "
+              "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, model.spawn, world.shutdown");
+}
+
+json NodeOperations::ping() {
+  return {{"namespace", socket_namespace_}, {"sim_time", robot_ ? robot_->simTime() : node_.simTime()},
+          {"robots", node_.robotNamespaces()}};
+}
+
+json NodeOperations::controlList(RobotInstance& robot) {
+  json controllers = json::array();
+  for (const controller_manager::ControllerSpec& spec : robot.manager().listControllers()) {
+    json claims = json::array();
+    for (const auto& claim : spec.claimed_resources) {
+      claims.push_back({{"hardware_interface", claim.hardware_interface},
+                        {"resources", std::vector<std::string>(claim.resources.begin(), claim.resources.end())}});
+    }
+    json entry = {{"name", spec.name},
+                  {"type", spec.type},
+                  {"state", toString(spec.state)},
+                  {"claimed_resources", std::move(claims)},
+                  {"update_rate", spec.update_rate_hz}};
+    if (!spec.last_fault.empty()) entry["last_fault"] = spec.last_fault;
+    controllers.push_back(std::move(entry));
+  }
+  return {{"controllers", std::move(controllers)}};
+}
+
+json NodeOperations::controlListTypes() {
+  json types = json::array();
+  for (const plugin::PluginTypeInfo& info : node_.plugins().listTypes()) {
+    types.push_back({{"type", info.type}, {"kind", info.kind}, {"library", info.library.string()}});
+  }
+  return {{"types", std::move(types)}};
+}
+
+json NodeOperations::controlListJoints(RobotInstance& robot) {
+  json joints = json::array();
+  for (const auto& [name, interfaces] : robot.jointInterfaces()) joints.push_back({{"name", name}, {"interfaces", interfaces}});
+  return {{"joints", std::move(joints)}};
+}
+
+json NodeOperations::paramOp(const std::string& op, const json& request) {
+  params::ParameterStore& store = node_.parameters();
+  if (op == "param.get") {
+    const std::string name = requireString(request, "name");
+    return {{"value", yamlToJson(store.node(name))}};
+  }
+  if (op == "param.set") {
+    const std::string name = requireString(request, "name");
+    if (!request.contains("value")) throw Error("'param.set' needs a field 'value'");
+    const json& value = request["value"];
+    if (value.is_string()) {
+      store.set(name, std::string_view(value.get<std::string>()));
+    } else {
+      // JSON is YAML (flow style), so the value keeps its JSON types.
+      store.setNode(name, YAML::Load(value.dump()));
+    }
+    return nullptr;
+  }
+  if (op == "param.load") {
+    const std::string ns = optionalString(request, "namespace", "/");
+    if (request.contains("file")) {
+      const std::string file = requireString(request, "file");
+      if (!std::filesystem::path(file).is_absolute()) {
+        throw Error("'param.load': file '" + file + "' must be an absolute path (the node's folder is not yours)");
+      }
+      store.loadFile(file, ns);
+    } else {
+      const std::string yaml = requireString(request, "yaml");
+      store.loadString(yaml, optionalString(request, "source", "<param.load>"), ns);
+    }
+    return nullptr;
+  }
+  if (op == "param.dump") return {{"yaml", store.dump(optionalString(request, "namespace", "/"))}};
+  if (op == "param.list") return {{"names", store.list(optionalString(request, "namespace", "/"))}};
+  throw Error("unknown op '" + op + "'; the parameter operations are param.get, param.set, param.load, param.dump, param.list");
+}
+
+json NodeOperations::topicList(RobotInstance& robot) {
+  json topics = json::array();
+  for (const realtime::TopicInfo& info : robot.topics().list()) {
+    topics.push_back({{"name", info.name}, {"type", info.type}, {"publishers", info.publishers},
+                      {"subscribers", info.subscribers}});
+  }
+  return {{"topics", std::move(topics)}};
+}
+
+json NodeOperations::topicPub(RobotInstance& robot, const json& request) {
+  const std::string topic = requireString(request, "topic");
+  const std::string type = optionalString(request, "type", "");
+  if (!request.contains("msg")) throw Error("'topic.pub' needs a field 'msg' (the message as JSON, e.g. {\"data\": 1.0})");
+  servoloop::node::publishJson(robot.topics(), topic, request["msg"], type);
+  return nullptr;
+}
+
+json NodeOperations::topicSubscribe(RobotInstance& robot, const json& request, ipc::IpcConnection& connection) {
+  const std::string topic = realtime::TopicBus::normalizeTopicName(requireString(request, "topic"));
+  const std::uint64_t connection_id = connection.id();
+  std::lock_guard lock(subscriptions_mutex_);
+  const auto key = std::make_pair(connection_id, topic);
+  if (subscriptions_.count(key) != 0) return nullptr;  // already streaming
+
+  realtime::TopicBus& bus = robot.topics();
+  std::weak_ptr<ipc::IpcConnection> weak = connection.shared();
+  // The type is looked up once it is known (a topic may have no type yet).
+  auto type = std::make_shared<std::string>();
+  subscriptions_.emplace(key, servoloop::node::subscribeJson(bus, topic, [weak, topic, type, &bus](Time stamp, const json& msg) {
+    auto target = weak.lock();
+    if (!target || !target->isOpen()) return;
+    if (type->empty()) *type = bus.typeOf(topic);
+    target->send(ipc::makeIpcStreamMessage(topic, {{"type", *type}, {"stamp", stamp.seconds}, {"msg", msg}}));
+  }));
+  if (watched_connections_.insert(connection_id).second) {
+    connection.onClose([this, connection_id] {
+      std::vector<realtime::Subscription> dropped;
+      {
+        std::lock_guard inner(subscriptions_mutex_);
+        watched_connections_.erase(connection_id);
+        for (auto it = subscriptions_.begin(); it != subscriptions_.end();) {
+          if (it->first.first == connection_id) {
+            dropped.push_back(std::move(it->second));
+            it = subscriptions_.erase(it);
+          } else {
+            ++it;
+          }
+        }
+      }
+    });
+  }
+  return nullptr;
+}
+
+json NodeOperations::topicUnsubscribe(const json& request, ipc::IpcConnection& connection) {
+  const std::string topic = realtime::TopicBus::normalizeTopicName(requireString(request, "topic"));
+  realtime::Subscription dropped;
+  {
+    std::lock_guard lock(subscriptions_mutex_);
+    const auto it = subscriptions_.find(std::make_pair(connection.id(), topic));
+    if (it == subscriptions_.end()) throw Error("'topic.unsubscribe': this connection is not subscribed to '" + topic + "'");
+    dropped = std::move(it->second);
+    subscriptions_.erase(it);
+  }
+  return nullptr;  // `dropped` unsubscribes here, outside the lock
+}
+
+json NodeOperations::modelSpawn(const json& request) {
+  RobotSpec spec;
+  spec.urdf = requireString(request, "urdf");
+  if (!spec.urdf.is_absolute()) throw Error("'model.spawn': urdf '" + spec.urdf.string() + "' must be an absolute path");
+  if (!std::filesystem::is_regular_file(spec.urdf)) {
+    throw Error("'model.spawn': URDF file '" + spec.urdf.string() + "' does not exist");
+  }
+  spec.model = optionalString(request, "model", "");
+  spec.robot_namespace = optionalString(request, "namespace", "");
+  for (const std::string& file : stringList(request, "params")) {
+    if (!std::filesystem::path(file).is_absolute()) {
+      throw Error("'model.spawn': params file '" + file + "' must be an absolute path");
+    }
+    spec.params.emplace_back(file);
+  }
+  return {{"namespace", node_.spawnRobot(spec)}};
+}
+
+}  // namespace servoloop::node

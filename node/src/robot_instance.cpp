@@ -1,0 +1,329 @@
+// One robot of a node: backend, bus, manager, loop and the loop's thread.
+#include "servoloop/node/robot_instance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <future>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "servoloop/node/message_json.hpp"
+#include "servoloop/node/robot_namespace.hpp"
+#include "servoloop/core/step_grid.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/hardware_interface/joint_interfaces.hpp"
+#include "servoloop/core/logging.hpp"
+#include "servoloop/hardware_interface/robot_model.hpp"
+
+namespace servoloop::node {
+namespace {
+
+// Simulated time between two bus flushes of a free-running loop.
+constexpr double kFreeRunningFlushInterval_s = 0.01;
+
+std::string readTextFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(fmt::format("URDF file '{}' cannot be read; check the path", path.string()));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Writes one world setting to the robot's sim/ parameters, where the backend
+// reads it, warning when a parameter file said otherwise.
+template <class T>
+void setWorldParameter(params::ParameterStore& store, const std::string& name, const T& value, bool differs_from_file) {
+  if (store.has(name) && differs_from_file) {
+    logger().warn("parameter '{}' ({}) is replaced by the launch file's world setting", name, store.sourceOf(name));
+  }
+  store.set(name, value);
+}
+
+void writeWorldSettings(params::ParameterStore& store, const std::string& ns, const WorldSettings& world) {
+  const std::string sim = params::resolveName(ns, "sim");
+  const std::string time_step = sim + "/time_step";
+  const std::string gravity = sim + "/gravity";
+  const std::string ground_plane = sim + "/ground_plane";
+  setWorldParameter(store, time_step, world.time_step_s,
+                    store.get<double>(time_step, world.time_step_s) != world.time_step_s);
+  const std::vector<double> gravity_value(world.gravity.begin(), world.gravity.end());
+  setWorldParameter(store, gravity, gravity_value, store.get<std::vector<double>>(gravity, gravity_value) != gravity_value);
+  setWorldParameter(store, ground_plane, world.ground_plane,
+                    store.get<bool>(ground_plane, world.ground_plane) != world.ground_plane);
+}
+
+}  // namespace
+
+RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
+    : urdf_path_(spec.urdf), backend_name_(world.world.backend), real_time_factor_(world.real_time_factor) {
+  if (!world.plugins || world.parameters == nullptr) {
+    throw Error("RobotInstance: the world's plugin loader and parameter store must be set");
+  }
+  params::ParameterStore& store = *world.parameters;
+
+  // Robot description and namespace.
+  const std::string xml = readTextFile(spec.urdf);
+  model_ = parseRobotModel(xml, spec.urdf.string());
+  robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
+  namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);
+  writeWorldSettings(store, namespace_, world.world);
+
+  // The simulated hardware, from its backend plugin.
+  try {
+    backend_ = world.plugins->create<hardware_interface::RobotHW>(backend_name_);
+  } catch (const Error& e) {
+    throw ConfigError(fmt::format("backend '{}': {}; choose another with --backend or world.backend", backend_name_, e.what()));
+  }
+  sim_hw_ = dynamic_cast<hardware_interface::SimulatedRobotHW*>(backend_.get());
+  if (sim_hw_ == nullptr) {
+    throw ConfigError(fmt::format(
+        "backend '{}' is a robot_hw plugin but not a simulator (it does not implement SimulatedRobotHW); "
+        "`servoloop launch` needs a simulation backend such as bullet or mock",
+        backend_name_));
+  }
+  hardware_interface::HardwareInfo info;
+  info.urdf_xml = xml;
+  info.urdf_path = spec.urdf.string();
+  info.robot_namespace = namespace_;
+  if (store.has(namespace_)) info.parameters = store.node(namespace_);
+  sim_hw_->init(info);
+
+  // Topics, controllers and the loop.
+  bus_ = std::make_unique<realtime::TopicBus>();
+  bus_->start();
+  controller_manager::ControllerContext context;
+  context.robot_namespace = namespace_;
+  context.topics = bus_.get();
+  context.parameters = &store;
+  context.robot_model = model_;
+  const double update_rate_hz =
+      world.update_rate_hz > 0.0 ? world.update_rate_hz : 1.0 / sim_hw_->timeStep().seconds;
+  params::ParameterStore* store_ptr = &store;
+  const std::string ns = namespace_;
+  auto lookup = [store_ptr, ns](const std::string& controller) {
+    const std::string name = params::resolveName(ns, controller);
+    return store_ptr->has(name) ? store_ptr->node(name) : YAML::Node();
+  };
+  manager_ = std::make_unique<controller_manager::ControllerManager>(
+      sim_hw_, std::make_shared<PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
+
+  controller_manager::SimulationLoop::Options options;
+  options.topic_bus = bus_.get();
+  options.real_time_factor = real_time_factor_;
+  try {
+    loop_ = std::make_unique<controller_manager::SimulationLoop>(*sim_hw_, *manager_, options);
+  } catch (const ConfigError& e) {
+    throw ConfigError(fmt::format("robot '{}': controller_manager.update_rate {} Hz with world.time_step {} s: {}",
+                                  namespace_, update_rate_hz, sim_hw_->timeStep().seconds, e.what()));
+  }
+  loadControllers(spec);
+}
+
+RobotInstance::~RobotInstance() {
+  stop();
+  try {
+    shutdownControllers();
+  } catch (const std::exception& e) {
+    logger().error("robot '{}': shutting down its controllers failed: {}", namespace_, e.what());
+  }
+  loop_.reset();
+  manager_.reset();
+  if (bus_) bus_->stop();
+}
+
+void RobotInstance::loadControllers(const RobotSpec& spec) {
+  for (const std::string& name : spec.controllers) {
+    if (manager_->loadController(name)) launch_controllers_.push_back(name);
+  }
+  for (const std::string& name : spec.stopped_controllers) manager_->loadController(name);
+}
+
+// Loop thread, before the first physics step. In the manager, a controller
+// started in cycle c first updates in cycle c + d (d: its rate divisor) with
+// the period since its start. So each controller is started d control
+// periods before t = 0, in manager updates that step no physics and update
+// no running controller (every one started is still short of its first d
+// cycles): all of them first update at t = 0 with their nominal period, then
+// every d cycles (a 100 Hz controller at 0, 10 ms, 20 ms, ...). The hardware
+// is read first, so starting() sees the measured state. Controllers with
+// different divisors start in separate STRICT switches, largest divisor
+// first; one that cannot start is reported and the others run.
+void RobotInstance::startLaunchControllers() {
+  if (launch_controllers_.empty()) return;
+  std::map<std::uint32_t, std::vector<std::string>, std::greater<>> by_divisor;
+  for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) {
+    if (std::find(launch_controllers_.begin(), launch_controllers_.end(), controller.name) !=
+        launch_controllers_.end()) {
+      by_divisor[std::max<std::uint32_t>(controller.update_divisor, 1)].push_back(controller.name);
+    }
+  }
+  if (by_divisor.empty()) return;
+
+  const Duration period = loop_->controlPeriod();
+  if (sim_hw_->read(Time(0.0), loop_->physicsStep()) != ReturnType::ok) {
+    logger().warn("robot '{}': reading the hardware before starting the controllers failed", namespace_);
+  }
+  for (std::uint32_t cycles_before = by_divisor.begin()->first; cycles_before >= 1; --cycles_before) {
+    const Time time(-static_cast<double>(cycles_before) * period.seconds);
+    if (const auto group = by_divisor.find(cycles_before); group != by_divisor.end()) {
+      controller_manager::SwitchRequest request;
+      request.start_controllers = group->second;
+      request.strictness = controller_manager::SwitchStrictness::STRICT;
+      // A client's switch that got in first is carried out by this cycle's
+      // update; ours follows in the next one.
+      if (manager_->switchPending()) manager_->update(time, period);
+      if (const controller_manager::ServiceResult result = manager_->requestSwitch(request); !result) {
+        logger().error("robot '{}': starting controllers failed: {}", namespace_, result.message);
+      }
+    }
+    manager_->update(time, period);
+  }
+}
+
+void RobotInstance::addTimedPublication(const TimedPublication& publication) {
+  if (loop_thread_.joinable()) throw Error("RobotInstance: timed publications must be added before start()");
+  publications_.push_back(publication);
+  std::stable_sort(publications_.begin(), publications_.end(),
+                   [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+}
+
+std::uint64_t RobotInstance::stepsAt(double time_s) const {
+  const double steps = std::ceil(time_s / loop_->physicsStep().seconds - 1e-9);
+  return steps <= 0.0 ? 0 : static_cast<std::uint64_t>(steps);
+}
+
+void RobotInstance::publishDue(std::uint64_t steps_taken) {
+  while (next_publication_ < publications_.size() && stepsAt(publications_[next_publication_].time_s) <= steps_taken) {
+    const TimedPublication& publication = publications_[next_publication_++];
+    bus_->setTime(Time(stepsToSeconds(steps_taken, loop_->physicsStep().seconds)));
+    try {
+      servoloop::node::publishJson(*bus_, publication.topic, publication.message, publication.type);
+      logger().debug("published {} on '{}' at t = {} s", publication.message.dump(), publication.topic,
+                     publication.time_s);
+    } catch (const std::exception& e) {
+      logger().error("timed publication on '{}' at t = {} s failed: {}", publication.topic, publication.time_s,
+                     e.what());
+    }
+  }
+}
+
+void RobotInstance::driveLoop(std::optional<double> duration_s) {
+  constexpr std::uint64_t kForever = std::numeric_limits<std::uint64_t>::max();
+  const double dt = loop_->physicsStep().seconds;
+  const bool free_running = real_time_factor_ <= 0.0;
+  const std::uint64_t end_steps = duration_s ? stepsAt(*duration_s) : kForever;
+  const auto flush_steps = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
+
+  while (!stop_requested_.load()) {
+    const std::uint64_t taken = loop_->stepsTaken();
+    publishDue(taken);
+    if (taken >= end_steps || loop_->hardwareAskedToStop()) break;
+
+    std::uint64_t target = end_steps;
+    if (next_publication_ < publications_.size()) {
+      target = std::min(target, stepsAt(publications_[next_publication_].time_s));
+    }
+    if (free_running) target = std::min(target, taken + flush_steps);
+
+    if (target == kForever) {
+      loop_->run(stop_requested_);
+    } else {
+      loop_->runFor(Duration(static_cast<double>(target - taken) * dt));
+    }
+    if (free_running) bus_->flush();
+  }
+  bus_->flush();
+  loop_done_.store(true);
+  if (on_finished_) on_finished_();
+}
+
+void RobotInstance::start(std::optional<double> duration_s) {
+  std::lock_guard lock(lifecycle_mutex_);
+  if (loop_thread_.joinable()) return;
+  // start() returns once the launch file's controllers are running, so that
+  // nobody (an IPC client, a test) sees the robot before its controllers.
+  std::promise<void> launch_controllers_started;
+  std::future<void> ready = launch_controllers_started.get_future();
+  loop_thread_ = std::thread([this, duration_s, started = std::move(launch_controllers_started)]() mutable {
+    bool started_set = false;
+    try {
+      // Before any publication: a controller's starting() forgets commands
+      // published before it.
+      startLaunchControllers();
+      started.set_value();
+      started_set = true;
+      driveLoop(duration_s);
+    } catch (const std::exception& e) {
+      if (!started_set) started.set_value();
+      logger().error("robot '{}': the control loop stopped: {}", namespace_, e.what());
+      loop_done_.store(true);
+      if (on_finished_) on_finished_();
+    }
+  });
+  ready.wait();
+}
+
+void RobotInstance::stop() {
+  std::lock_guard lock(lifecycle_mutex_);
+  stop_requested_.store(true);
+  if (loop_) loop_->requestStop();
+  if (loop_thread_.joinable()) loop_thread_.join();
+  loop_done_.store(true);
+}
+
+void RobotInstance::shutdownControllers() {
+  if (controllers_shut_down_ || !manager_) return;
+  controllers_shut_down_ = true;
+  controller_manager::SwitchRequest request;
+  request.strictness = controller_manager::SwitchStrictness::BEST_EFFORT;
+  for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) {
+    if (controller.state == controller_manager::ControllerState::running) request.stop_controllers.push_back(controller.name);
+  }
+  const Time now(simTime());
+  if (!request.stop_controllers.empty() && manager_->requestSwitch(request)) {
+    // The loop has ended: this thread is the real-time side now, and one
+    // update carries the switch out (stopping() runs) without stepping physics.
+    manager_->update(now, loop_->controlPeriod());
+  }
+  for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) manager_->unloadController(controller.name);
+}
+
+double RobotInstance::simTime() const {
+  return stepsToSeconds(loop_->stepsTaken(), loop_->physicsStep().seconds);
+}
+
+std::vector<JointReading> RobotInstance::joints() const {
+  std::vector<JointReading> readings;
+  auto* state = sim_hw_->get<hardware_interface::JointStateInterface>();
+  if (state == nullptr) return readings;
+  for (const std::string& name : state->getNames()) {
+    const auto handle = state->getHandle(name);
+    readings.push_back({name, handle.getPosition(), handle.getVelocity(), handle.getEffort()});
+  }
+  return readings;
+}
+
+std::vector<std::pair<std::string, std::vector<std::string>>> RobotInstance::jointInterfaces() const {
+  std::map<std::string, std::vector<std::string>> by_joint;
+  for (const std::string& iface_name : sim_hw_->getNames()) {
+    const bool joint_interface = iface_name == "JointStateInterface" ||
+                                 (iface_name.size() > 14 && iface_name.ends_with("JointInterface"));
+    if (!joint_interface) continue;
+    for (const std::string& joint : sim_hw_->getByName(iface_name)->getNames()) by_joint[joint].push_back(iface_name);
+  }
+  // JointStateInterface first, the command interfaces after it.
+  std::vector<std::pair<std::string, std::vector<std::string>>> joints;
+  for (auto& [joint, interfaces] : by_joint) {
+    std::stable_partition(interfaces.begin(), interfaces.end(),
+                          [](const std::string& name) { return name == "JointStateInterface"; });
+    joints.emplace_back(joint, std::move(interfaces));
+  }
+  return joints;
+}
+
+}  // namespace servoloop::node

@@ -1,0 +1,60 @@
+#include "servoloop/node/robot_namespace.hpp"
+
+#include <cstring>
+
+#include <tinyxml2.h>
+
+#include "servoloop/params/parameter_store.hpp"
+#include "servoloop/core/errors.hpp"
+
+namespace servoloop::node {
+namespace {
+
+constexpr const char* kRosControlPlugin = "libgazebo_ros_control.so";
+
+std::string trimmed(const char* text) {
+  std::string value = text == nullptr ? "" : text;
+  const auto first = value.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  const auto last = value.find_last_not_of(" \t\r\n");
+  return value.substr(first, last - first + 1);
+}
+
+}  // namespace
+
+std::string urdfRobotNamespace(const std::string& urdf_xml, const std::string& source_name) {
+  tinyxml2::XMLDocument document;
+  if (document.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw ConfigError(source_name + ": not valid XML (" + (document.ErrorStr() ? document.ErrorStr() : "") +
+                      "); check the robot description");
+  }
+  const tinyxml2::XMLElement* robot = document.FirstChildElement("robot");
+  if (robot == nullptr) return "";
+  for (const auto* gazebo = robot->FirstChildElement("gazebo"); gazebo != nullptr;
+       gazebo = gazebo->NextSiblingElement("gazebo")) {
+    for (const auto* plugin = gazebo->FirstChildElement("plugin"); plugin != nullptr;
+         plugin = plugin->NextSiblingElement("plugin")) {
+      const char* filename = plugin->Attribute("filename");
+      if (filename == nullptr || std::strcmp(filename, kRosControlPlugin) != 0) continue;
+      const auto* ns = plugin->FirstChildElement("robotNamespace");
+      if (ns == nullptr) continue;
+      const std::string value = trimmed(ns->GetText());
+      if (!value.empty()) return value;
+    }
+  }
+  return "";
+}
+
+std::string resolveRobotNamespace(const std::string& urdf_xml, const std::string& source_name,
+                                  const std::string& launch_namespace, const std::string& robot_name) {
+  std::string chosen = urdfRobotNamespace(urdf_xml, source_name);
+  if (chosen.empty()) chosen = launch_namespace;
+  if (chosen.empty()) chosen = "/" + robot_name;
+  try {
+    return params::resolveName("/", chosen);
+  } catch (const Error& e) {
+    throw ConfigError(source_name + ": robot namespace '" + chosen + "': " + e.what());
+  }
+}
+
+}  // namespace servoloop::node

@@ -1,0 +1,81 @@
+#include "servoloop/node/run_summary.hpp"
+
+#include <spdlog/fmt/fmt.h>
+
+namespace servoloop::node {
+
+RobotSummary summarizeRobot(RobotInstance& robot) {
+  RobotSummary summary;
+  summary.robot_namespace = robot.robotNamespace();
+  summary.backend = robot.backendName();
+  for (const controller_manager::ControllerSpec& controller : robot.manager().listControllers()) {
+    summary.controllers.push_back({controller.name, controller.type, toString(controller.state), controller.last_fault});
+  }
+  summary.joints = robot.joints();
+  summary.loop = robot.loop().statistics().snapshot();
+  return summary;
+}
+
+nlohmann::json toJson(const RunSummary& summary) {
+  nlohmann::json robots = nlohmann::json::array();
+  for (const RobotSummary& robot : summary.robots) {
+    nlohmann::json controllers = nlohmann::json::array();
+    for (const ControllerSummary& controller : robot.controllers) {
+      nlohmann::json entry = {{"name", controller.name}, {"type", controller.type}, {"state", controller.state}};
+      if (!controller.last_fault.empty()) entry["last_fault"] = controller.last_fault;
+      controllers.push_back(std::move(entry));
+    }
+    nlohmann::json joints = nlohmann::json::array();
+    for (const JointReading& joint : robot.joints) {
+      joints.push_back({{"name", joint.name}, {"position", joint.position}, {"velocity", joint.velocity},
+                        {"effort", joint.effort}});
+    }
+    const controller_manager::LoopStatisticsSnapshot& loop = robot.loop;
+    robots.push_back({{"namespace", robot.robot_namespace},
+                      {"backend", robot.backend},
+                      {"controllers", std::move(controllers)},
+                      {"joints", std::move(joints)},
+                      {"loop",
+                       {{"cycles", loop.cycles},
+                        {"control_updates", loop.control_updates},
+                        {"sim_time", loop.sim_time_s},
+                        {"wall_time", loop.wall_time_s},
+                        {"real_time_factor", loop.real_time_factor},
+                        {"compute",
+                         {{"timed_cycles", loop.timed_cycles},
+                          {"min", loop.compute_min_s},
+                          {"mean", loop.compute_mean_s},
+                          {"p50", loop.compute_p50_s},
+                          {"p99", loop.compute_p99_s},
+                          {"max", loop.compute_max_s}}},
+                        {"overruns", loop.overruns},
+                        {"schedule_resets", loop.schedule_resets},
+                        {"hardware_errors", loop.hardware_errors}}}});
+  }
+  return {{"sim_time", summary.sim_time_s},
+          {"wall_time", summary.wall_time_s},
+          {"real_time_factor", summary.real_time_factor},
+          {"cycles", summary.cycles},
+          {"robots", std::move(robots)}};
+}
+
+std::string toText(const RunSummary& summary) {
+  std::string text = fmt::format("simulated {:.3f} s in {:.3f} s wall (real-time factor {:.3g}), {} cycles\n",
+                                 summary.sim_time_s, summary.wall_time_s, summary.real_time_factor, summary.cycles);
+  for (const RobotSummary& robot : summary.robots) {
+    text += fmt::format("robot {} ({} backend)\n", robot.robot_namespace, robot.backend);
+    if (robot.controllers.empty()) text += "  controllers: none loaded\n";
+    for (const ControllerSummary& controller : robot.controllers) {
+      text += fmt::format("  controller {} ({}): {}{}\n", controller.name, controller.type, controller.state,
+                          controller.last_fault.empty() ? "" : " — last fault: " + controller.last_fault);
+    }
+    for (const JointReading& joint : robot.joints) {
+      text += fmt::format("  joint {}: position {:.6g}, velocity {:.6g}, effort {:.6g}\n", joint.name,
+                          joint.position, joint.velocity, joint.effort);
+    }
+    text += "  " + controller_manager::LoopStatistics::summary(robot.loop) + "\n";
+  }
+  return text;
+}
+
+}  // namespace servoloop::node

@@ -1,0 +1,339 @@
+#include "servoloop/plugin/plugin_loader.hpp"
+
+#include <cxxabi.h>
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <system_error>
+#include <utility>
+
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
+
+namespace servoloop::plugin {
+namespace fs = std::filesystem;
+
+namespace detail {
+
+class LoadedLibrary {
+ public:
+  LoadedLibrary(fs::path path, void* handle,
+                std::shared_ptr<std::atomic<std::size_t>> loader_live_objects)
+      : path_(std::move(path)), handle_(handle), loader_live_objects_(std::move(loader_live_objects)) {}
+  ~LoadedLibrary() { dlclose(handle_); }
+
+  LoadedLibrary(const LoadedLibrary&) = delete;
+  LoadedLibrary& operator=(const LoadedLibrary&) = delete;
+
+  const fs::path& path() const { return path_; }
+  void* handle() const { return handle_; }
+  void objectCreated() { loader_live_objects_->fetch_add(1); }
+  void objectDestroyed() { loader_live_objects_->fetch_sub(1); }
+
+ private:
+  fs::path path_;
+  void* handle_;
+  // Shared with the loader, which may be gone before the last object is.
+  std::shared_ptr<std::atomic<std::size_t>> loader_live_objects_;
+};
+
+}  // namespace detail
+
+namespace {
+
+std::string demangle(const char* mangled) {
+  int status = 0;
+  char* readable = abi::__cxa_demangle(mangled, nullptr, nullptr, &status);
+  if (status != 0 || readable == nullptr) return mangled;
+  std::string result(readable);
+  std::free(readable);
+  return result;
+}
+
+// dlerror() text usually starts with the library path, which the diagnostic
+// already shows.
+std::string dlopenReason(const fs::path& path, const char* error_text) {
+  std::string text = error_text ? error_text : "unknown dlopen error";
+  const std::string prefix = path.string() + ": ";
+  if (text.rfind(prefix, 0) == 0) text.erase(0, prefix.size());
+  return "cannot be loaded (dlopen): " + text;
+}
+
+bool isPluginFileName(const fs::path& path) {
+  const std::string name = path.filename().string();
+  return name.size() > 6 && name.rfind("lib", 0) == 0 && path.extension() == ".so";
+}
+
+std::string joinTypeNames(const std::vector<PluginTypeInfo>& types) {
+  std::string names;
+  for (const auto& type : types) names += (names.empty() ? "" : ", ") + type.type;
+  return names;
+}
+
+}  // namespace
+
+std::string PluginDiagnostic::message() const { return library.string() + ": " + reason; }
+
+PluginDeleter::PluginDeleter(void (*destroy)(void*),
+                             std::shared_ptr<detail::LoadedLibrary> library)
+    : destroy_(destroy), library_(std::move(library)) {}
+
+void PluginDeleter::operator()(void* base_object) const {
+  if (base_object == nullptr || destroy_ == nullptr) return;
+  destroy_(base_object);
+  if (library_ == nullptr) return;
+  library_->objectDestroyed();
+  // Let go of the library now rather than when the owning pointer goes away;
+  // this may dlclose it, which is safe because no plugin code is on the stack.
+  library_.reset();
+}
+
+PluginLoader::PluginLoader() : PluginLoader(pluginSearchPath()) {}
+
+PluginLoader::PluginLoader(std::vector<fs::path> search_directories)
+    : search_directories_(std::move(search_directories)),
+      live_objects_(std::make_shared<std::atomic<std::size_t>>(0)) {
+  std::lock_guard lock(mutex_);
+  scanLocked();
+}
+
+PluginLoader::~PluginLoader() = default;
+
+std::vector<PluginTypeInfo> PluginLoader::listTypes(const std::string& kind) const {
+  std::lock_guard lock(mutex_);
+  std::vector<PluginTypeInfo> result;
+  for (const auto& type : types_) {
+    if (kind.empty() || type.info.kind == kind) result.push_back(type.info);
+  }
+  return result;
+}
+
+bool PluginLoader::hasType(const std::string& type) const {
+  std::lock_guard lock(mutex_);
+  return std::any_of(types_.begin(), types_.end(),
+                     [&](const RegisteredType& registered) { return registered.info.type == type; });
+}
+
+std::vector<PluginDiagnostic> PluginLoader::diagnostics() const {
+  std::lock_guard lock(mutex_);
+  return diagnostics_;
+}
+
+std::size_t PluginLoader::liveObjectCount() const { return live_objects_->load(); }
+
+void PluginLoader::reload(bool force) {
+  std::lock_guard lock(mutex_);
+  // Forced, objects still alive keep their own library mapped.
+  if (!force) ensureNoLiveObjectsLocked("reload plugin libraries");
+  types_.clear();
+  libraries_.clear();
+  diagnostics_.clear();
+  scanLocked();
+}
+
+void PluginLoader::unloadAll(bool force) {
+  std::lock_guard lock(mutex_);
+  if (!force) ensureNoLiveObjectsLocked("unload plugin libraries");
+  types_.clear();
+  libraries_.clear();
+  diagnostics_.clear();
+}
+
+void PluginLoader::ensureNoLiveObjectsLocked(const char* action) const {
+  const std::size_t live = live_objects_->load();
+  if (live == 0) return;
+  throw Error("cannot " + std::string(action) + ": " + std::to_string(live) +
+              " object(s) created from them still exist; unload those controllers/backends "
+              "first, or force it");
+}
+
+PluginLoader::Created PluginLoader::createErased(const std::string& type, const char* kind,
+                                                 const char* base_type_id) {
+  const ServoloopPluginEntry* entry = nullptr;
+  std::shared_ptr<detail::LoadedLibrary> library;
+  {
+    std::lock_guard lock(mutex_);
+    const auto found = std::find_if(types_.begin(), types_.end(),
+                                    [&](const RegisteredType& t) { return t.info.type == type; });
+    if (found == types_.end()) {
+      std::vector<PluginTypeInfo> known;
+      for (const auto& t : types_) {
+        if (t.info.kind == kind) known.push_back(t.info);
+      }
+      std::string message = "unknown " + std::string(kind) + " type '" + type + "'; ";
+      if (known.empty()) {
+        message += "no " + std::string(kind) + " plugins found in " + describeSearchPathLocked() +
+                   " (add directories with " + kPluginPathEnvVar + ")";
+      } else {
+        message += "known " + std::string(kind) + " types: " + joinTypeNames(known);
+      }
+      if (!diagnostics_.empty()) {
+        message += "; " + std::to_string(diagnostics_.size()) + " problem(s) while loading plugins:";
+        for (const auto& diagnostic : diagnostics_) message += " [" + diagnostic.message() + "]";
+      }
+      throw Error(message);
+    }
+    if (found->info.kind != kind) {
+      throw Error("plugin type '" + type + "' (" + found->info.library.string() + ") is a " +
+                  found->info.kind + " plugin, not a " + kind + " plugin");
+    }
+    if (found->base_type_id != base_type_id) {
+      throw Error("plugin type '" + type + "' (" + found->info.library.string() +
+                  ") derives from " + demangle(found->base_type_id.c_str()) + ", not from " +
+                  demangle(base_type_id) + "; both declare plugin kind '" + kind + "'");
+    }
+    entry = found->entry;
+    library = found->library;
+  }
+
+  // The constructor runs without the lock: it may take time or use a loader itself.
+  void* object = nullptr;
+  try {
+    object = entry->create();
+  } catch (const std::exception& error) {
+    throw Error("plugin type '" + type + "' (" + library->path().string() +
+                "): constructor threw: " + error.what());
+  }
+  if (object == nullptr) {
+    throw Error("plugin type '" + type + "' (" + library->path().string() +
+                "): factory returned no object");
+  }
+  library->objectCreated();
+  return Created{object, PluginDeleter(entry->destroy, std::move(library))};
+}
+
+void PluginLoader::scanLocked() {
+  std::vector<fs::path> seen;
+  for (const auto& dir : search_directories_) {
+    std::error_code error;
+    if (!fs::is_directory(dir, error)) continue;
+    std::vector<fs::path> candidates;
+    for (fs::directory_iterator it(dir, error), end; !error && it != end; it.increment(error)) {
+      if (isPluginFileName(it->path()) && fs::is_regular_file(it->path(), error)) {
+        candidates.push_back(it->path());
+      }
+    }
+    if (error) {
+      addDiagnosticLocked(dir, "cannot list plugin directory: " + error.message());
+      continue;
+    }
+    std::sort(candidates.begin(), candidates.end());
+    for (const auto& candidate : candidates) {
+      const fs::path canonical = fs::weakly_canonical(candidate, error);
+      const fs::path& path = error ? candidate : canonical;
+      if (std::find(seen.begin(), seen.end(), path) != seen.end()) continue;
+      seen.push_back(path);
+      loadLibraryLocked(path);
+    }
+  }
+}
+
+void PluginLoader::loadLibraryLocked(const fs::path& path) {
+  dlerror();
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) {
+    addDiagnosticLocked(path, dlopenReason(path, dlerror()));
+    return;
+  }
+  auto library = std::make_shared<detail::LoadedLibrary>(path, handle, live_objects_);
+
+  auto entry_point =
+      reinterpret_cast<ServoloopPluginManifestFn>(dlsym(handle, kPluginEntryPointName));
+  if (entry_point == nullptr) {
+    addDiagnosticLocked(path, std::string("not a servoloop plugin: no ") + kPluginEntryPointName +
+                                  " entry point (register classes with SERVOLOOP_REGISTER_PLUGIN)");
+    return;
+  }
+  const ServoloopPluginManifest* manifest = entry_point();
+  if (manifest == nullptr) {
+    addDiagnosticLocked(path, std::string(kPluginEntryPointName) + " returned no manifest");
+    return;
+  }
+
+  // The handshake, in the order the fields are stable: nothing else in the
+  // manifest is read until the version and every size match.
+  if (manifest->api_version != kPluginApiVersion) {
+    addDiagnosticLocked(path, "wrong plugin API version: built for version " +
+                                  std::to_string(manifest->api_version) +
+                                  ", this servoloop loads version " +
+                                  std::to_string(kPluginApiVersion) +
+                                  "; rebuild the plugin against this servoloop");
+    return;
+  }
+  if (manifest->abi_probe_size != kPluginAbiProbeSize ||
+      manifest->abi_probe_align != kPluginAbiProbeAlign ||
+      manifest->manifest_size != sizeof(ServoloopPluginManifest) ||
+      manifest->entry_size != sizeof(ServoloopPluginEntry)) {
+    addDiagnosticLocked(
+        path, "ABI mismatch: the library's ABI probe has size " +
+                  std::to_string(manifest->abi_probe_size) + " and alignment " +
+                  std::to_string(manifest->abi_probe_align) + " (manifest " +
+                  std::to_string(manifest->manifest_size) + ", entry " +
+                  std::to_string(manifest->entry_size) + " bytes), this servoloop expects size " +
+                  std::to_string(kPluginAbiProbeSize) + " and alignment " +
+                  std::to_string(kPluginAbiProbeAlign) + " (manifest " +
+                  std::to_string(sizeof(ServoloopPluginManifest)) + ", entry " +
+                  std::to_string(sizeof(ServoloopPluginEntry)) +
+                  " bytes); rebuild the plugin with the same compiler, standard library and "
+                  "servoloop headers");
+    return;
+  }
+  if (manifest->entry_count == 0) {
+    addDiagnosticLocked(path, "plugin library registers no classes (is SERVOLOOP_REGISTER_PLUGIN "
+                              "in a source file that is linked into it?)");
+    return;
+  }
+
+  bool registered_any = false;
+  for (std::uint32_t i = 0; i < manifest->entry_count; ++i) {
+    const ServoloopPluginEntry& entry = manifest->entries[i];
+    if (entry.kind == nullptr || entry.type_name == nullptr || entry.base_type_id == nullptr ||
+        entry.create == nullptr || entry.destroy == nullptr) {
+      addDiagnosticLocked(path, "manifest entry " + std::to_string(i) + " is incomplete; ignored");
+      continue;
+    }
+    const std::string type = entry.type_name;
+    const auto existing = std::lower_bound(
+        types_.begin(), types_.end(), type,
+        [](const RegisteredType& t, const std::string& name) { return t.info.type < name; });
+    if (existing != types_.end() && existing->info.type == type) {
+      if (existing->info.library == path) {
+        addDiagnosticLocked(path, "type '" + type + "' is registered twice in this library; "
+                                  "the second registration is ignored");
+      } else {
+        addDiagnosticLocked(path, "duplicate type '" + type + "': already provided by " +
+                                      existing->info.library.string() +
+                                      ", which comes first on the plugin path; this library's '" +
+                                      type + "' is ignored (rename one of them or remove one "
+                                      "library from the plugin path)");
+      }
+      continue;
+    }
+    types_.insert(existing, RegisteredType{PluginTypeInfo{type, entry.kind, path},
+                                           entry.base_type_id, &entry, library});
+    registered_any = true;
+  }
+  if (registered_any) libraries_.push_back(std::move(library));
+}
+
+void PluginLoader::addDiagnosticLocked(const fs::path& library, std::string reason) {
+  PluginDiagnostic diagnostic{library, std::move(reason)};
+  const std::string message = diagnostic.message();
+  if (logged_messages_.insert(message).second) logger().warn("plugin {}", message);
+  diagnostics_.push_back(std::move(diagnostic));
+}
+
+std::string PluginLoader::describeSearchPathLocked() const {
+  if (search_directories_.empty()) return "an empty plugin search path";
+  std::string description;
+  for (const auto& dir : search_directories_) {
+    std::error_code error;
+    description += (description.empty() ? "" : ", ") + dir.string();
+    if (!fs::is_directory(dir, error)) description += " (missing)";
+  }
+  return description;
+}
+
+}  // namespace servoloop::plugin

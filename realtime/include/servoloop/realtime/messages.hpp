@@ -1,0 +1,67 @@
+#pragma once
+// The message types carried by the topic bus: plain structs with the field
+// names of their ROS counterparts, so `topic echo` output and `topic pub`
+// arguments read the way ROS users expect. Each names itself with kTypeName,
+// which is what the bus type-checks topics against.
+//
+// Time stamps are control time in seconds (servoloop::Time::seconds), in
+// place of ROS's header.stamp. JSON, text and CSV forms: message_json.hpp.
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace servoloop {
+
+namespace std_msgs {
+
+struct Float64 {
+  static constexpr std::string_view kTypeName = "std_msgs/Float64";
+  double data = 0.0;
+};
+
+// ROS's layout field (dimension labels and strides) is left out: every
+// ros_control user of this type reads `data` only.
+struct Float64MultiArray {
+  static constexpr std::string_view kTypeName = "std_msgs/Float64MultiArray";
+  std::vector<double> data;
+};
+
+}  // namespace std_msgs
+
+namespace sensor_msgs {
+
+// One entry per joint; position/velocity/effort are either empty or as long
+// as name. Units: rad, rad/s, N·m for revolute joints; m, m/s, N for prismatic.
+struct JointState {
+  static constexpr std::string_view kTypeName = "sensor_msgs/JointState";
+  double stamp = 0.0;  // control time, s
+  std::vector<std::string> name;
+  std::vector<double> position;
+  std::vector<double> velocity;
+  std::vector<double> effort;
+};
+
+}  // namespace sensor_msgs
+
+namespace control_msgs {
+
+// What a PID-driven joint controller reports about its loop (joint space).
+struct JointControllerState {
+  static constexpr std::string_view kTypeName = "control_msgs/JointControllerState";
+  double stamp = 0.0;              // control time, s
+  double set_point = 0.0;          // commanded joint position (or velocity)
+  double process_value = 0.0;      // measured joint position (or velocity)
+  double process_value_dot = 0.0;  // its time derivative
+  double error = 0.0;              // set_point - process_value, as the controller computes it
+  double time_step = 0.0;          // period of the last update, s
+  double command = 0.0;            // joint effort (or velocity) the controller wrote
+  double p = 0.0;                  // PID gains in effect
+  double i = 0.0;
+  double d = 0.0;
+  double i_clamp = 0.0;
+  bool antiwindup = false;
+};
+
+}  // namespace control_msgs
+
+}  // namespace servoloop

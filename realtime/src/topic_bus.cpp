@@ -1,0 +1,237 @@
+#include "servoloop/realtime/topic_bus.hpp"
+
+#include "servoloop/core/logging.hpp"
+
+namespace servoloop::realtime {
+
+namespace {
+
+// True on a thread while it runs a delivery pass (callbacks run inside one).
+thread_local bool t_in_delivery = false;
+
+struct InDeliveryScope {
+  InDeliveryScope() { t_in_delivery = true; }
+  ~InDeliveryScope() { t_in_delivery = false; }
+  InDeliveryScope(const InDeliveryScope&) = delete;
+  InDeliveryScope& operator=(const InDeliveryScope&) = delete;
+};
+
+bool isNameStart(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+bool isNameChar(char c) { return isNameStart(c) || (c >= '0' && c <= '9'); }
+
+std::string topicNames(const std::map<std::string, std::shared_ptr<detail::TopicBase>>& topics) {
+  if (topics.empty()) return "there are no topics yet";
+  std::string names = "topics are: ";
+  bool first = true;
+  for (const auto& [name, topic] : topics) {
+    names += (first ? "" : ", ") + name;
+    first = false;
+  }
+  return names;
+}
+
+std::string knownTypesText() {
+  std::string text;
+  for (std::string_view type : {std_msgs::Float64::kTypeName, std_msgs::Float64MultiArray::kTypeName,
+                                sensor_msgs::JointState::kTypeName, control_msgs::JointControllerState::kTypeName}) {
+    text += (text.empty() ? "" : ", ") + std::string(type);
+  }
+  return text;
+}
+
+}  // namespace
+
+namespace detail {
+
+void reportCallbackError(const std::string& topic, const char* what) {
+  logger().error("topic '{}': a subscriber callback threw: {}", topic, what);
+}
+
+void TopicBase::publishViewLocked(const MessageView& /*msg*/, Time /*stamp*/) {
+  throw Error("topic '" + name_ +
+              "' has no type yet (only untyped subscribers know it); give the message type to publish on it");
+}
+
+void throwTypeMismatch(const std::string& topic, std::string_view existing_type, std::string_view requested_type) {
+  throw Error("topic '" + topic + "' carries " + std::string(existing_type) + ", not " +
+              std::string(requested_type) + "; use " + std::string(existing_type) +
+              " on it or pick another topic name");
+}
+
+BusCore::BusCore() : clock(std::make_shared<TopicClock>()) {}
+
+TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view type_name) {
+  if (type_name == std_msgs::Float64::kTypeName) return typedTopicLocked<std_msgs::Float64>(name);
+  if (type_name == std_msgs::Float64MultiArray::kTypeName) return typedTopicLocked<std_msgs::Float64MultiArray>(name);
+  if (type_name == sensor_msgs::JointState::kTypeName) return typedTopicLocked<sensor_msgs::JointState>(name);
+  if (type_name == control_msgs::JointControllerState::kTypeName) {
+    return typedTopicLocked<control_msgs::JointControllerState>(name);
+  }
+  // A type only a plugin knows can still be used once that plugin typed the topic.
+  auto it = topics.find(name);
+  if (it != topics.end() && it->second->type() == type_name) return *it->second;
+  throw Error("unknown message type '" + std::string(type_name) + "' for topic '" + name +
+              "'; known types: " + knownTypesText());
+}
+
+std::size_t BusCore::deliverOnce() {
+  std::lock_guard delivery(delivery_mutex);
+  InDeliveryScope scope;
+  std::vector<std::shared_ptr<TopicBase>> snapshot;
+  {
+    std::lock_guard lock(structure_mutex);
+    snapshot.reserve(topics.size());
+    for (const auto& [name, topic] : topics) snapshot.push_back(topic);
+  }
+  std::size_t count = 0;
+  for (const auto& topic : snapshot) count += topic->deliver(structure_mutex);
+  return count;
+}
+
+void detachPublisher(const std::weak_ptr<BusCore>& weak_core, const std::string& /*topic*/,
+                     const std::shared_ptr<PublisherChannelBase>& channel) {
+  // The delivery thread delivers what is still queued, then drops the channel.
+  if (auto core = weak_core.lock()) {
+    std::lock_guard lock(core->structure_mutex);
+    channel->closed.store(true, std::memory_order_release);
+  }
+}
+
+void detachCommandInput(const std::weak_ptr<BusCore>& weak_core, const std::string& topic, const void* buffer) {
+  auto core = weak_core.lock();
+  if (!core) return;
+  std::lock_guard lock(core->structure_mutex);
+  if (auto it = core->topics.find(topic); it != core->topics.end()) it->second->removeCommandInput(buffer);
+}
+
+void detachSubscriber(const std::weak_ptr<BusCore>& weak_core, const std::string& topic,
+                      const std::shared_ptr<SubscriberEntryBase>& entry) {
+  entry->active.store(false);
+  auto core = weak_core.lock();
+  if (!core) return;
+  {
+    std::lock_guard lock(core->structure_mutex);
+    if (auto it = core->topics.find(topic); it != core->topics.end()) it->second->removeSubscriber(entry.get());
+  }
+  // Wait out a callback that may be running right now, unless we are inside one.
+  if (!t_in_delivery) std::lock_guard wait_for_pass(core->delivery_mutex);
+}
+
+}  // namespace detail
+
+TopicBus::TopicBus() : core_(std::make_shared<detail::BusCore>()) {}
+
+TopicBus::~TopicBus() { stop(); }
+
+std::string TopicBus::normalizeTopicName(std::string_view topic) {
+  std::string result;
+  std::size_t start = 0;
+  while (start <= topic.size()) {
+    std::size_t end = topic.find('/', start);
+    if (end == std::string_view::npos) end = topic.size();
+    const std::string_view segment = topic.substr(start, end - start);
+    if (!segment.empty()) {
+      const bool valid = isNameStart(segment.front()) &&
+                         std::all_of(segment.begin(), segment.end(), [](char c) { return isNameChar(c); });
+      if (!valid) {
+        throw Error("invalid topic name '" + std::string(topic) + "': each part between '/' must start with a " +
+                    "letter or '_' and contain only letters, digits and '_'");
+      }
+      result += "/";
+      result += segment;
+    }
+    start = end + 1;
+  }
+  if (result.empty()) throw Error("invalid topic name '" + std::string(topic) + "': it is empty");
+  return result;
+}
+
+Subscription TopicBus::subscribeAny(std::string_view topic, AnyCallback callback) {
+  const std::string name = normalizeTopicName(topic);
+  auto entry = std::make_shared<detail::AnySubscriberEntry>(std::move(callback));
+  {
+    std::lock_guard lock(core_->structure_mutex);
+    auto it = core_->topics.find(name);
+    if (it == core_->topics.end()) it = core_->topics.emplace(name, std::make_shared<detail::TopicBase>(name)).first;
+    it->second->any_subscribers.push_back(entry);
+  }
+  return Subscription(core_, name, std::move(entry));
+}
+
+void TopicBus::publishView(std::string_view topic, const MessageView& msg) {
+  const std::string name = normalizeTopicName(topic);
+  std::lock_guard lock(core_->structure_mutex);
+  detail::TopicBase& target = core_->topicForTypeLocked(name, msg.type);
+  if (target.type() != msg.type) detail::throwTypeMismatch(name, target.type(), msg.type);
+  target.publishViewLocked(msg, core_->clock->now());
+}
+
+bool TopicBus::hasTopic(std::string_view topic) const {
+  const std::string name = normalizeTopicName(topic);
+  std::lock_guard lock(core_->structure_mutex);
+  return core_->topics.contains(name);
+}
+
+std::string TopicBus::typeOf(std::string_view topic) const {
+  const std::string name = normalizeTopicName(topic);
+  std::lock_guard lock(core_->structure_mutex);
+  auto it = core_->topics.find(name);
+  if (it == core_->topics.end()) throw Error("no topic '" + name + "'; " + topicNames(core_->topics));
+  return std::string(it->second->type());
+}
+
+std::vector<TopicInfo> TopicBus::list() const {
+  std::lock_guard lock(core_->structure_mutex);
+  std::vector<TopicInfo> infos;
+  infos.reserve(core_->topics.size());
+  for (const auto& [name, topic] : core_->topics) {  // std::map: already sorted
+    infos.push_back(TopicInfo{name, std::string(topic->type()), topic->publisherCount(), topic->subscriberCount()});
+  }
+  return infos;
+}
+
+void TopicBus::start(std::chrono::microseconds period) {
+  std::lock_guard lock(thread_mutex_);
+  if (delivery_thread_.joinable()) return;
+  stop_requested_ = false;
+  delivery_thread_ = std::thread([this, period] {
+    for (;;) {
+      core_->deliverOnce();
+      std::unique_lock wait_lock(thread_mutex_);
+      if (wake_.wait_for(wait_lock, period, [this] { return stop_requested_; })) break;
+    }
+    core_->deliverOnce();  // what was published before stop() still arrives
+  });
+}
+
+void TopicBus::stop() {
+  std::thread thread;
+  {
+    std::lock_guard lock(thread_mutex_);
+    if (!delivery_thread_.joinable()) return;
+    stop_requested_ = true;
+    thread = std::move(delivery_thread_);
+  }
+  wake_.notify_all();
+  thread.join();
+}
+
+bool TopicBus::running() const {
+  std::lock_guard lock(thread_mutex_);
+  return delivery_thread_.joinable();
+}
+
+std::size_t TopicBus::flush() {
+  if (t_in_delivery) {
+    throw Error("TopicBus::flush() called from a subscriber callback; callbacks already run inside a "
+                "delivery pass and must not wait for one");
+  }
+  return core_->deliverOnce();
+}
+
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64MultiArray, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::JointState, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, )
+
+}  // namespace servoloop::realtime

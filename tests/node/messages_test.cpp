@@ -1,0 +1,201 @@
+// Message conversions: JSON both ways, rostopic-style text, CSV columns, and
+// errors that name the field at fault. Expected strings are written by hand.
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "servoloop/node/message_json.hpp"
+#include "servoloop/core/errors.hpp"
+
+namespace servoloop::node {
+namespace {
+
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+template <class Fn>
+std::string errorOf(Fn&& fn) {
+  try {
+    fn();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected servoloop::Error";
+  return "";
+}
+
+sensor_msgs::JointState threeJoints() {
+  sensor_msgs::JointState msg;
+  msg.stamp = 0.5;
+  msg.name = {"j1", "j2", "j3"};
+  msg.position = {0.1, -0.2, 3.0};
+  msg.velocity = {1.0, 0.0, -1.5};
+  msg.effort = {10.0, 20.0, 30.0};
+  return msg;
+}
+
+TEST(Messages, TypeNames) {
+  EXPECT_EQ(std_msgs::Float64::kTypeName, "std_msgs/Float64");
+  EXPECT_EQ(std_msgs::Float64MultiArray::kTypeName, "std_msgs/Float64MultiArray");
+  EXPECT_EQ(sensor_msgs::JointState::kTypeName, "sensor_msgs/JointState");
+  EXPECT_EQ(control_msgs::JointControllerState::kTypeName, "control_msgs/JointControllerState");
+  EXPECT_EQ(knownMessageTypes(),
+            (std::vector<std::string>{"control_msgs/JointControllerState", "sensor_msgs/JointState",
+                                      "std_msgs/Float64", "std_msgs/Float64MultiArray"}));
+  EXPECT_TRUE(isKnownMessageType("std_msgs/Float64"));
+  EXPECT_FALSE(isKnownMessageType("std_msgs/Float32"));
+}
+
+TEST(Messages, Float64JsonRoundTrip) {
+  EXPECT_EQ(toJson(std_msgs::Float64{1.5}), json::parse(R"({"data": 1.5})"));
+  EXPECT_EQ(messageFromJson<std_msgs::Float64>(json::parse(R"({"data": -0.25})")).data, -0.25);
+  // Integers are accepted for doubles; the bare value works for one-field messages.
+  EXPECT_EQ(messageFromJson<std_msgs::Float64>(json::parse(R"({"data": 2})")).data, 2.0);
+  EXPECT_EQ(messageFromJson<std_msgs::Float64>(json(3.5)).data, 3.5);
+  EXPECT_EQ(messageFromJson<std_msgs::Float64>(json::object()).data, 0.0);
+}
+
+TEST(Messages, Float64MultiArrayJsonRoundTrip) {
+  const std_msgs::Float64MultiArray msg{{1.0, -2.5, 1e-9}};
+  EXPECT_EQ(toJson(msg).dump(), R"({"data":[1.0,-2.5,1e-09]})");
+  EXPECT_EQ(messageFromJson<std_msgs::Float64MultiArray>(toJson(msg)).data, msg.data);
+  EXPECT_EQ(messageFromJson<std_msgs::Float64MultiArray>(json::parse("[1, 2]")).data,
+            (std::vector<double>{1.0, 2.0}));
+  // ROS's layout field is accepted and ignored.
+  EXPECT_EQ(messageFromJson<std_msgs::Float64MultiArray>(
+                json::parse(R"({"layout": {"dim": [], "data_offset": 0}, "data": [4]})"))
+                .data,
+            (std::vector<double>{4.0}));
+}
+
+TEST(Messages, JointStateJsonRoundTrip) {
+  const sensor_msgs::JointState msg = threeJoints();
+  EXPECT_EQ(toJson(msg), json::parse(R"({"stamp": 0.5, "name": ["j1", "j2", "j3"],
+                                         "position": [0.1, -0.2, 3.0], "velocity": [1.0, 0.0, -1.5],
+                                         "effort": [10.0, 20.0, 30.0]})"));
+  const auto back = messageFromJson<sensor_msgs::JointState>(json::parse(toJson(msg).dump()));
+  EXPECT_EQ(back.stamp, msg.stamp);
+  EXPECT_EQ(back.name, msg.name);
+  EXPECT_EQ(back.position, msg.position);
+  EXPECT_EQ(back.velocity, msg.velocity);
+  EXPECT_EQ(back.effort, msg.effort);
+}
+
+TEST(Messages, JointControllerStateJsonRoundTrip) {
+  control_msgs::JointControllerState msg;
+  msg.stamp = 1.25;
+  msg.set_point = 0.5;
+  msg.process_value = 0.4;
+  msg.process_value_dot = -0.1;
+  msg.error = 0.1;
+  msg.time_step = 0.01;
+  msg.command = 2.0;
+  msg.p = 10.0;
+  msg.i = 1.0;
+  msg.d = 0.5;
+  msg.i_clamp = 3.0;
+  msg.antiwindup = true;
+  const json expected = json::parse(R"({"stamp": 1.25, "set_point": 0.5, "process_value": 0.4,
+      "process_value_dot": -0.1, "error": 0.1, "time_step": 0.01, "command": 2.0, "p": 10.0, "i": 1.0,
+      "d": 0.5, "i_clamp": 3.0, "antiwindup": true})");
+  EXPECT_EQ(toJson(msg), expected);
+  const auto back = messageFromJson<control_msgs::JointControllerState>(json::parse(expected.dump()));
+  EXPECT_EQ(toJson(back), expected);
+}
+
+TEST(Messages, NanSurvivesJsonTextAsNull) {
+  const std_msgs::Float64 nan_msg{std::numeric_limits<double>::quiet_NaN()};
+  const std::string text = toJson(nan_msg).dump();
+  EXPECT_EQ(text, R"({"data":null})");
+  EXPECT_TRUE(std::isnan(messageFromJson<std_msgs::Float64>(json::parse(text)).data));
+}
+
+TEST(Messages, MalformedJsonNamesTheField) {
+  EXPECT_EQ(errorOf([] { messageFromJson<std_msgs::Float64>(json::parse(R"({"data": "abc"})")); }),
+            "std_msgs/Float64: field 'data': expected a number, got string \"abc\"");
+  EXPECT_EQ(errorOf([] { messageFromJson<std_msgs::Float64>(json::parse(R"({"dta": 1.0})")); }),
+            "std_msgs/Float64: unknown field 'dta'; the fields are: data");
+  EXPECT_THAT(errorOf([] { messageFromJson<std_msgs::Float64>(json::parse(R"("one")")); }),
+              HasSubstr("std_msgs/Float64: expected an object with fields data, got string \"one\""));
+  EXPECT_EQ(errorOf([] {
+              messageFromJson<sensor_msgs::JointState>(
+                  json::parse(R"({"name": ["a", "b"], "position": [1.0, "x"]})"));
+            }),
+            "sensor_msgs/JointState: field 'position[1]': expected a number, got string \"x\"");
+  EXPECT_EQ(errorOf([] { messageFromJson<sensor_msgs::JointState>(json::parse(R"({"name": ["a", 2]})")); }),
+            "sensor_msgs/JointState: field 'name[1]': expected a string, got 2");
+  EXPECT_THAT(errorOf([] {
+                messageFromJson<sensor_msgs::JointState>(
+                    json::parse(R"({"name": ["a", "b", "c"], "position": [1.0, 2.0]})"));
+              }),
+              HasSubstr("field 'position' has 2 entries but 'name' has 3"));
+  EXPECT_EQ(errorOf([] {
+              messageFromJson<control_msgs::JointControllerState>(json::parse(R"({"antiwindup": "yes"})"));
+            }),
+            "control_msgs/JointControllerState: field 'antiwindup': expected true or false, got string \"yes\"");
+  EXPECT_EQ(errorOf([] { messageFromJson<std_msgs::Float64MultiArray>(json::parse(R"({"data": 1.0})")); }),
+            "std_msgs/Float64MultiArray: field 'data': expected a list of numbers, got 1.0");
+}
+
+TEST(Messages, YamlTextParsesLikeRostopicPub) {
+  EXPECT_EQ(parseMessageText("data: 1.0"), json::parse(R"({"data": 1.0})"));
+  EXPECT_EQ(parseMessageText("{data: 2}"), json::parse(R"({"data": 2})"));
+  EXPECT_EQ(parseMessageText(R"({"data": [1, 2.5]})"), json::parse(R"({"data": [1, 2.5]})"));
+  EXPECT_EQ(parseMessageText("1.0"), json(1.0));
+  EXPECT_EQ(parseMessageText(""), json::object());
+  EXPECT_EQ(parseMessageText("{name: [j1], flag: true, label: \"7\"}"),
+            json::parse(R"({"name": ["j1"], "flag": true, "label": "7"})"));
+  EXPECT_EQ(messageFromJson<std_msgs::Float64>(parseMessageText("data: 3")).data, 3.0);
+  const std::string error = errorOf([] { parseMessageText("data: [1,", "topic pub"); });
+  EXPECT_THAT(error, HasSubstr("topic pub: cannot read 'data: [1,'"));
+  EXPECT_THAT(error, HasSubstr("line 1"));
+}
+
+TEST(Messages, TextFormReadsLikeRostopicEcho) {
+  EXPECT_EQ(toText(std_msgs::Float64{1.0}), "data: 1.0\n");
+  EXPECT_EQ(toText(std_msgs::Float64MultiArray{{0.5, 2.0}}), "data: [0.5, 2.0]\n");
+  EXPECT_EQ(toText(threeJoints()),
+            "stamp: 0.5\n"
+            "name: [j1, j2, j3]\n"
+            "position: [0.1, -0.2, 3.0]\n"
+            "velocity: [1.0, 0.0, -1.5]\n"
+            "effort: [10.0, 20.0, 30.0]\n");
+  // JSON that lost its field order (nlohmann::json sorts keys) prints in ROS order.
+  EXPECT_EQ(messageToText("control_msgs/JointControllerState", toJson(control_msgs::JointControllerState{})),
+            "stamp: 0.0\nset_point: 0.0\nprocess_value: 0.0\nprocess_value_dot: 0.0\nerror: 0.0\n"
+            "time_step: 0.0\ncommand: 0.0\np: 0.0\ni: 0.0\nd: 0.0\ni_clamp: 0.0\nantiwindup: False\n");
+}
+
+TEST(Messages, CsvColumnsAreFlattened) {
+  EXPECT_EQ(csvHeader(std_msgs::Float64{1.0}), "time,data");
+  EXPECT_EQ(csvRow(std_msgs::Float64{1.0}, Time(0.01)), "0.01,1.0");
+  EXPECT_EQ(csvHeader(std_msgs::Float64MultiArray{{1.0, 2.0}}), "time,data[0],data[1]");
+  EXPECT_EQ(csvRow(std_msgs::Float64MultiArray{{1.0, 2.0}}, Time(2.0)), "2.0,1.0,2.0");
+  const sensor_msgs::JointState joints = threeJoints();
+  EXPECT_EQ(csvHeader(joints),
+            "time,j1.position,j1.velocity,j1.effort,j2.position,j2.velocity,j2.effort,"
+            "j3.position,j3.velocity,j3.effort");
+  EXPECT_EQ(csvRow(joints, Time(0.5)), "0.5,0.1,1.0,10.0,-0.2,0.0,20.0,3.0,-1.5,30.0");
+  control_msgs::JointControllerState state;
+  state.set_point = 1.0;
+  state.antiwindup = true;
+  EXPECT_EQ(csvHeader(state),
+            "time,set_point,process_value,process_value_dot,error,time_step,command,p,i,d,i_clamp,antiwindup");
+  EXPECT_EQ(csvRow(state, Time(0.1)), "0.1,1.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,1");
+}
+
+TEST(Messages, FormatDoubleIsShortestRoundTrip) {
+  EXPECT_EQ(formatDouble(1.0), "1.0");
+  EXPECT_EQ(formatDouble(0.1), "0.1");
+  EXPECT_EQ(formatDouble(-10.0), "-10.0");
+  EXPECT_EQ(formatDouble(1e-7), "1e-07");
+  EXPECT_EQ(formatDouble(std::numeric_limits<double>::quiet_NaN()), "nan");
+  EXPECT_EQ(formatDouble(-std::numeric_limits<double>::infinity()), "-inf");
+  EXPECT_EQ(std::stod(formatDouble(0.30000000000000004)), 0.30000000000000004);
+}
+
+}  // namespace
+}  // namespace servoloop::node
