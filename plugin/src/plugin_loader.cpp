@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/plugin/plugin_index.hpp"
 #include "servoloop/core/logging.hpp"
 
 namespace servoloop::plugin {
@@ -130,6 +131,7 @@ void PluginLoader::reload(bool force) {
   types_.clear();
   libraries_.clear();
   diagnostics_.clear();
+  failed_libraries_.clear();
   scanLocked();
 }
 
@@ -139,6 +141,7 @@ void PluginLoader::unloadAll(bool force) {
   types_.clear();
   libraries_.clear();
   diagnostics_.clear();
+  failed_libraries_.clear();
 }
 
 void PluginLoader::ensureNoLiveObjectsLocked(const char* action) const {
@@ -178,6 +181,19 @@ PluginLoader::Created PluginLoader::createErased(const std::string& type, const 
     if (found->info.kind != kind) {
       throw Error("plugin type '" + type + "' (" + found->info.library.string() + ") is a " +
                   found->info.kind + " plugin, not a " + kind + " plugin");
+    }
+    if (found->library == nullptr) {
+      const fs::path path = found->info.library;
+      try {
+        loadLibraryLocked(path);
+      } catch (const Error& error) {
+        throw Error("cannot create plugin type '" + type + "': " + error.what());
+      }
+      if (found->entry == nullptr) {
+        throw Error("cannot create plugin type '" + type + "': " + path.string() +
+                    " lists it in its plugin index but does not register it when loaded; rebuild the "
+                    "plugin (its index and its code disagree)");
+      }
     }
     if (found->base_type_id != base_type_id) {
       throw Error("plugin type '" + type + "' (" + found->info.library.string() +
@@ -225,76 +241,34 @@ void PluginLoader::scanLocked() {
       const fs::path& path = error ? candidate : canonical;
       if (std::find(seen.begin(), seen.end(), path) != seen.end()) continue;
       seen.push_back(path);
-      loadLibraryLocked(path);
+      indexLibraryLocked(path);
     }
   }
 }
 
-void PluginLoader::loadLibraryLocked(const fs::path& path) {
-  dlerror();
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (handle == nullptr) {
-    addDiagnosticLocked(path, dlopenReason(path, dlerror()));
+void PluginLoader::indexLibraryLocked(const fs::path& path) {
+  const auto index = readPluginIndex(path);
+  if (!index) {
+    // Any other library may share a folder with plugins: not worth a warning.
+    logger().debug("plugin path: {} has no servoloop plugin index; not a plugin, ignored", path.string());
     return;
   }
-  auto library = std::make_shared<detail::LoadedLibrary>(path, handle, live_objects_);
-
-  auto entry_point =
-      reinterpret_cast<ServoloopPluginManifestFn>(dlsym(handle, kPluginEntryPointName));
-  if (entry_point == nullptr) {
-    addDiagnosticLocked(path, std::string("not a servoloop plugin: no ") + kPluginEntryPointName +
-                                  " entry point (register classes with SERVOLOOP_REGISTER_PLUGIN)");
+  if (index->empty()) {
+    addDiagnosticLocked(path, "its plugin index holds no readable record; rebuild the plugin against this "
+                              "servoloop");
     return;
   }
-  const ServoloopPluginManifest* manifest = entry_point();
-  if (manifest == nullptr) {
-    addDiagnosticLocked(path, std::string(kPluginEntryPointName) + " returned no manifest");
-    return;
-  }
-
-  // The handshake, in the order the fields are stable: nothing else in the
-  // manifest is read until the version and every size match.
-  if (manifest->api_version != kPluginApiVersion) {
-    addDiagnosticLocked(path, "wrong plugin API version: built for version " +
-                                  std::to_string(manifest->api_version) +
-                                  ", this servoloop loads version " +
-                                  std::to_string(kPluginApiVersion) +
-                                  "; rebuild the plugin against this servoloop");
-    return;
-  }
-  if (manifest->abi_probe_size != kPluginAbiProbeSize ||
-      manifest->abi_probe_align != kPluginAbiProbeAlign ||
-      manifest->manifest_size != sizeof(ServoloopPluginManifest) ||
-      manifest->entry_size != sizeof(ServoloopPluginEntry)) {
-    addDiagnosticLocked(
-        path, "ABI mismatch: the library's ABI probe has size " +
-                  std::to_string(manifest->abi_probe_size) + " and alignment " +
-                  std::to_string(manifest->abi_probe_align) + " (manifest " +
-                  std::to_string(manifest->manifest_size) + ", entry " +
-                  std::to_string(manifest->entry_size) + " bytes), this servoloop expects size " +
-                  std::to_string(kPluginAbiProbeSize) + " and alignment " +
-                  std::to_string(kPluginAbiProbeAlign) + " (manifest " +
-                  std::to_string(sizeof(ServoloopPluginManifest)) + ", entry " +
-                  std::to_string(sizeof(ServoloopPluginEntry)) +
-                  " bytes); rebuild the plugin with the same compiler, standard library and "
-                  "servoloop headers");
-    return;
-  }
-  if (manifest->entry_count == 0) {
-    addDiagnosticLocked(path, "plugin library registers no classes (is SERVOLOOP_REGISTER_PLUGIN "
-                              "in a source file that is linked into it?)");
-    return;
-  }
-
-  bool registered_any = false;
-  for (std::uint32_t i = 0; i < manifest->entry_count; ++i) {
-    const ServoloopPluginEntry& entry = manifest->entries[i];
-    if (entry.kind == nullptr || entry.type_name == nullptr || entry.base_type_id == nullptr ||
-        entry.create == nullptr || entry.destroy == nullptr) {
-      addDiagnosticLocked(path, "manifest entry " + std::to_string(i) + " is incomplete; ignored");
-      continue;
+  for (const auto& record : *index) {
+    if (record.api_version != kPluginApiVersion) {
+      addDiagnosticLocked(path, "wrong plugin API version: built for version " +
+                                    std::to_string(record.api_version) + ", this servoloop loads version " +
+                                    std::to_string(kPluginApiVersion) +
+                                    "; rebuild the plugin against this servoloop");
+      return;
     }
-    const std::string type = entry.type_name;
+  }
+  for (const auto& record : *index) {
+    const std::string& type = record.type_name;
     const auto existing = std::lower_bound(
         types_.begin(), types_.end(), type,
         [](const RegisteredType& t, const std::string& name) { return t.info.type < name; });
@@ -311,11 +285,79 @@ void PluginLoader::loadLibraryLocked(const fs::path& path) {
       }
       continue;
     }
-    types_.insert(existing, RegisteredType{PluginTypeInfo{type, entry.kind, path},
-                                           entry.base_type_id, &entry, library});
-    registered_any = true;
+    types_.insert(existing, RegisteredType{PluginTypeInfo{type, record.kind, path}, {}, nullptr, nullptr});
   }
-  if (registered_any) libraries_.push_back(std::move(library));
+}
+
+void PluginLoader::loadLibraryLocked(const fs::path& path) {
+  if (const auto failed = failed_libraries_.find(path); failed != failed_libraries_.end()) {
+    throw Error(path.string() + ": " + failed->second);
+  }
+  const auto refuse = [&](const std::string& reason) {
+    failed_libraries_[path] = reason;
+    addDiagnosticLocked(path, reason);
+    throw Error(path.string() + ": " + reason);
+  };
+
+  dlerror();
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) refuse(dlopenReason(path, dlerror()));
+  auto library = std::make_shared<detail::LoadedLibrary>(path, handle, live_objects_);
+
+  auto entry_point =
+      reinterpret_cast<ServoloopPluginManifestFn>(dlsym(handle, kPluginEntryPointName));
+  if (entry_point == nullptr) {
+    refuse(std::string("not a servoloop plugin: no ") + kPluginEntryPointName +
+           " entry point (register classes with SERVOLOOP_REGISTER_PLUGIN)");
+  }
+  const ServoloopPluginManifest* manifest = entry_point();
+  if (manifest == nullptr) refuse(std::string(kPluginEntryPointName) + " returned no manifest");
+
+  // The handshake, in the order the fields are stable: nothing else in the
+  // manifest is read until the version and every size match.
+  if (manifest->api_version != kPluginApiVersion) {
+    refuse("wrong plugin API version: built for version " + std::to_string(manifest->api_version) +
+           ", this servoloop loads version " + std::to_string(kPluginApiVersion) +
+           "; rebuild the plugin against this servoloop");
+  }
+  if (manifest->abi_probe_size != kPluginAbiProbeSize ||
+      manifest->abi_probe_align != kPluginAbiProbeAlign ||
+      manifest->manifest_size != sizeof(ServoloopPluginManifest) ||
+      manifest->entry_size != sizeof(ServoloopPluginEntry)) {
+    refuse("ABI mismatch: the library's ABI probe has size " + std::to_string(manifest->abi_probe_size) +
+           " and alignment " + std::to_string(manifest->abi_probe_align) + " (manifest " +
+           std::to_string(manifest->manifest_size) + ", entry " + std::to_string(manifest->entry_size) +
+           " bytes), this servoloop expects size " + std::to_string(kPluginAbiProbeSize) + " and alignment " +
+           std::to_string(kPluginAbiProbeAlign) + " (manifest " + std::to_string(sizeof(ServoloopPluginManifest)) +
+           ", entry " + std::to_string(sizeof(ServoloopPluginEntry)) +
+           " bytes); rebuild the plugin with the same compiler, standard library and servoloop headers");
+  }
+  if (manifest->entry_count == 0) {
+    refuse("plugin library registers no classes (is SERVOLOOP_REGISTER_PLUGIN in a source file that is "
+           "linked into it?)");
+  }
+
+  for (std::uint32_t i = 0; i < manifest->entry_count; ++i) {
+    const ServoloopPluginEntry& entry = manifest->entries[i];
+    if (entry.kind == nullptr || entry.type_name == nullptr || entry.base_type_id == nullptr ||
+        entry.create == nullptr || entry.destroy == nullptr) {
+      addDiagnosticLocked(path, "manifest entry " + std::to_string(i) + " is incomplete; ignored");
+      continue;
+    }
+    for (auto& registered : types_) {
+      if (registered.info.library != path || registered.info.type != entry.type_name) continue;
+      if (registered.info.kind != entry.kind) {
+        addDiagnosticLocked(path, "type '" + registered.info.type + "' is a " + entry.kind +
+                                      " plugin in its code but a " + registered.info.kind +
+                                      " plugin in its index; rebuild the plugin");
+        continue;
+      }
+      registered.entry = &entry;
+      registered.base_type_id = entry.base_type_id;
+      registered.library = library;
+    }
+  }
+  libraries_.push_back(std::move(library));
 }
 
 void PluginLoader::addDiagnosticLocked(const fs::path& library, std::string reason) {

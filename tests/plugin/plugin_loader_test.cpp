@@ -88,6 +88,32 @@ TEST(PluginLoader, ListsEveryTypeOfAGoodLibraryRegisteredFromSeveralSources) {
   for (const auto& type : controllers) EXPECT_EQ(type.kind, "controller");
   EXPECT_TRUE(loader.hasType("fixture/Robot"));
   EXPECT_FALSE(loader.hasType("fixture/Nothing"));
+  // Listing read the plugin index from the file: the library was never loaded.
+  EXPECT_FALSE(isLoaded(caseLibrary("good")));
+}
+
+TEST(PluginLoader, ListingRunsNoPluginCode) {
+  // This library's static constructor aborts the process: listing it, asking
+  // for its type and reloading must never load it.
+  PluginLoader loader({caseDir("aborting_constructor")});
+  EXPECT_TRUE(loader.diagnostics().empty());
+  const auto types = loader.listTypes();
+  ASSERT_EQ(types.size(), 1u);
+  EXPECT_EQ(types[0].type, "fixture/AbortsWhenLoaded");
+  EXPECT_EQ(types[0].kind, "controller");
+  EXPECT_TRUE(loader.hasType("fixture/AbortsWhenLoaded"));
+  loader.reload();
+  EXPECT_EQ(loader.listTypes().size(), 1u);
+  EXPECT_FALSE(isLoaded(caseLibrary("aborting_constructor")));
+}
+
+TEST(PluginLoader, ALibraryIsLoadedWhenOneOfItsTypesIsFirstCreated) {
+  PluginLoader loader({caseDir("good")});
+  EXPECT_FALSE(isLoaded(caseLibrary("good")));
+  auto beta = loader.create<FixtureController>("fixture/Beta");
+  EXPECT_TRUE(isLoaded(caseLibrary("good")));
+  // The library's other types are bound by the same load.
+  EXPECT_EQ(loader.create<FixtureRobot>("fixture/Robot")->jointCount(), 3);
 }
 
 TEST(PluginLoader, CreatesObjectsOfEachKindThroughTheLibraryFactory) {
@@ -106,6 +132,7 @@ TEST(PluginLoader, CreatesObjectsOfEachKindThroughTheLibraryFactory) {
 
 TEST(PluginLoader, ObjectsAreDestroyedAndFreedByTheLibrarysDeleter) {
   PluginLoader loader({caseDir("good")});
+  auto beta = loader.create<FixtureController>("fixture/Beta");  // loads the library
   FixtureCounters& counters = goodLibraryCounters();
   const FixtureCounters before = counters;
 
@@ -117,6 +144,7 @@ TEST(PluginLoader, ObjectsAreDestroyedAndFreedByTheLibrarysDeleter) {
 
   EXPECT_EQ(counters.alpha_destroyed, before.alpha_destroyed + 1);
   EXPECT_EQ(counters.alpha_freed_by_library_delete, before.alpha_freed_by_library_delete + 1);
+  beta.reset();
   EXPECT_EQ(loader.liveObjectCount(), 0u);
 }
 
@@ -186,53 +214,64 @@ TEST(PluginLoader, CreatingAsTheWrongKindOrBaseIsRefused) {
   EXPECT_THAT(message, HasSubstr("derives from servoloop::test_fixtures::FixtureController"));
 }
 
-TEST(PluginLoader, LibraryWithoutEntryPointIsReportedAsNotAPlugin) {
+TEST(PluginLoader, LibraryWithoutAPluginIndexIsPassedOverQuietly) {
+  // A valid shared library that is not a servoloop plugin: no warning, no type.
   PluginLoader loader({caseDir("not_a_plugin")});
-  const auto diagnostic = diagnosticFor(loader, fs::canonical(caseLibrary("not_a_plugin")));
-  EXPECT_THAT(diagnostic.reason, HasSubstr("not a servoloop plugin"));
-  EXPECT_THAT(diagnostic.reason, HasSubstr("servoloop_plugin_manifest"));
-  EXPECT_THAT(diagnostic.message(), HasSubstr(fs::canonical(caseLibrary("not_a_plugin")).string()));
+  EXPECT_TRUE(loader.diagnostics().empty());
   EXPECT_TRUE(loader.listTypes().empty());
+  EXPECT_FALSE(isLoaded(caseLibrary("not_a_plugin")));
 }
 
-TEST(PluginLoader, WrongApiVersionIsRefusedBeforeEntriesAreRead) {
+TEST(PluginLoader, WrongApiVersionInTheIndexIsRefusedWithoutLoading) {
   // The fixture's entries point at address 0x10: reading them would crash.
   PluginLoader loader({caseDir("wrong_api_version")});
   const auto diagnostic = diagnosticFor(loader, fs::canonical(caseLibrary("wrong_api_version")));
-  EXPECT_THAT(diagnostic.reason, HasSubstr("wrong plugin API version"));
-  EXPECT_THAT(diagnostic.reason, HasSubstr("version " + std::to_string(kPluginApiVersion + 1)));
+  EXPECT_THAT(diagnostic.reason, HasSubstr("wrong plugin API version: built for version 3"));
+  EXPECT_THAT(diagnostic.reason, HasSubstr("loads version " + std::to_string(kPluginApiVersion)));
+  EXPECT_THAT(diagnostic.reason, HasSubstr("rebuild the plugin"));
   EXPECT_THAT(diagnostic.message(), HasSubstr("libfixture_wrong_api_version.so: "));
   EXPECT_TRUE(loader.listTypes().empty());
+  EXPECT_FALSE(isLoaded(caseLibrary("wrong_api_version")));
 }
 
-TEST(PluginLoader, AbiSizeMismatchIsRefusedBeforeEntriesAreRead) {
+TEST(PluginLoader, AbiSizeMismatchFailsTheCreationThatLoadsIt) {
   PluginLoader loader({caseDir("wrong_abi_size")});
+  EXPECT_TRUE(loader.diagnostics().empty());
+  ASSERT_TRUE(loader.hasType("fixture/WrongAbiSize"));
+  // The handshake stops before the entries (garbage on purpose) are read.
+  const std::string message = errorOf([&] { loader.create<FixtureController>("fixture/WrongAbiSize"); });
+  EXPECT_THAT(message, HasSubstr("cannot create plugin type 'fixture/WrongAbiSize'"));
+  EXPECT_THAT(message, HasSubstr(fs::canonical(caseLibrary("wrong_abi_size")).string() + ": ABI mismatch"));
+  EXPECT_THAT(message, HasSubstr("size " + std::to_string(kPluginAbiProbeSize + 8)));
+  EXPECT_THAT(message, HasSubstr("expects size " + std::to_string(kPluginAbiProbeSize)));
   const auto diagnostic = diagnosticFor(loader, fs::canonical(caseLibrary("wrong_abi_size")));
   EXPECT_THAT(diagnostic.reason, HasSubstr("ABI mismatch"));
-  EXPECT_THAT(diagnostic.reason, HasSubstr("size " + std::to_string(kPluginAbiProbeSize + 8)));
-  EXPECT_THAT(diagnostic.reason, HasSubstr("expects size " + std::to_string(kPluginAbiProbeSize)));
-  EXPECT_THAT(diagnostic.message(), HasSubstr("libfixture_wrong_abi_size.so: "));
-  EXPECT_TRUE(loader.listTypes().empty());
+  // A second attempt gives the same answer without loading it again.
+  EXPECT_THAT(errorOf([&] { loader.create<FixtureController>("fixture/WrongAbiSize"); }),
+              HasSubstr("ABI mismatch"));
 }
 
 TEST(PluginLoader, DlopenFailureCarriesTheDynamicLinkerReason) {
   PluginLoader loader({caseDir("undefined_symbol")});
+  EXPECT_TRUE(loader.hasType("fixture/NeedsMissingSymbol"));
+  const std::string message =
+      errorOf([&] { loader.create<FixtureController>("fixture/NeedsMissingSymbol"); });
+  EXPECT_THAT(message, HasSubstr("cannot create plugin type 'fixture/NeedsMissingSymbol'"));
+  EXPECT_THAT(message, HasSubstr("libfixture_undefined_symbol.so: cannot be loaded (dlopen)"));
+  EXPECT_THAT(message, HasSubstr("undefined symbol: servoloop_fixture_symbol_defined_nowhere"));
   const auto diagnostic = diagnosticFor(loader, fs::canonical(caseLibrary("undefined_symbol")));
   EXPECT_THAT(diagnostic.reason, HasSubstr("cannot be loaded (dlopen)"));
-  EXPECT_THAT(diagnostic.reason, HasSubstr("undefined symbol: servoloop_fixture_symbol_defined_nowhere"));
-  EXPECT_THAT(diagnostic.message(), HasSubstr("libfixture_undefined_symbol.so: "));
-  EXPECT_FALSE(loader.hasType("fixture/NeedsMissingSymbol"));
 }
 
-TEST(PluginLoader, FileThatIsNotAnElfLibraryIsReportedAndSkipped) {
+TEST(PluginLoader, FilesThatAreNotElfLibrariesArePassedOverQuietly) {
   const servoloop::testing::TempDir temp("servoloop-plugin-loader");
   const fs::path& dir = temp.path();
   std::ofstream(dir / "libnotes.so") << "this is a text file\n";
+  std::ofstream(dir / "libtruncated.so") << "\x7f" "ELF\x02\x01\x01";
   std::ofstream(dir / "README.txt") << "not a library name, never opened\n";
   PluginLoader loader({dir});
-  ASSERT_EQ(loader.diagnostics().size(), 1u);
-  EXPECT_EQ(loader.diagnostics()[0].library, fs::canonical(dir / "libnotes.so"));
-  EXPECT_THAT(loader.diagnostics()[0].reason, HasSubstr("cannot be loaded (dlopen)"));
+  EXPECT_TRUE(loader.diagnostics().empty());
+  EXPECT_TRUE(loader.listTypes().empty());
 }
 
 TEST(PluginLoader, DuplicateTypeNamesBothLibrariesAndFirstOnPathWins) {
@@ -255,17 +294,26 @@ TEST(PluginLoader, DuplicateTypeNamesBothLibrariesAndFirstOnPathWins) {
 }
 
 TEST(PluginLoader, BrokenLibrariesDoNotStopTheOthers) {
-  PluginLoader loader({caseDir("not_a_plugin"), caseDir("wrong_api_version"),
-                       caseDir("wrong_abi_size"), caseDir("undefined_symbol"), caseDir("good")});
-  EXPECT_EQ(loader.diagnostics().size(), 4u);
-  EXPECT_EQ(loader.listTypes().size(), 4u);
+  PluginLoader loader({caseDir("not_a_plugin"), caseDir("wrong_api_version"), caseDir("wrong_abi_size"),
+                       caseDir("undefined_symbol"), caseDir("aborting_constructor"), caseDir("good")});
+  // Only the index from another API version is refused while scanning.
+  EXPECT_EQ(loader.diagnostics().size(), 1u);
+  EXPECT_EQ(loader.listTypes().size(), 7u);
   EXPECT_EQ(loader.create<FixtureController>("fixture/Beta")->name(), "beta");
 
-  // The unknown-type error also mentions what failed to load, as a hint.
-  const std::string message =
-      errorOf([&] { loader.create<FixtureController>("fixture/NeedsMissingSymbol"); });
-  EXPECT_THAT(message, HasSubstr("4 problem(s) while loading plugins"));
+  // A broken library fails only the creation that loads it.
+  EXPECT_THAT(errorOf([&] { loader.create<FixtureController>("fixture/NeedsMissingSymbol"); }),
+              HasSubstr("libfixture_undefined_symbol.so"));
+  EXPECT_THAT(errorOf([&] { loader.create<FixtureController>("fixture/WrongAbiSize"); }),
+              HasSubstr("libfixture_wrong_abi_size.so"));
+  EXPECT_EQ(loader.create<FixtureController>("fixture/Alpha")->name(), "alpha");
+  EXPECT_EQ(loader.diagnostics().size(), 3u);
+
+  // The unknown-type error also mentions what failed, as a hint.
+  const std::string message = errorOf([&] { loader.create<FixtureController>("fixture/Gamma"); });
+  EXPECT_THAT(message, HasSubstr("3 problem(s) while loading plugins"));
   EXPECT_THAT(message, HasSubstr("libfixture_undefined_symbol.so"));
+  EXPECT_FALSE(isLoaded(caseLibrary("aborting_constructor")));
 }
 
 TEST(PluginLoader, ReloadIsRefusedWhileObjectsLiveUnlessForced) {

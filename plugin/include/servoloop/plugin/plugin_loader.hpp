@@ -2,9 +2,16 @@
 // Finds plugin libraries on a search path, checks their handshake, and creates
 // objects from them. Non-real-time: used by the service thread and the command
 // line, never by the control loop.
+//
+// Discovery runs no plugin code: the loader reads each library's plugin index
+// (plugin_index.hpp) from the file. A library is dlopen'ed, and its handshake
+// checked, only when one of its types is first created; a library that fails
+// then fails that creation alone, with an error naming the file. Files on the
+// path that carry no plugin index are not plugins and are passed over quietly.
 #include <atomic>
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -80,13 +87,15 @@ class PluginLoader {
     return PluginPtr<Base>(static_cast<Base*>(created.base_object), created.deleter);
   }
 
-  // Registered types, sorted by type name; all kinds when kind is empty.
+  // Registered types, sorted by type name; all kinds when kind is empty. Read
+  // from the libraries' plugin indexes: loads nothing.
   std::vector<PluginTypeInfo> listTypes(const std::string& kind = "") const;
   bool hasType(const std::string& type) const;
 
-  // Everything that went wrong while scanning: libraries that failed to load
-  // or were refused, type names provided twice. Each is also logged once as a
-  // warning. Cleared by reload().
+  // Everything that went wrong: libraries whose index was refused while
+  // scanning (wrong API version, unreadable), type names provided twice, and
+  // libraries that failed when they were loaded. Each is also logged once as
+  // a warning. Cleared by reload().
   std::vector<PluginDiagnostic> diagnostics() const;
 
   const std::vector<std::filesystem::path>& searchDirectories() const { return search_directories_; }
@@ -109,15 +118,20 @@ class PluginLoader {
     void* base_object;
     PluginDeleter deleter;
   };
+  // A type from a library's index; entry and library are set once the
+  // library is loaded.
   struct RegisteredType {
     PluginTypeInfo info;
     std::string base_type_id;
-    const ServoloopPluginEntry* entry;
+    const ServoloopPluginEntry* entry = nullptr;
     std::shared_ptr<detail::LoadedLibrary> library;
   };
 
   Created createErased(const std::string& type, const char* kind, const char* base_type_id);
   void scanLocked();
+  void indexLibraryLocked(const std::filesystem::path& path);
+  // Loads the library and binds its types' entries; throws servoloop::Error
+  // naming the library when it cannot be loaded or fails its handshake.
   void loadLibraryLocked(const std::filesystem::path& path);
   void addDiagnosticLocked(const std::filesystem::path& library, std::string reason);
   void ensureNoLiveObjectsLocked(const char* action) const;
@@ -128,6 +142,7 @@ class PluginLoader {
   std::vector<RegisteredType> types_;  // sorted by type name
   std::vector<std::shared_ptr<detail::LoadedLibrary>> libraries_;
   std::vector<PluginDiagnostic> diagnostics_;
+  std::map<std::filesystem::path, std::string> failed_libraries_;  // path -> why it failed to load
   std::set<std::string> logged_messages_;  // so a rescan does not repeat warnings
   std::shared_ptr<std::atomic<std::size_t>> live_objects_;
 };

@@ -11,12 +11,15 @@
 // "robot_hw", ...). A library may register any number of classes from any
 // number of .cpp files; including this header also defines the library's one
 // exported entry point, servoloop_plugin_manifest, which lists all of them
-// together with the API-version and ABI handshake.
+// together with the API-version and ABI handshake. Each registration also
+// writes a record into the library's plugin index (plugin_index.hpp), so that
+// the loader can list the library's types without loading it.
 #include <type_traits>
 #include <typeinfo>
 #include <vector>
 
 #include "servoloop/plugin/plugin_api.hpp"
+#include "servoloop/plugin/plugin_index.hpp"
 
 namespace servoloop::plugin::detail {
 
@@ -95,8 +98,11 @@ servoloop_plugin_manifest() {
 
 // Registers Derived (a class deriving from Base) under type_name, a string
 // literal such as "my_pkg/MyController". Use at namespace scope in a .cpp.
-#define SERVOLOOP_REGISTER_PLUGIN(Derived, Base, type_name)                        \
-  namespace {                                                                      \
-  const ::servoloop::plugin::detail::PluginRegistrar<Derived, Base> \
-      SERVOLOOP_PLUGIN_CONCAT(servoloop_plugin_registrar_, __COUNTER__){type_name};  \
+#define SERVOLOOP_REGISTER_PLUGIN(Derived, Base, type_name)                                        \
+  namespace {                                                                                      \
+  const ::servoloop::plugin::detail::PluginRegistrar<Derived, Base>                                \
+      SERVOLOOP_PLUGIN_CONCAT(servoloop_plugin_registrar_, __COUNTER__){type_name};                \
+  [[gnu::section("servoloop_plugin_index"), gnu::used]] constexpr auto SERVOLOOP_PLUGIN_CONCAT(   \
+      servoloop_plugin_index_record_, __COUNTER__) =                                               \
+      ::servoloop::plugin::detail::pluginIndexRecord<Base>(type_name);                             \
   }
