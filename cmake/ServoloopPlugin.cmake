@@ -6,6 +6,12 @@ function(servoloop_add_plugin target)
   add_library(${target} MODULE ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE ${ARG_LINK})
   set_target_properties(${target} PROPERTIES PREFIX "lib")
+  # A plugin runs on the real-time cycle: with no build type chosen (CMake's
+  # default adds no optimisation flags), build it optimised anyway.
+  if(NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
+    target_compile_options(${target} PRIVATE -O2)
+    target_compile_definitions(${target} PRIVATE NDEBUG)
+  endif()
   if(DEFINED SERVOLOOP_PLUGIN_OUTPUT_DIR)
     # In the servoloop tree: build next to the other plugins and install with them.
     # Out-of-tree projects install to ${SERVOLOOP_PLUGIN_DIR} (or any folder on

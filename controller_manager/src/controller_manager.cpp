@@ -13,6 +13,7 @@
 #include "controller_entry.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/params/parameters_yaml.hpp"
 
 namespace servoloop::controller_manager {
 
@@ -168,7 +169,11 @@ ServiceResult ControllerManager::loadController(const std::string& name) {
   }
   ControllerContext context = context_template_;
   context.name = name;
-  context.params.reset(params);  // not operator=, which would write into the template's node
+  {
+    std::string path = parameterPath(ns, name, "");
+    path.pop_back();  // "<ns>/<name>"
+    context.params = params::parametersFromYaml(params, std::move(path));
+  }
   std::vector<hardware_interface::InterfaceResources> claimed;
   try {
     if (!controller->initRequest(robot_hw_, context, claimed)) {

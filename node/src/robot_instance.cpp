@@ -12,6 +12,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/robot_namespace.hpp"
 #include "servoloop/core/step_grid.hpp"

@@ -1,5 +1,6 @@
 // Controller<T> and MultiInterfaceController<T...>: interfaces, claims, the
 // recorded command handles, lifecycle requests and safe outputs.
+#include "servoloop/params/parameters_yaml.hpp"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,7 +15,7 @@ ControllerContext contextFor(const std::string& name, const std::string& yaml) {
   ControllerContext context;
   context.name = name;
   context.robot_namespace = "/test_robot";
-  context.params = YAML::Load(yaml);
+  context.params = servoloop::params::parametersFromYaml(YAML::Load(yaml), "/test/controller");
   return context;
 }
 

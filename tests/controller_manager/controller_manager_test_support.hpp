@@ -122,10 +122,10 @@ struct TestBehaviour {
 
   void read(const ControllerContext& context) {
     name = context.name;
-    const YAML::Node& params = context.params;
+    const params::Parameters& params = context.params;
     if (params["joint"]) joints.push_back(params["joint"].as<std::string>());
     if (params["joints"]) {
-      for (const auto& j : params["joints"]) joints.push_back(j.as<std::string>());
+      for (const auto& j : params["joints"].as<std::vector<std::string>>()) joints.push_back(j);
     }
     if (params["output"]) output = params["output"].as<double>();
     if (params["fail_in"]) fail_in = params["fail_in"].as<std::string>();

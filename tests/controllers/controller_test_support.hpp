@@ -16,6 +16,7 @@
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/params/parameters_yaml.hpp"
 
 namespace servoloop::controllers::testing {
 
@@ -110,7 +111,7 @@ inline cm::ControllerContext makeContext(const std::string& name, const std::str
   cm::ControllerContext context;
   context.name = name;
   context.robot_namespace = robot_namespace;
-  context.params = YAML::Load(params_yaml);
+  context.params = servoloop::params::parametersFromYaml(YAML::Load(params_yaml), robot_namespace + "/" + name);
   context.topics = topics;
   context.robot_model = std::move(model);
   return context;

@@ -18,6 +18,7 @@
 #include "servoloop/controllers/effort_controllers/joint_position_controller.hpp"
 #include "servoloop/controllers/joint_state_controller/joint_state_controller.hpp"
 #include "servoloop/controllers/minimal_joint_controller/minimal_joint_controller.hpp"
+#include "servoloop/params/parameters_yaml.hpp"
 
 namespace servoloop::controllers {
 namespace {
@@ -54,7 +55,8 @@ TEST(ControllersAllocation, NoAllocationOnTheControlThreadAfterStartUp) {
   controller_manager::ControllerContext position_context;
   position_context.name = "joint1_position_controller";
   position_context.robot_namespace = "/one_DOF_robot";
-  position_context.params = testing::seedControllerParams()["joint1_position_controller"];
+  position_context.params = servoloop::params::parametersFromYaml(
+      testing::seedControllerParams()["joint1_position_controller"], "/one_DOF_robot/joint1_position_controller");
   position_context.topics = &bus;
   position_context.robot_model = testing::seedRobotModel();
   initController(position, hw, position_context);

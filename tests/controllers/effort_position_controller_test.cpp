@@ -11,6 +11,7 @@
 #include "controller_test_support.hpp"
 #include "servoloop/controllers/effort_controllers/joint_position_controller.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/params/parameters_yaml.hpp"
 
 namespace servoloop::controllers {
 namespace {
@@ -48,7 +49,8 @@ TEST(EffortPositionSeed, OneUpdateOfTheSeedControllerMatchesControlToolbox) {
   controller_manager::ControllerContext context;
   context.name = "joint1_position_controller";
   context.robot_namespace = "/one_DOF_robot";
-  context.params = testing::seedControllerParams()["joint1_position_controller"];
+  context.params = servoloop::params::parametersFromYaml(
+      testing::seedControllerParams()["joint1_position_controller"], "/one_DOF_robot/joint1_position_controller");
   context.topics = &bus;
   context.robot_model = testing::seedRobotModel();
   JointPositionController controller;

@@ -13,6 +13,7 @@
 #include "alloc_counter.hpp"
 #include "servoloop/controllers/pid.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/params/parameters_yaml.hpp"
 
 using servoloop::controllers::Pid;
 
@@ -35,7 +36,7 @@ void expectCommands(Pid& pid, const std::vector<Step>& steps) {
 
 Pid fromYaml(const std::string& text) {
   Pid pid;
-  pid.initFromParams(YAML::Load(text), "robot/ctrl/pid");
+  pid.initFromParams(servoloop::params::parametersFromYaml(YAML::Load(text), "/robot/ctrl/pid"), "robot/ctrl/pid");
   return pid;
 }
 
@@ -215,7 +216,7 @@ TEST(PidParams, Antiwindup) {
 TEST(PidParams, InitResetsState) {
   Pid pid(0.0, 0.0, 1.0, 0.0, 0.0);
   pid.computeCommand(-0.5, 1.0);
-  pid.initFromParams(YAML::Load("{p: 0, d: 1}"), "robot/ctrl/pid");
+  pid.initFromParams(servoloop::params::parametersFromYaml(YAML::Load("{p: 0, d: 1}"), "/robot/ctrl/pid"), "robot/ctrl/pid");
   EXPECT_NEAR(pid.computeCommand(-0.5, 1.0), -0.5, kTol);  // the kick again
 }
 
@@ -226,7 +227,7 @@ TEST(PidParams, MissingPGainNamesTheLocation) {
   // An absent pid map is the same mistake.
   Pid pid;
   try {
-    pid.initFromParams(YAML::Node(), "robot/ctrl/pid");
+    pid.initFromParams(servoloop::params::Parameters(), "robot/ctrl/pid");
     FAIL() << "expected ConfigError";
   } catch (const servoloop::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("No p gain specified"), std::string::npos) << e.what();

@@ -2,6 +2,7 @@
 
 #include "servoloop/hardware_interface/actuator_interfaces.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
+#include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 
 namespace hi = servoloop::hardware_interface;

@@ -226,7 +226,7 @@ TEST(PluginLoader, WrongApiVersionInTheIndexIsRefusedWithoutLoading) {
   // The fixture's entries point at address 0x10: reading them would crash.
   PluginLoader loader({caseDir("wrong_api_version")});
   const auto diagnostic = diagnosticFor(loader, fs::canonical(caseLibrary("wrong_api_version")));
-  EXPECT_THAT(diagnostic.reason, HasSubstr("wrong plugin API version: built for version 3"));
+  EXPECT_THAT(diagnostic.reason, HasSubstr("wrong plugin API version: built for version 1"));
   EXPECT_THAT(diagnostic.reason, HasSubstr("loads version " + std::to_string(kPluginApiVersion)));
   EXPECT_THAT(diagnostic.reason, HasSubstr("rebuild the plugin"));
   EXPECT_THAT(diagnostic.message(), HasSubstr("libfixture_wrong_api_version.so: "));

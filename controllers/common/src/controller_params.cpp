@@ -23,17 +23,11 @@ std::string missingMessage(const ControllerContext& context, const std::string& 
          "' is missing; add '" + example + "' under '" + context.name + "' in the controller YAML";
 }
 
-YAML::Node child(const ControllerContext& context, const std::string& key) {
-  return childNode(context.params, key);
+params::Parameters child(const ControllerContext& context, const std::string& key) {
+  return context.params.child(key);
 }
 
 }  // namespace
-
-YAML::Node childNode(const YAML::Node& map, const std::string& key) {
-  if (!map.IsDefined() || !map.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
-  const YAML::Node found = map[key];  // const lookup: does not insert the key
-  return found.IsDefined() ? found : YAML::Node(YAML::NodeType::Undefined);
-}
 
 std::string parameterPath(const ControllerContext& context, const std::string& key) {
   const std::string ns = trimSlashes(context.robot_namespace);
@@ -51,37 +45,38 @@ std::string namespaceTopic(const ControllerContext& context, const std::string& 
 
 std::string requireString(const ControllerContext& context, const std::string& key,
                           const std::string& example) {
-  const YAML::Node node = child(context, key);
-  if (!node.IsDefined() || node.IsNull()) throw ConfigError(missingMessage(context, key, example));
-  if (!node.IsScalar()) {
+  const params::Parameters value = child(context, key);
+  if (value.empty()) throw ConfigError(missingMessage(context, key, example));
+  if (!value.isScalar()) {
     throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) +
                       "' must be a string, e.g. '" + example + "'");
   }
-  return node.as<std::string>();
+  return value.as<std::string>();
 }
 
 std::string optionalString(const ControllerContext& context, const std::string& key,
                            const std::string& fallback) {
-  const YAML::Node node = child(context, key);
-  if (!node.IsDefined() || node.IsNull()) return fallback;
-  if (!node.IsScalar()) {
+  const params::Parameters value = child(context, key);
+  if (value.empty()) return fallback;
+  if (!value.isScalar()) {
     throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) +
                       "' must be a string (default '" + fallback + "')");
   }
-  return node.as<std::string>();
+  return value.as<std::string>();
 }
 
 std::vector<std::string> requireStringList(const ControllerContext& context, const std::string& key,
                                            const std::string& example) {
-  const YAML::Node node = child(context, key);
-  if (!node.IsDefined() || node.IsNull()) throw ConfigError(missingMessage(context, key, example));
+  const params::Parameters value = child(context, key);
+  if (value.empty()) throw ConfigError(missingMessage(context, key, example));
   const std::string wrong_form = "controller '" + context.name + "': parameter '" +
                                  parameterPath(context, key) +
                                  "' must be a non-empty list of names, e.g. '" + example + "'";
-  if (!node.IsSequence() || node.size() == 0) throw ConfigError(wrong_form);
+  if (!value.isList() || value.size() == 0) throw ConfigError(wrong_form);
   std::vector<std::string> names;
-  for (const YAML::Node& item : node) {
-    if (!item.IsScalar()) throw ConfigError(wrong_form);
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const params::Parameters item = value.item(i);
+    if (!item.isScalar()) throw ConfigError(wrong_form);
     std::string name = item.as<std::string>();
     if (std::find(names.begin(), names.end(), name) != names.end()) {
       throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) +
@@ -92,30 +87,24 @@ std::vector<std::string> requireStringList(const ControllerContext& context, con
   return names;
 }
 
-double numberAt(const YAML::Node& node, const std::string& where, double fallback) {
-  if (!node.IsDefined() || node.IsNull()) return fallback;
-  double value = 0.0;
-  bool ok = node.IsScalar();
-  if (ok) {
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      ok = false;
-    }
+double numberAt(const params::Parameters& value, const std::string& where, double fallback) {
+  if (value.empty()) return fallback;
+  double number = 0.0;
+  try {
+    number = value.as<double>();
+  } catch (const ConfigError&) {
+    throw ConfigError("parameter '" + where + "' must be a finite number, got " +
+                      (value.isScalar() ? value.describe() : std::string("'a list or map'")));
   }
-  if (!ok || !std::isfinite(value)) {
-    throw ConfigError("parameter '" + where + "' must be a finite number, got '" +
-                      (node.IsScalar() ? node.Scalar() : std::string("a list or map")) + "'");
-  }
-  return value;
+  return number;
 }
 
 double requireNumber(const ControllerContext& context, const std::string& key,
                      const std::string& example) {
-  const YAML::Node node = child(context, key);
-  if (!node.IsDefined() || node.IsNull()) throw ConfigError(missingMessage(context, key, example));
+  const params::Parameters value = child(context, key);
+  if (value.empty()) throw ConfigError(missingMessage(context, key, example));
   try {
-    return numberAt(node, parameterPath(context, key), 0.0);
+    return numberAt(value, parameterPath(context, key), 0.0);
   } catch (const ConfigError& e) {
     throw ConfigError("controller '" + context.name + "': " + e.what());
   }

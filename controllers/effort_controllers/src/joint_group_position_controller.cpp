@@ -20,7 +20,7 @@ bool JointGroupPositionController::init(hardware_interface::EffortJointInterface
   position_errors_.assign(count, JointPositionError());
   for (std::size_t i = 0; i < count; ++i) {
     const std::string& joint_name = joint_names[i];
-    pids_[i].initFromParams(childNode(childNode(context.params, joint_name), "pid"),
+    pids_[i].initFromParams(context.params.child(joint_name).child("pid"),
                             parameterPath(context, joint_name + "/pid"));
     if (context.robot_model) {
       position_errors_[i] = JointPositionError::fromModel(*context.robot_model, joint_name, context.name);

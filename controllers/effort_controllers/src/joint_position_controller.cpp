@@ -15,7 +15,7 @@ namespace cm = controller_manager;
 bool JointPositionController::init(hardware_interface::EffortJointInterface* hw,
                                    const cm::ControllerContext& context) {
   const std::string joint_name = requireString(context, "joint", "joint: joint1");
-  pid_.initFromParams(childNode(context.params, "pid"), parameterPath(context, "pid"));
+  pid_.initFromParams(context.params.child("pid"), parameterPath(context, "pid"));
   if (context.robot_model) {
     position_error_ = JointPositionError::fromModel(*context.robot_model, joint_name, context.name);
   } else {

@@ -13,7 +13,7 @@ namespace cm = controller_manager;
 bool JointVelocityController::init(hardware_interface::EffortJointInterface* hw,
                                    const cm::ControllerContext& context) {
   const std::string joint_name = requireString(context, "joint", "joint: joint1");
-  pid_.initFromParams(childNode(context.params, "pid"), parameterPath(context, "pid"));
+  pid_.initFromParams(context.params.child("pid"), parameterPath(context, "pid"));
   joint_ = getJointHandle(*hw, joint_name, context, "joint");
   command_input_.connect(context.topics, controllerTopic(context, "command"), context.name);
   state_publisher_.advertise(context.topics, controllerTopic(context, "state"));

@@ -45,18 +45,18 @@ bool JointStateController::init(hardware_interface::JointStateInterface* hw,
 }
 
 void JointStateController::readExtraJoints(const cm::ControllerContext& context) {
-  const YAML::Node extra = childNode(context.params, "extra_joints");
-  if (!extra.IsDefined() || extra.IsNull()) return;
+  const params::Parameters extra = context.params.child("extra_joints");
+  if (extra.empty()) return;
   const std::string path = parameterPath(context, "extra_joints");
-  if (!extra.IsSequence()) {
+  if (!extra.isList()) {
     throw ConfigError("controller '" + context.name + "': parameter '" + path +
                       "' must be a list of {name: ..., position: ..., velocity: ..., effort: ...}");
   }
   for (std::size_t i = 0; i < extra.size(); ++i) {
-    const YAML::Node entry = extra[i];
+    const params::Parameters entry = extra.item(i);
     const std::string where = path + "[" + std::to_string(i) + "]";
-    const YAML::Node name_node = childNode(entry, "name");
-    if (!name_node.IsDefined() || !name_node.IsScalar()) {
+    const params::Parameters name_node = entry.child("name");
+    if (!name_node.isScalar()) {
       throw ConfigError("controller '" + context.name + "': '" + where +
                         "' needs a name, e.g. {name: gripper_finger, position: 0.0}");
     }
@@ -71,9 +71,9 @@ void JointStateController::readExtraJoints(const cm::ControllerContext& context)
     double velocity = 0.0;
     double effort = 0.0;
     try {
-      position = numberAt(childNode(entry, "position"), where + "/position", 0.0);
-      velocity = numberAt(childNode(entry, "velocity"), where + "/velocity", 0.0);
-      effort = numberAt(childNode(entry, "effort"), where + "/effort", 0.0);
+      position = numberAt(entry.child("position"), where + "/position", 0.0);
+      velocity = numberAt(entry.child("velocity"), where + "/velocity", 0.0);
+      effort = numberAt(entry.child("effort"), where + "/effort", 0.0);
     } catch (const ConfigError& e) {
       throw ConfigError("controller '" + context.name + "': " + e.what());
     }

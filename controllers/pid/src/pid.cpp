@@ -10,26 +10,19 @@
 namespace servoloop::controllers {
 namespace {
 
-std::string describe(const YAML::Node& value) {
-  if (value.IsScalar()) return "'" + value.Scalar() + "'";
-  if (value.IsSequence()) return "a list";
-  if (value.IsMap()) return "a map";
-  return "nothing";
-}
-
-// Reads pid_node[key] into out; false when the key is absent.
+// Reads pid[key] into out; false when the key is absent (or null).
 template <class T>
-bool readKey(const YAML::Node& pid_node, const std::string& where, const char* key, T& out) {
-  const YAML::Node value = pid_node[key];
-  if (!value.IsDefined()) return false;
+bool readKey(const params::Parameters& pid, const std::string& where, const char* key, T& out) {
+  const params::Parameters value = pid.child(key);
+  if (value.empty()) return false;
   const auto fail = [&]() {
     const char* expected = std::is_same_v<T, bool> ? "a boolean (true or false)" : "a number";
-    return ConfigError(where + "/" + key + ": expected " + expected + ", got " + describe(value));
+    return ConfigError(where + "/" + key + ": expected " + expected + ", got " + value.describe());
   };
-  if (!value.IsScalar()) throw fail();
+  if (!value.isScalar()) throw fail();
   try {
     out = value.as<T>();
-  } catch (const YAML::BadConversion&) {
+  } catch (const ConfigError&) {
     throw fail();
   }
   return true;
@@ -69,12 +62,12 @@ void Pid::initPid(double p, double i, double d, double i_max, double i_min, bool
   reset();
 }
 
-void Pid::initFromParams(const YAML::Node& pid_node, const std::string& where) {
-  if (pid_node.IsDefined() && !pid_node.IsNull() && !pid_node.IsMap()) {
+void Pid::initFromParams(const params::Parameters& pid_params, const std::string& where) {
+  if (!pid_params.empty() && !pid_params.isMap()) {
     throw ConfigError(where + ": expected a map of gains ({p: ..., i: ..., d: ...}), got " +
-                      describe(pid_node));
+                      pid_params.describe());
   }
-  const YAML::Node node = pid_node.IsMap() ? pid_node : YAML::Node(YAML::NodeType::Map);
+  const params::Parameters& node = pid_params;
 
   Gains gains;
   if (!readKey(node, where, "p", gains.p_gain)) {

@@ -4,80 +4,21 @@
 #include <cmath>
 #include <string>
 
-#include <yaml-cpp/yaml.h>
-
+#include "servoloop/controllers/common/controller_params.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/plugin/plugin_register.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
-#include "servoloop/core/errors.hpp"
 
 namespace my_controllers {
 
 namespace cm = servoloop::controller_manager;
 namespace hi = servoloop::hardware_interface;
-
-namespace {
-
-// --- Parameter reading (non-real-time). Errors name the controller, the full
-// parameter path as the user finds it in the YAML, and the fix.
-
-std::string parameterPath(const cm::ControllerContext& context, const std::string& key) {
-  std::string ns = context.robot_namespace;
-  while (!ns.empty() && ns.front() == '/') ns.erase(ns.begin());
-  while (!ns.empty() && ns.back() == '/') ns.pop_back();
-  return (ns.empty() ? "" : ns + "/") + context.name + "/" + key;
-}
-
-// The key's node, or an undefined node when it (or the whole params map) is absent.
-YAML::Node parameter(const cm::ControllerContext& context, const std::string& key) {
-  if (!context.params.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
-  const YAML::Node& params = context.params;  // const lookup: never inserts the key
-  return params[key];
-}
-
-[[noreturn]] void throwMissing(const cm::ControllerContext& context, const std::string& key,
-                               const std::string& example) {
-  throw servoloop::ConfigError("controller '" + context.name + "': parameter '" +
-                               parameterPath(context, key) + "' is missing; add '" + example +
-                               "' under '" + context.name + "' in the controller YAML");
-}
-
-double numberFrom(const YAML::Node& node, const cm::ControllerContext& context, const std::string& key) {
-  double value = 0.0;
-  try {
-    value = node.as<double>();
-  } catch (const YAML::Exception&) {
-    value = std::nan("");
-  }
-  if (!node.IsScalar() || !std::isfinite(value)) {
-    throw servoloop::ConfigError("controller '" + context.name + "': parameter '" +
-                                 parameterPath(context, key) + "' must be a finite number");
-  }
-  return value;
-}
-
-double requireNumber(const cm::ControllerContext& context, const std::string& key, const std::string& example) {
-  const YAML::Node node = parameter(context, key);
-  if (!node.IsDefined() || node.IsNull()) throwMissing(context, key, example);
-  return numberFrom(node, context, key);
-}
-
-double optionalNumber(const cm::ControllerContext& context, const std::string& key, double fallback) {
-  const YAML::Node node = parameter(context, key);
-  if (!node.IsDefined() || node.IsNull()) return fallback;
-  return numberFrom(node, context, key);
-}
-
-std::string requireString(const cm::ControllerContext& context, const std::string& key, const std::string& example) {
-  const YAML::Node node = parameter(context, key);
-  if (!node.IsDefined() || node.IsNull()) throwMissing(context, key, example);
-  if (!node.IsScalar()) {
-    throw servoloop::ConfigError("controller '" + context.name + "': parameter '" +
-                                 parameterPath(context, key) + "' must be a name, e.g. '" + example + "'");
-  }
-  return node.as<std::string>();
-}
-
-}  // namespace
+// Parameter reading with errors that name the controller, the full parameter
+// path as the user finds it in the YAML, and the fix (installed with servoloop).
+using servoloop::controllers::optionalNumber;
+using servoloop::controllers::parameterPath;
+using servoloop::controllers::requireNumber;
+using servoloop::controllers::requireString;
 
 bool GravityCompensatedPDController::init(hi::EffortJointInterface* hw, const cm::ControllerContext& context) {
   // Parameters first, so a bad YAML fails before anything is claimed.
@@ -101,7 +42,7 @@ bool GravityCompensatedPDController::init(hi::EffortJointInterface* hw, const cm
   joint_ = hw->getHandle(joint_name);
 
   // The command input is made here, off the real-time thread; update() only reads it.
-  command_topic_ = servoloop::realtime::TopicBus::normalizeTopicName(context.robot_namespace + "/" + context.name + "/command");
+  command_topic_ = servoloop::controllers::controllerTopic(context, "command");
   if (context.topics != nullptr) {
     command_ = context.topics->commandInput<servoloop::std_msgs::Float64>(command_topic_);
   }

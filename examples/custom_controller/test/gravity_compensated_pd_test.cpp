@@ -20,6 +20,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
+#include "servoloop/params/parameters_yaml.hpp"
 
 namespace {
 
@@ -60,7 +61,7 @@ class GravityCompensatedPDTest : public ::testing::Test {
     cm::ControllerContext ctx;
     ctx.name = "arm_pd";
     ctx.robot_namespace = "/robot";
-    ctx.params = YAML::Load(params_yaml);
+    ctx.params = servoloop::params::parametersFromYaml(YAML::Load(params_yaml), "/robot/" + ctx.name);
     ctx.topics = &bus_;
     return ctx;
   }

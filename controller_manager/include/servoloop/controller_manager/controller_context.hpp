@@ -3,8 +3,11 @@
 #include <memory>
 #include <string>
 
-#include <urdf_model/model.h>
-#include <yaml-cpp/yaml.h>
+#include "servoloop/params/parameters.hpp"
+
+namespace urdf {
+class ModelInterface;  // <urdf_model/model.h>: include it to read the robot model
+}
 
 namespace servoloop::realtime {
 class TopicBus;  // servoloop/realtime/topic_bus.hpp
@@ -21,7 +24,7 @@ namespace servoloop::controller_manager {
 struct ControllerContext {
   std::string name;              // controller name, e.g. "joint1_position_controller"
   std::string robot_namespace;   // e.g. "/one_DOF_robot"
-  YAML::Node params;             // the controller's own parameter subtree (<ns>/<name>)
+  params::Parameters params;     // the controller's own parameters (<ns>/<name>), read-only
   realtime::TopicBus* topics = nullptr;    // may be null (tests)
   const params::ParameterStore* parameters = nullptr;  // whole store; may be null
   std::shared_ptr<const urdf::ModelInterface> robot_model;  // may be null

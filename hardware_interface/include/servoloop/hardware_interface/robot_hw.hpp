@@ -2,12 +2,13 @@
 #include <vector>
 
 #include "servoloop/hardware_interface/controller_info.hpp"
-#include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/hardware_interface/interface_manager.hpp"
 #include "servoloop/core/return_type.hpp"
 #include "servoloop/core/time.hpp"
 
 namespace servoloop::hardware_interface {
+
+struct HardwareInfo;  // hardware_info.hpp: what init() is given
 
 // A robot's hardware as controllers see it: a set of interfaces plus the
 // read/write calls of the control cycle. Subclasses (real hardware, simulators,

@@ -1,4 +1,5 @@
 #pragma once
+#include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 
 namespace servoloop::hardware_interface {

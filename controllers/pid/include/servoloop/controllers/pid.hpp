@@ -27,7 +27,7 @@
 #include <mutex>
 #include <string>
 
-#include <yaml-cpp/yaml.h>
+#include "servoloop/params/parameters.hpp"
 
 namespace servoloop::controllers {
 
@@ -60,7 +60,7 @@ class Pid {
   // Sets the gains and resets the state. Throws servoloop::ConfigError
   // "<where>: No p gain specified for pid ..." when p is missing, and one naming
   // <where>/<key> and the expected type when a value has the wrong type.
-  void initFromParams(const YAML::Node& pid_node, const std::string& where);
+  void initFromParams(const params::Parameters& pid_params, const std::string& where);
 
   // Any thread. Calls from several threads are serialised; never blocks
   // computeCommand.

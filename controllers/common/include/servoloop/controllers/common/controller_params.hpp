@@ -1,5 +1,6 @@
 #pragma once
-// Reading a controller's parameters (its YAML subtree) and naming its topics.
+// Reading a controller's parameters (context.params, a params::Parameters
+// view) with errors in the controller's own words, and naming its topics.
 // Non-real-time. Every error names the controller, the full parameter path
 // and the fix.
 #include <string>
@@ -38,11 +39,8 @@ double requireNumber(const ControllerContext& context, const std::string& key,
 // An optional finite number with a default.
 double optionalNumber(const ControllerContext& context, const std::string& key, double fallback);
 
-// map[key], or an undefined (but valid) node when map is not a map or has no
-// such key, so the result can be inspected without yaml-cpp throwing.
-YAML::Node childNode(const YAML::Node& map, const std::string& key);
-
-// The number at node (or fallback when node is undefined); where names it in errors.
-double numberAt(const YAML::Node& node, const std::string& where, double fallback);
+// The number at value (or fallback when it is missing or null); where names
+// it in errors.
+double numberAt(const params::Parameters& value, const std::string& where, double fallback);
 
 }  // namespace servoloop::controllers
