@@ -5,6 +5,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/params/parameters_yaml.hpp"
 
 namespace servoloop::hardware_interface {
 namespace {
@@ -15,40 +16,15 @@ std::string keyPath(const std::string& joint_name, std::string_view key) {
   return path;
 }
 
-template <class T>
-constexpr const char* expectedTypeName() {
-  if constexpr (std::is_same_v<T, bool>) return "a boolean (true or false)";
-  else return "a number";
-}
-
-std::string describe(const YAML::Node& value) {
-  if (value.IsScalar()) return "'" + value.Scalar() + "'";
-  if (value.IsSequence()) return "a list";
-  if (value.IsMap()) return "a map";
-  return "nothing";
-}
-
 // Reads joint_node[key] into out. Returns false when the key is absent.
 template <class T>
-bool readKey(const YAML::Node& joint_node, const std::string& joint_name, const char* key, T& out) {
-  const YAML::Node value = joint_node[key];
-  if (!value.IsDefined()) return false;
-  const auto fail = [&]() {
-    return ConfigError(keyPath(joint_name, key) + ": expected " + expectedTypeName<T>() + ", got " +
-                       describe(value));
-  };
-  if (!value.IsScalar()) throw fail();
-  try {
-    out = value.as<T>();
-  } catch (const YAML::BadConversion&) {
-    throw fail();
-  }
-  return true;
+bool readKey(const params::Parameters& joint_node, const std::string& joint_name, const char* key, T& out) {
+  return params::readOptional(joint_node, key, keyPath(joint_name, ""), out);
 }
 
 // One value of a group that has_<group> switched on: the YAML value when given,
 // else the previous one when the group was already set (from the URDF).
-void readGroupValue(const YAML::Node& joint_node, const std::string& joint_name, const char* flag_key,
+void readGroupValue(const params::Parameters& joint_node, const std::string& joint_name, const char* flag_key,
                     const char* value_key, bool previously_set, double& value) {
   if (readKey(joint_node, joint_name, value_key, value) || previously_set) return;
   throw ConfigError(keyPath(joint_name, "") + ": " + flag_key + " is true but " + value_key +
@@ -57,9 +33,9 @@ void readGroupValue(const YAML::Node& joint_node, const std::string& joint_name,
 
 // Keys that belong to a group are ignored when the group's has_… key is absent;
 // say so, since it is almost always a forgotten has_… line.
-void warnIgnoredKey(const YAML::Node& joint_node, const std::string& joint_name, const char* flag_key,
+void warnIgnoredKey(const params::Parameters& joint_node, const std::string& joint_name, const char* flag_key,
                     const char* value_key) {
-  if (joint_node[value_key].IsDefined() && !joint_node[flag_key].IsDefined()) {
+  if (joint_node.has(value_key) && !joint_node.has(flag_key)) {
     logger().warn("{}: {} is ignored because {} is not set", keyPath(joint_name, ""), value_key,
                   flag_key);
   }
@@ -71,22 +47,21 @@ constexpr std::array<std::string_view, 15> kKnownKeys = {
     "max_acceleration",    "has_effort_limits", "max_effort",       "has_soft_limits",
     "k_position",          "k_velocity",       "soft_lower_limit", "soft_upper_limit"};
 
-void requireMap(const YAML::Node& joint_node, const std::string& joint_name) {
-  if (!joint_node.IsMap()) {
+void requireMap(const params::Parameters& joint_node, const std::string& joint_name) {
+  if (!joint_node.isMap()) {
     throw ConfigError(keyPath(joint_name, "") + ": expected a map of limit keys (has_position_limits, " +
-                      "min_position, ...), got " + describe(joint_node));
+                      "min_position, ...), got " + joint_node.describe());
   }
 }
 
 }  // namespace
 
-bool getJointLimits(const YAML::Node& joint_node, const std::string& joint_name,
-                    JointLimits& limits) {
-  if (!joint_node.IsDefined() || joint_node.IsNull()) return false;
+bool getJointLimits(const YAML::Node& yaml, const std::string& joint_name, JointLimits& limits) {
+  const params::Parameters joint_node = params::parametersFromYaml(yaml, "/joint_limits/" + joint_name);
+  if (joint_node.empty()) return false;
   requireMap(joint_node, joint_name);
 
-  for (const auto& entry : joint_node) {
-    const std::string key = entry.first.as<std::string>();
+  for (const std::string& key : joint_node.keys()) {
     bool known = false;
     for (std::string_view k : kKnownKeys) known = known || k == key;
     if (!known) logger().warn("{}: unknown key '{}' is ignored", keyPath(joint_name, ""), key);
@@ -142,9 +117,10 @@ bool getJointLimits(const YAML::Node& joint_node, const std::string& joint_name,
   return true;
 }
 
-bool getSoftJointLimits(const YAML::Node& joint_node, const std::string& joint_name,
+bool getSoftJointLimits(const YAML::Node& yaml, const std::string& joint_name,
                         std::optional<SoftJointLimits>& soft_limits) {
-  if (!joint_node.IsDefined() || joint_node.IsNull()) return soft_limits.has_value();
+  const params::Parameters joint_node = params::parametersFromYaml(yaml, "/joint_limits/" + joint_name);
+  if (joint_node.empty()) return soft_limits.has_value();
   requireMap(joint_node, joint_name);
 
   bool has_soft_limits = false;

@@ -1,6 +1,7 @@
 #include "servoloop/params/parameters.hpp"
 
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 #include "servoloop/core/errors.hpp"
@@ -158,6 +159,29 @@ template <>
 std::vector<std::string> Parameters::as<std::vector<std::string>>() const {
   return listOf<std::string>(*this, "a list of strings");
 }
+
+template <class T>
+bool readOptional(const Parameters& map, std::string_view key, const std::string& where, T& out) {
+  const Parameters value = map.child(key);
+  if (value.empty()) return false;
+  const char* expected = std::is_same_v<T, bool>  ? "a boolean (true or false)"
+                         : std::is_same_v<T, int> ? "an integer"
+                                                  : "a number";
+  const auto fail = [&] {
+    return ConfigError(where + "/" + std::string(key) + ": expected " + expected + ", got " + value.describe());
+  };
+  if (!value.isScalar()) throw fail();
+  try {
+    out = value.as<T>();
+  } catch (const ConfigError&) {
+    throw fail();
+  }
+  return true;
+}
+
+template bool readOptional<bool>(const Parameters&, std::string_view, const std::string&, bool&);
+template bool readOptional<int>(const Parameters&, std::string_view, const std::string&, int&);
+template bool readOptional<double>(const Parameters&, std::string_view, const std::string&, double&);
 
 Parameters parametersFromYaml(const YAML::Node& node, std::string path) {
   return ParametersAccess::make(node.IsDefined() ? YAML::Clone(node) : YAML::Node(YAML::NodeType::Undefined),

@@ -10,22 +10,9 @@
 namespace servoloop::controllers {
 namespace {
 
-// Reads pid[key] into out; false when the key is absent (or null).
 template <class T>
 bool readKey(const params::Parameters& pid, const std::string& where, const char* key, T& out) {
-  const params::Parameters value = pid.child(key);
-  if (value.empty()) return false;
-  const auto fail = [&]() {
-    const char* expected = std::is_same_v<T, bool> ? "a boolean (true or false)" : "a number";
-    return ConfigError(where + "/" + key + ": expected " + expected + ", got " + value.describe());
-  };
-  if (!value.isScalar()) throw fail();
-  try {
-    out = value.as<T>();
-  } catch (const ConfigError&) {
-    throw fail();
-  }
-  return true;
+  return params::readOptional(pid, key, where, out);
 }
 
 }  // namespace

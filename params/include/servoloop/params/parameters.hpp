@@ -98,4 +98,11 @@ std::vector<double> Parameters::as<std::vector<double>>() const;
 template <>
 std::vector<std::string> Parameters::as<std::vector<std::string>>() const;
 
+// Reads map[key] into out when it is there; false (out untouched) when the key
+// is missing or null. A value of another type throws servoloop::ConfigError
+// "<where>/<key>: expected a number, got 'abc'" (where names the map as the
+// user wrote it, e.g. "joint_limits/joint1"). For bool, int and double.
+template <class T>
+bool readOptional(const Parameters& map, std::string_view key, const std::string& where, T& out);
+
 }  // namespace servoloop::params
