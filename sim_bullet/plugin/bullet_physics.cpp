@@ -1,6 +1,5 @@
 #include "bullet_physics.hpp"
 
-#include <limits>
 #include <string>
 
 #include "servoloop/core/errors.hpp"
@@ -64,9 +63,7 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
       throw ConfigError(source_name + ": " + error.what());
     }
     initial_positions_.push_back(joint.initial_position);
-    // As in the mujoco backend: a bound that is not > 0 means "none given".
-    motor_effort_limits_.push_back(joint.motor_effort_limit > 0.0 ? joint.motor_effort_limit
-                                                                  : std::numeric_limits<double>::infinity());
+    motor_effort_limits_.push_back(sim_common::motorEffortBound(joint));
   }
   applyMotorEffortLimits();
   placeAtInitialPositions();

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -24,7 +23,7 @@
 
 #include "body_tree.hpp"
 #include "servoloop/core/errors.hpp"
-#include "stl_mesh.hpp"
+#include "servoloop/sim_common/stl_mesh.hpp"
 
 static_assert(std::is_same_v<btScalar, double>,
               "sim_bullet needs Bullet in double precision (the -float64 libraries and BT_USE_DOUBLE_PRECISION)");
@@ -255,16 +254,13 @@ struct BulletWorld::Impl {
         break;
       case urdf::Geometry::MESH: {
         const auto& mesh = static_cast<const urdf::Mesh&>(g);
-        std::string extension = mesh.filename.size() >= 4 ? mesh.filename.substr(mesh.filename.size() - 4) : "";
-        std::transform(extension.begin(), extension.end(), extension.begin(),
-                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-        if (extension != ".stl") {
+        if (!sim_common::hasStlExtension(mesh.filename)) {
           throw ConfigError("link '" + spec.link_name + "' <collision> mesh '" + mesh.filename +
                             "': only STL meshes are supported for collision; convert it to STL");
         }
         auto hull = std::make_unique<btConvexHullShape>();
         const Eigen::Vector3d scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-        for (const auto& v : detail::loadStlVertices(mesh.filename)) {
+        for (const auto& v : sim_common::readStlVertices(mesh.filename)) {
           hull->addPoint(toBt(Eigen::Vector3d(v.cwiseProduct(scale))), /*recalculateLocalAabb=*/false);
         }
         hull->recalcLocalAabb();

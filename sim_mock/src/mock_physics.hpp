@@ -7,11 +7,11 @@
 // between joints, no position stops (joint limits act on the commands).
 #include <vector>
 
-#include "servoloop/sim_common/physics_engine.hpp"
+#include "servoloop/sim_common/stored_command_physics_engine.hpp"
 
 namespace servoloop::sim_mock {
 
-class MockPhysics final : public sim_common::PhysicsEngine {
+class MockPhysics final : public sim_common::StoredCommandPhysicsEngine {
  public:
   const char* name() const noexcept override { return "mock"; }
 
@@ -24,10 +24,6 @@ class MockPhysics final : public sim_common::PhysicsEngine {
   // Effort mode: the effort applied. Motor modes: the effort an ideal motor
   // needed for the step's velocity change, inertia · Δvelocity / time step.
   double jointEffort(std::size_t joint) const noexcept override { return joints_[joint].effort; }
-
-  void setJointEffort(std::size_t joint, double effort) noexcept override;
-  void setJointVelocityTarget(std::size_t joint, double velocity) noexcept override;
-  void setJointPositionTarget(std::size_t joint, double position) noexcept override;
 
   // Semi-implicit Euler: velocity first, then position with the new velocity.
   void step() noexcept override;
@@ -45,8 +41,6 @@ class MockPhysics final : public sim_common::PhysicsEngine {
     double position = 0.0;
     double velocity = 0.0;
     double effort = 0.0;
-    sim_common::JointCommandMode mode = sim_common::JointCommandMode::none;
-    double command = 0.0;
   };
 
   std::vector<Joint> joints_;

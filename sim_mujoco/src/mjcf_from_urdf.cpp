@@ -1,7 +1,6 @@
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -10,7 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "servoloop/core/errors.hpp"
-#include "stl_vertices.hpp"
+#include "servoloop/sim_common/stl_mesh.hpp"
 
 namespace servoloop::sim_mujoco {
 namespace {
@@ -229,16 +228,13 @@ class MjcfWriter {
   }
 
   std::string addMesh(const urdf::Link& link, const urdf::Mesh& mesh) {
-    std::string extension = mesh.filename.size() >= 4 ? mesh.filename.substr(mesh.filename.size() - 4) : "";
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (extension != ".stl") {
+    if (!sim_common::hasStlExtension(mesh.filename)) {
       throw ConfigError(source_name_ + ": link '" + link.name + "' <collision> mesh '" + mesh.filename +
                         "': the mujoco backend collides with STL meshes only; convert it to STL");
     }
-    std::vector<std::array<double, 3>> vertices;
+    std::vector<Eigen::Vector3d> vertices;
     try {
-      vertices = detail::readStlVertices(mesh.filename);
+      vertices = sim_common::readStlVertices(mesh.filename);
     } catch (const ConfigError& error) {
       throw ConfigError(source_name_ + ": link '" + link.name + "' <collision> mesh: " + error.what());
     }
@@ -246,7 +242,7 @@ class MjcfWriter {
     assets_ << "    <mesh name=\"" << name << "\" scale=\"" << vec3(mesh.scale.x, mesh.scale.y, mesh.scale.z)
             << "\" vertex=\"";
     for (std::size_t i = 0; i < vertices.size(); ++i) {
-      assets_ << (i == 0 ? "" : " ") << vec3(vertices[i][0], vertices[i][1], vertices[i][2]);
+      assets_ << (i == 0 ? "" : " ") << vec3(vertices[i].x(), vertices[i].y(), vertices[i].z());
     }
     assets_ << "\"/>\n";
     return name;

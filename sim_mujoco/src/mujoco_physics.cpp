@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <map>
 
 #include <mujoco/mujoco.h>
@@ -63,6 +62,7 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   const mjModel& m = *model_;
   joints_.clear();
   initial_positions_.clear();
+  resizeJointCommands(joints.size());
   for (const auto& config : joints) {
     const int id = mj_name2id(&m, mjOBJ_JOINT, config.name.c_str());
     if (id < 0 || (m.jnt_type[id] != mjJNT_HINGE && m.jnt_type[id] != mjJNT_SLIDE)) {
@@ -72,8 +72,7 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
     Joint joint;
     joint.qpos_address = m.jnt_qposadr[id];
     joint.dof_address = m.jnt_dofadr[id];
-    joint.motor_effort_limit = config.motor_effort_limit > 0.0 ? config.motor_effort_limit
-                                                               : std::numeric_limits<double>::infinity();
+    joint.motor_effort_limit = sim_common::motorEffortBound(config);
     joints_.push_back(joint);
     initial_positions_.push_back(config.initial_position);
   }
@@ -105,29 +104,15 @@ double MujocoPhysics::jointVelocity(std::size_t joint) const noexcept {
   return data_->qvel[joints_[joint].dof_address];
 }
 
-void MujocoPhysics::setJointEffort(std::size_t joint, double effort) noexcept {
-  joints_[joint].mode = JointCommandMode::effort;
-  joints_[joint].command = effort;
-}
-
-void MujocoPhysics::setJointVelocityTarget(std::size_t joint, double velocity) noexcept {
-  joints_[joint].mode = JointCommandMode::velocity;
-  joints_[joint].command = velocity;
-}
-
-void MujocoPhysics::setJointPositionTarget(std::size_t joint, double position) noexcept {
-  joints_[joint].mode = JointCommandMode::position;
-  joints_[joint].command = position;
-}
-
 void MujocoPhysics::step() noexcept {
   mjData& d = *data_;
   // Efforts for this step; the motors' are solved below.
   std::size_t motors = 0;
   for (std::size_t j = 0; j < joints_.size(); ++j) {
     Joint& joint = joints_[j];
-    const bool motor = joint.mode == JointCommandMode::velocity || joint.mode == JointCommandMode::position;
-    joint.applied_effort = motor ? 0.0 : joint.command;
+    const sim_common::AppliedJointCommand& command = jointCommand(j);
+    const bool motor = command.mode == JointCommandMode::velocity || command.mode == JointCommandMode::position;
+    joint.applied_effort = motor ? 0.0 : command.value;
     d.qfrc_applied[joint.dof_address] = joint.applied_effort;
     if (motor) motor_joints_[motors++] = j;
   }
@@ -135,10 +120,7 @@ void MujocoPhysics::step() noexcept {
 
   mj_step(model_.get(), &d);
 
-  // An effort acts for one step only.
-  for (Joint& joint : joints_) {
-    if (joint.mode == JointCommandMode::effort || joint.mode == JointCommandMode::none) joint.command = 0.0;
-  }
+  endEffortCommands();
 }
 
 // The motor efforts u (one per motor-driven joint) that give each motor its
@@ -166,10 +148,11 @@ void MujocoPhysics::solveMotorEfforts(std::size_t motors) noexcept {
 
   for (std::size_t k = 0; k < motors; ++k) {
     const Joint& joint = joints_[motor_joints_[k]];
+    const sim_common::AppliedJointCommand& command = jointCommand(motor_joints_[k]);
     const double velocity = d.qvel[joint.dof_address];
-    const double wanted_velocity = joint.mode == JointCommandMode::velocity
-                                       ? joint.command
-                                       : (joint.command - d.qpos[joint.qpos_address]) / position_motor_time_constant_s_;
+    const double wanted_velocity = command.mode == JointCommandMode::velocity
+                                       ? command.value
+                                       : (command.value - d.qpos[joint.qpos_address]) / position_motor_time_constant_s_;
     // The extra acceleration the motor must add to what the other forces give.
     wanted_accel_[k] = (wanted_velocity - velocity) / dt - d.qacc[joint.dof_address];
     motor_efforts_[k] = 0.0;
@@ -200,11 +183,8 @@ void MujocoPhysics::solveMotorEfforts(std::size_t motors) noexcept {
 
 void MujocoPhysics::reset() {
   mj_resetData(model_.get(), data_.get());
-  for (Joint& joint : joints_) {
-    joint.mode = JointCommandMode::effort;
-    joint.command = 0.0;
-    joint.applied_effort = 0.0;
-  }
+  clearJointCommands();
+  for (Joint& joint : joints_) joint.applied_effort = 0.0;
   placeAtInitialPositions();
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Small robots and helpers shared by the simulation backend tests
-// (tests/sim_common, tests/sim_mock, tests/sim_bullet_hw).
+// (tests/sim_common, tests/sim_mock, tests/sim_bullet_hw, tests/sim_mujoco).
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -10,6 +10,8 @@
 
 #include "servoloop/hardware_interface/controller_info.hpp"
 #include "servoloop/hardware_interface/hardware_info.hpp"
+#include "servoloop/hardware_interface/joint_handle.hpp"
+#include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 
 namespace servoloop::sim_testing {
 
@@ -107,6 +109,22 @@ inline hardware_interface::ControllerInfo controllerClaiming(const std::string& 
   info.type = "test/Controller";
   info.claimed_resources.push_back({interface_name, joints});
   return info;
+}
+
+// The control period of cycle() (s): the backends' default time step.
+inline constexpr double kCycleDt = 0.001;
+
+// One control cycle as a controller sees it: read, `command` through
+// `handle`, write, one physics step, and read again so that the handle shows
+// the step's result.
+inline void cycle(hardware_interface::SimulatedRobotHW& hw, hardware_interface::JointHandle& handle,
+                  double command) {
+  const Duration period(kCycleDt);
+  hw.read(Time(), period);
+  handle.setCommand(command);
+  hw.write(Time(), period);
+  hw.step();
+  hw.read(Time(), period);
 }
 
 }  // namespace servoloop::sim_testing

@@ -1,12 +1,11 @@
-// The mock backend: ideal actuators checked against hand calculations
-// (semi-implicit Euler with the URDF inertia about the joint axis), the seed
-// robots and the 50:1 geared motor.
+// The mock backend's ideal actuators, checked against hand calculations
+// (semi-implicit Euler with the URDF inertia about the joint axis): what only
+// they do, targets met in one step and no gravity. What every backend does
+// alike is in tests/sim_common/robot_hw_conformance_test.cpp.
 #include <cmath>
-#include <memory>
 
 #include <gtest/gtest.h>
 
-#include "mock_physics.hpp"
 #include "mock_robot_hw.hpp"
 #include "servoloop/hardware_interface/actuator_interfaces.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
@@ -16,21 +15,12 @@ namespace servoloop::sim_mock {
 namespace {
 
 namespace hi = hardware_interface;
-using sim_common::JointCommandMode;
 using sim_testing::armUrdf;
 using sim_testing::controllerClaiming;
+using sim_testing::cycle;
 using sim_testing::makeInfo;
 
-constexpr double kDt = 0.001;
-constexpr Duration kPeriod(kDt);
-
-void cycle(MockRobotHW& hw, hi::JointHandle& handle, double command) {
-  hw.read(Time(), kPeriod);
-  handle.setCommand(command);
-  hw.write(Time(), kPeriod);
-  hw.step();
-  hw.read(Time(), kPeriod);
-}
+constexpr double kDt = sim_testing::kCycleDt;
 
 TEST(MockRobotHW, PositionCommandIsReachedInOneStep) {
   MockRobotHW hw;
@@ -73,18 +63,17 @@ TEST(MockRobotHW, EffortAcceleratesTheSeedLinkByTorqueOverItsAxisInertia) {
   EXPECT_NEAR(hw.simTime().seconds, n * kDt, 1e-12);
 }
 
-TEST(MockRobotHW, SeedRobot2EffortLimitAndStoppedController) {
+TEST(MockRobotHW, AStoppedControllerLeavesTheJointCoasting) {
+  // Seed robot 2: one step of its 10 N·m limit sets the link moving (the
+  // conformance suite checks that step), then the controller stops.
   MockRobotHW hw;
   const std::string path = sim_testing::seedUrdfPath(true);
   hw.init(makeInfo(sim_testing::readFile(path), "", path));
-  ASSERT_NE(hw.get<hi::EffortJointInterface>(), nullptr);
-  EXPECT_EQ(hw.get<hi::ActuatorStateInterface>()->getNames(), std::vector<std::string>{"motor1"});
   const auto controller = controllerClaiming("joint1_position_controller", "EffortJointInterface", {"joint1"});
   hw.doSwitch({controller}, {});
   hi::JointHandle handle = hw.get<hi::EffortJointInterface>()->getHandle("joint1");
   cycle(hw, handle, 50.0);
-  EXPECT_DOUBLE_EQ(handle.getEffort(), 10.0);  // <limit effort="10">
-  EXPECT_NEAR(handle.getVelocity(), 10.0 / sim_testing::kSeedLink2AxisInertia * kDt, 1e-12);
+  ASSERT_GT(handle.getVelocity(), 0.0);
 
   hw.doSwitch({}, {controller});
   const double velocity = handle.getVelocity();
@@ -125,19 +114,6 @@ TEST(MockRobotHW, EmergencyStopHoldsPositionJoints) {
   hw.setEmergencyStop(false);
   cycle(hw, handle, 1.0);
   EXPECT_DOUBLE_EQ(handle.getPosition(), 1.0);
-}
-
-TEST(MockRobotHW, ResetReturnsToTheInitialState) {
-  MockRobotHW hw;
-  hw.init(makeInfo(armUrdf(1.0, sim_testing::kAllJointInterfaces), "sim: {initial_positions: {arm_joint: -0.2}}"));
-  hw.doSwitch({controllerClaiming("v", "VelocityJointInterface", {"arm_joint"})}, {});
-  hi::JointHandle handle = hw.get<hi::VelocityJointInterface>()->getHandle("arm_joint");
-  for (int k = 0; k < 10; ++k) cycle(hw, handle, 1.0);
-  hw.reset();
-  EXPECT_DOUBLE_EQ(handle.getPosition(), -0.2);
-  EXPECT_DOUBLE_EQ(handle.getVelocity(), 0.0);
-  EXPECT_DOUBLE_EQ(handle.getCommand(), 0.0);
-  EXPECT_DOUBLE_EQ(hw.simTime().seconds, 0.0);
 }
 
 }  // namespace

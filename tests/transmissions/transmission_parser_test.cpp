@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -169,228 +170,151 @@ TEST(TransmissionParser, OrdersTwoJointTransmissionsByRole) {
   EXPECT_NEAR(j[1], 4.06875, 1e-12);
 }
 
-// --- One malformed case each.
+// --- One malformed case each: the element, the transmission its message
+// must name, and the fragments (problem and fix) it must contain.
 
-TEST(TransmissionParser, MissingType) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'t1'",
-                {"has no <type>", "add e.g. <type>transmission_interface/SimpleTransmission"});
+namespace {
+
+constexpr const char* kSimpleType = "transmission_interface/SimpleTransmission";
+constexpr const char* kDifferentialType = "transmission_interface/DifferentialTransmission";
+constexpr const char* kFourBarType = "transmission_interface/FourBarLinkageTransmission";
+constexpr const char* kEffort = "<hardwareInterface>EffortJointInterface</hardwareInterface>";
+
+// <transmission name="…"><type>…</type>children</transmission>; no name
+// attribute or no <type> where the argument is empty.
+std::string transmission(const std::string& name, const std::string& type, const std::string& children) {
+  return "\n  <transmission" + (name.empty() ? "" : " name=\"" + name + "\"") + ">" +
+         (type.empty() ? "" : "\n    <type>" + type + "</type>") + children + "\n  </transmission>";
 }
 
-TEST(TransmissionParser, UnknownType) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/BeltTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'t1'",
-                {"unknown type 'transmission_interface/BeltTransmission'",
-                 "use transmission_interface/SimpleTransmission"});
+std::string joint(const std::string& name, const std::string& children = kEffort) {
+  return "\n    <joint name=\"" + name + "\">" + children + "</joint>";
 }
 
-TEST(TransmissionParser, SimpleActuatorWithoutReduction) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="tran1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="motor1"><hardwareInterface>EffortJointInterface</hardwareInterface></actuator>
-  </transmission>)"));
-  expectProblem(message, "'tran1'",
-                {"actuator 'motor1' has no <mechanicalReduction>",
-                 "add e.g. <mechanicalReduction>1</mechanicalReduction>"});
+std::string actuator(const std::string& name, const std::string& children) {
+  return "\n    <actuator name=\"" + name + "\">" + children + "</actuator>";
 }
 
-TEST(TransmissionParser, SimpleWithTwoJoints) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <joint name="j2"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(
-      message, "'t1'",
-      {"SimpleTransmission needs exactly 1 <joint>, found 2", "use one <transmission> per joint"});
+std::string role(const std::string& role_name) { return "<role>" + role_name + "</role>"; }
+
+std::string reduction(const std::string& value) { return "<mechanicalReduction>" + value + "</mechanicalReduction>"; }
+
+// Joint j1 with an effort interface driven by actuator m1 at 1:1, the
+// children of the smallest well-formed SimpleTransmission.
+const std::string kJ1M1 = joint("j1") + actuator("m1", reduction("1"));
+
+struct MalformedCase {
+  std::string name;                // the test's name
+  std::string transmissions;       // the <transmission> elements of robotWith()
+  std::string named_transmission;  // how the message names the faulty one
+  std::vector<std::string> fragments;
+};
+
+void PrintTo(const MalformedCase& c, std::ostream* os) { *os << c.name; }
+
+std::vector<MalformedCase> malformedCases() {
+  const std::string roles_ok = joint("j1", role("joint1") + kEffort) + joint("j2", role("joint2") + kEffort);
+  const std::string actuators_ok =
+      actuator("m1", role("actuator1") + reduction("1")) + actuator("m2", role("actuator2") + reduction("1"));
+  return {
+      {"MissingType",
+       transmission("t1", "", kJ1M1),
+       "'t1'",
+       {"has no <type>", "add e.g. <type>transmission_interface/SimpleTransmission"}},
+      {"UnknownType",
+       transmission("t1", "transmission_interface/BeltTransmission", kJ1M1),
+       "'t1'",
+       {"unknown type 'transmission_interface/BeltTransmission'", "use transmission_interface/SimpleTransmission"}},
+      {"SimpleActuatorWithoutReduction",
+       transmission("tran1", kSimpleType, joint("j1") + actuator("motor1", kEffort)),
+       "'tran1'",
+       {"actuator 'motor1' has no <mechanicalReduction>", "add e.g. <mechanicalReduction>1</mechanicalReduction>"}},
+      {"SimpleWithTwoJoints",
+       transmission("t1", kSimpleType, joint("j1") + joint("j2") + actuator("m1", reduction("1"))),
+       "'t1'",
+       {"SimpleTransmission needs exactly 1 <joint>, found 2", "use one <transmission> per joint"}},
+      {"DifferentialWithOneActuator",
+       transmission("wrist", kDifferentialType, roles_ok + actuator("m1", role("actuator1") + reduction("1"))),
+       "'wrist'",
+       {"DifferentialTransmission needs exactly 2 <actuator>, found 1",
+        "list both actuators, with roles actuator1 and actuator2"}},
+      {"FourBarJointWithoutRole",
+       transmission("linkage", kFourBarType, joint("j1") + joint("j2", role("joint2") + kEffort) + actuators_ok),
+       "'linkage'",
+       {"joint 'j1' has no <role>", "<role>joint1</role>", "<role>joint2</role>"}},
+      {"DifferentialActuatorWithWrongRole",
+       transmission("wrist", kDifferentialType,
+                    roles_ok + actuator("m1", role("actuator1") + reduction("1")) +
+                        actuator("m2", role("motor2") + reduction("1"))),
+       "'wrist'",
+       {"actuator 'm2' has role 'motor2'", "use actuator1 or actuator2"}},
+      {"DifferentialWithDuplicateRole",
+       transmission("wrist", kDifferentialType,
+                    joint("j1", role("joint1") + kEffort) + joint("j2", role("joint1") + kEffort) + actuators_ok),
+       "'wrist'",
+       {"both joints have role 'joint1'", "give one joint1 and the other joint2"}},
+      {"JointNotInRobot",
+       transmission("t1", kSimpleType, joint("elbow") + actuator("m1", reduction("1"))),
+       "'t1'",
+       {"joint 'elbow' is not a joint of robot 'test_bot'", "fix the name", "j1, j2, slide"}},
+      {"FixedJoint",
+       transmission("t1", kSimpleType, joint("tool_mount") + actuator("m1", reduction("1"))),
+       "'t1'",
+       {"joint 'tool_mount' is not a revolute, continuous or prismatic joint",
+        "remove the <joint> or change the joint type"}},
+      {"NonNumericReduction",
+       transmission("t1", kSimpleType, joint("j1") + actuator("m1", reduction("fifty"))),
+       "'t1'",
+       {"actuator 'm1': <mechanicalReduction> 'fifty' is not a number", "write a finite decimal number"}},
+      {"NonNumericOffset",
+       transmission("t1", kSimpleType,
+                    joint("j1", std::string(kEffort) + "<offset>0.5rad</offset>") + actuator("m1", reduction("1"))),
+       "'t1'",
+       {"joint 'j1': <offset> '0.5rad' is not a number", "write a finite decimal number"}},
+      {"ZeroReduction",
+       transmission("t1", kSimpleType, joint("j1") + actuator("m1", reduction("0"))),
+       "'t1'",
+       {"actuator 'm1': <mechanicalReduction> is 0", "must be non-zero"}},
+      {"JointWithoutHardwareInterface",
+       transmission("t1", kSimpleType, joint("j1", "") + actuator("m1", reduction("1"))),
+       "'t1'",
+       {"joint 'j1' has no <hardwareInterface>",
+        "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>"}},
+      {"UnsupportedHardwareInterface",
+       transmission("t1", kSimpleType,
+                    joint("j1", "<hardwareInterface>hardware_interface/PosVelJointInterface</hardwareInterface>") +
+                        actuator("m1", reduction("1"))),
+       "'t1'",
+       {"<hardwareInterface> 'PosVelJointInterface' is not supported", "use EffortJointInterface"}},
+      {"JointInTwoTransmissions",
+       transmission("first", kSimpleType, kJ1M1) +
+           transmission("second", kSimpleType, joint("j1") + actuator("m2", reduction("1"))),
+       "'second'",
+       {"joint 'j1' is already driven by transmission 'first'", "each joint may appear in one transmission only"}},
+      {"CoupledJointsWithDifferentCommandInterfaces",
+       transmission("wrist", kDifferentialType,
+                    joint("j1", role("joint1") + kEffort) +
+                        joint("j2", role("joint2") + "<hardwareInterface>PositionJointInterface</hardwareInterface>") +
+                        actuators_ok),
+       "'wrist'",
+       {"name different command interfaces", "give both the same <hardwareInterface>"}},
+      {"TransmissionWithoutName",
+       std::string(kSimpleOk) + transmission("", kSimpleType, kJ1M1),
+       "#2",
+       {"has no name attribute", "add name="}},
+  };
 }
 
-TEST(TransmissionParser, DifferentialWithOneActuator) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="wrist">
-    <type>transmission_interface/DifferentialTransmission</type>
-    <joint name="j1"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <joint name="j2"><role>joint2</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'wrist'",
-                {"DifferentialTransmission needs exactly 2 <actuator>, found 1",
-                 "list both actuators, with roles actuator1 and actuator2"});
+class MalformedTransmission : public ::testing::TestWithParam<MalformedCase> {};
+
+TEST_P(MalformedTransmission, MessageNamesTheFileTheTransmissionTheProblemAndTheFix) {
+  expectProblem(parseError(robotWith(GetParam().transmissions)), GetParam().named_transmission, GetParam().fragments);
 }
 
-TEST(TransmissionParser, FourBarJointWithoutRole) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="linkage">
-    <type>transmission_interface/FourBarLinkageTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <joint name="j2"><role>joint2</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
-    <actuator name="m2"><role>actuator2</role><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'linkage'",
-                {"joint 'j1' has no <role>", "<role>joint1</role>", "<role>joint2</role>"});
-}
+INSTANTIATE_TEST_SUITE_P(TransmissionParser, MalformedTransmission, ::testing::ValuesIn(malformedCases()),
+                         [](const ::testing::TestParamInfo<MalformedCase>& info) { return info.param.name; });
 
-TEST(TransmissionParser, DifferentialActuatorWithWrongRole) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="wrist">
-    <type>transmission_interface/DifferentialTransmission</type>
-    <joint name="j1"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <joint name="j2"><role>joint2</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
-    <actuator name="m2"><role>motor2</role><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'wrist'",
-                {"actuator 'm2' has role 'motor2'", "use actuator1 or actuator2"});
-}
-
-TEST(TransmissionParser, DifferentialWithDuplicateRole) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="wrist">
-    <type>transmission_interface/DifferentialTransmission</type>
-    <joint name="j1"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <joint name="j2"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
-    <actuator name="m2"><role>actuator2</role><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'wrist'",
-                {"both joints have role 'joint1'", "give one joint1 and the other joint2"});
-}
-
-TEST(TransmissionParser, JointNotInRobot) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="elbow"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(
-      message, "'t1'",
-      {"joint 'elbow' is not a joint of robot 'test_bot'", "fix the name", "j1, j2, slide"});
-}
-
-TEST(TransmissionParser, FixedJoint) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="tool_mount"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'t1'",
-                {"joint 'tool_mount' is not a revolute, continuous or prismatic joint",
-                 "remove the <joint> or change the joint type"});
-}
-
-TEST(TransmissionParser, NonNumericReduction) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>fifty</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'t1'",
-                {"actuator 'm1': <mechanicalReduction> 'fifty' is not a number",
-                 "write a finite decimal number"});
-}
-
-TEST(TransmissionParser, NonNumericOffset) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface>
-      <offset>0.5rad</offset></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'t1'",
-                {"joint 'j1': <offset> '0.5rad' is not a number", "write a finite decimal number"});
-}
-
-TEST(TransmissionParser, ZeroReduction) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>0</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'t1'", {"actuator 'm1': <mechanicalReduction> is 0", "must be non-zero"});
-}
-
-TEST(TransmissionParser, JointWithoutHardwareInterface) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"/>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'t1'",
-                {"joint 'j1' has no <hardwareInterface>",
-                 "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>"});
-}
-
-TEST(TransmissionParser, UnsupportedHardwareInterface) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="t1">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>hardware_interface/PosVelJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(
-      message, "'t1'",
-      {"<hardwareInterface> 'PosVelJointInterface' is not supported", "use EffortJointInterface"});
-}
-
-TEST(TransmissionParser, JointInTwoTransmissions) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="first">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>
-  <transmission name="second">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m2"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'second'",
-                {"joint 'j1' is already driven by transmission 'first'",
-                 "each joint may appear in one transmission only"});
-}
-
-TEST(TransmissionParser, CoupledJointsWithDifferentCommandInterfaces) {
-  const std::string message = parseError(robotWith(R"(
-  <transmission name="wrist">
-    <type>transmission_interface/DifferentialTransmission</type>
-    <joint name="j1"><role>joint1</role><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <joint name="j2"><role>joint2</role><hardwareInterface>PositionJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><role>actuator1</role><mechanicalReduction>1</mechanicalReduction></actuator>
-    <actuator name="m2"><role>actuator2</role><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "'wrist'",
-                {"name different command interfaces", "give both the same <hardwareInterface>"});
-}
-
-TEST(TransmissionParser, TransmissionWithoutName) {
-  const std::string message = parseError(robotWith(std::string(kSimpleOk) + R"(
-  <transmission>
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>)"));
-  expectProblem(message, "#2", {"has no name attribute", "add name="});
-}
+}  // namespace
 
 TEST(TransmissionParser, ReportsEveryProblemOnItsOwnLine) {
   const std::string message = parseError(robotWith(std::string(kSimpleOk) + R"(

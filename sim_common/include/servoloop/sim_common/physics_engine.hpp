@@ -5,6 +5,7 @@
 // backend is one PhysicsEngine plus a three-line RobotHW class.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -55,6 +56,12 @@ struct EngineJointConfig {
   // Position at init and reset (rad or m), at rest.
   double initial_position = 0.0;
 };
+
+// Non-real-time. The bound an engine's motor works with: motor_effort_limit,
+// or +infinity when it is not > 0 (no limit given).
+inline double motorEffortBound(const EngineJointConfig& joint) noexcept {
+  return joint.motor_effort_limit > 0.0 ? joint.motor_effort_limit : std::numeric_limits<double>::infinity();
+}
 
 // Threading: init() and reset() are non-real-time (they may allocate and
 // throw). Every other method runs on the real-time thread: no allocation, no

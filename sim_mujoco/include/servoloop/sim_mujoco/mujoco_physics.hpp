@@ -40,14 +40,14 @@
 #include <string>
 #include <vector>
 
-#include "servoloop/sim_common/physics_engine.hpp"
+#include "servoloop/sim_common/stored_command_physics_engine.hpp"
 
 struct mjModel_;
 struct mjData_;
 
 namespace servoloop::sim_mujoco {
 
-class MujocoPhysics final : public sim_common::PhysicsEngine {
+class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
  public:
   MujocoPhysics();
   ~MujocoPhysics() override;
@@ -71,9 +71,6 @@ class MujocoPhysics final : public sim_common::PhysicsEngine {
   // mode, the motor's effort in velocity/position mode.
   double jointEffort(std::size_t joint) const noexcept override { return joints_[joint].applied_effort; }
 
-  void setJointEffort(std::size_t joint, double effort) noexcept override;
-  void setJointVelocityTarget(std::size_t joint, double velocity) noexcept override;
-  void setJointPositionTarget(std::size_t joint, double position) noexcept override;
   void step() noexcept override;
 
   void reset() override;
@@ -104,8 +101,6 @@ class MujocoPhysics final : public sim_common::PhysicsEngine {
   struct Joint {
     int qpos_address = 0;
     int dof_address = 0;
-    sim_common::JointCommandMode mode = sim_common::JointCommandMode::effort;
-    double command = 0.0;             // effort, velocity target or position target
     double motor_effort_limit = 0.0;  // N·m or N, +inf: unbounded
     double applied_effort = 0.0;      // during the last step
   };

@@ -1,7 +1,5 @@
 #pragma once
-#include <array>
-
-#include "servoloop/transmissions/transmission.hpp"
+#include "servoloop/transmissions/two_by_two_transmission.hpp"
 
 namespace servoloop::transmissions {
 
@@ -11,38 +9,19 @@ namespace servoloop::transmissions {
 //   τj1 = j1(a1τa1 + a2τa2),            τj2 = j2(a1τa1 − a2τa2)
 //   ẋj1 = (ẋa1/a1 + ẋa2/a2)/(2j1),      ẋj2 = (ẋa1/a1 − ẋa2/a2)/(2j2)
 //   xj  = as ẋj, plus o.
-class DifferentialTransmission final : public Transmission {
+class DifferentialTransmission final : public TwoByTwoTransmission<DifferentialTransmission> {
  public:
   // Throws servoloop::ConfigError naming the first zero or non-finite
   // reduction (or non-finite offset).
-  DifferentialTransmission(const std::array<double, 2>& actuator_reductions,
-                           const std::array<double, 2>& joint_reductions,
-                           const std::array<double, 2>& joint_offsets = {0.0, 0.0});
+  DifferentialTransmission(const TwoValues& actuator_reductions, const TwoValues& joint_reductions,
+                           const TwoValues& joint_offsets = {0.0, 0.0});
 
-  void actuatorToJointEffort(const ActuatorData& actuator,
-                             JointData& joint) const noexcept override;
-  void actuatorToJointVelocity(const ActuatorData& actuator,
-                               JointData& joint) const noexcept override;
-  void actuatorToJointPosition(const ActuatorData& actuator,
-                               JointData& joint) const noexcept override;
-  void jointToActuatorEffort(const JointData& joint,
-                             ActuatorData& actuator) const noexcept override;
-  void jointToActuatorVelocity(const JointData& joint,
-                               ActuatorData& actuator) const noexcept override;
-  void jointToActuatorPosition(const JointData& joint,
-                               ActuatorData& actuator) const noexcept override;
-
-  std::size_t numActuators() const noexcept override { return 2; }
-  std::size_t numJoints() const noexcept override { return 2; }
-
-  const std::array<double, 2>& actuatorReductions() const noexcept { return actuator_reductions_; }
-  const std::array<double, 2>& jointReductions() const noexcept { return joint_reductions_; }
-  const std::array<double, 2>& jointOffsets() const noexcept { return joint_offsets_; }
-
- private:
-  std::array<double, 2> actuator_reductions_;
-  std::array<double, 2> joint_reductions_;
-  std::array<double, 2> joint_offsets_;  // rad or m, in joint space
+  // The formulas above on plain numbers (a, j: the reductions), for
+  // TwoByTwoTransmission's maps. Motion: velocity, or position less o.
+  static TwoValues toJointEffort(const TwoValues& actuator_effort, const TwoValues& a, const TwoValues& j) noexcept;
+  static TwoValues toActuatorEffort(const TwoValues& joint_effort, const TwoValues& a, const TwoValues& j) noexcept;
+  static TwoValues toJointMotion(const TwoValues& actuator_motion, const TwoValues& a, const TwoValues& j) noexcept;
+  static TwoValues toActuatorMotion(const TwoValues& joint_motion, const TwoValues& a, const TwoValues& j) noexcept;
 };
 
 }  // namespace servoloop::transmissions
