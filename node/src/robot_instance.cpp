@@ -111,7 +111,7 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
     return store_ptr->has(name) ? store_ptr->node(name) : YAML::Node();
   };
   manager_ = std::make_unique<controller_manager::ControllerManager>(
-      sim_hw_, std::make_shared<PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
+      sim_hw_, std::make_shared<controller_manager::PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
 
   controller_manager::SimulationLoop::Options options;
   options.topic_bus = bus_.get();
