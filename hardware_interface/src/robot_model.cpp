@@ -18,6 +18,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/hardware_interface/simulatable_urdf.hpp"
 
 namespace servoloop {
 namespace {
@@ -31,14 +32,27 @@ namespace fs = std::filesystem;
 // ---------------------------------------------------------------------------
 // XML-level checks, made before urdfdom so the messages can name the element.
 
-const std::set<std::string>& numericAttributes() {
-  static const std::set<std::string> names{
-      "xyz",   "rpy",        "size",     "radius",           "length",           "value",
-      "ixx",   "ixy",        "ixz",      "iyy",              "iyz",              "izz",
-      "lower", "upper",      "effort",   "velocity",         "damping",          "friction",
-      "scale", "multiplier", "offset",   "soft_lower_limit", "soft_upper_limit", "k_position",
-      "k_velocity", "rising", "falling"};
-  return names;
+// The attributes urdfdom reads as numbers, by element. Other elements (a
+// <verbose value="Yes"/> inside a link, extension tags) are not URDF's and are
+// left alone, as urdfdom leaves them.
+const std::set<std::string>* numericAttributes(const std::string& element) {
+  static const std::map<std::string, std::set<std::string>> by_element{
+      {"origin", {"xyz", "rpy"}},
+      {"axis", {"xyz"}},
+      {"limit", {"lower", "upper", "effort", "velocity"}},
+      {"safety_controller", {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}},
+      {"dynamics", {"damping", "friction"}},
+      {"calibration", {"rising", "falling", "reference_position"}},
+      {"mimic", {"multiplier", "offset"}},
+      {"mass", {"value"}},
+      {"inertia", {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}},
+      {"box", {"size"}},
+      {"cylinder", {"radius", "length"}},
+      {"sphere", {"radius"}},
+      {"capsule", {"radius", "length"}},
+      {"mesh", {"scale"}}};
+  const auto it = by_element.find(element);
+  return it == by_element.end() ? nullptr : &it->second;
 }
 
 // "link 'link2' <inertial><origin>": the owning link/joint and the path below it.
@@ -61,8 +75,10 @@ std::string describeElement(const tinyxml2::XMLElement* element) {
 
 // Every numeric attribute under <link> and <joint> must hold finite numbers.
 void checkNumbers(const tinyxml2::XMLElement* element, const std::string& source_name) {
-  for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
-    if (numericAttributes().count(a->Name()) == 0) continue;
+  const std::set<std::string>* numeric = numericAttributes(element->Name());
+  for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); numeric != nullptr && a != nullptr;
+       a = a->Next()) {
+    if (numeric->count(a->Name()) == 0) continue;
     std::istringstream tokens(a->Value());
     std::string token;
     while (tokens >> token) {
@@ -232,14 +248,30 @@ urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std
 // Relative slack of the principal-moment triangle inequality (of the largest moment).
 constexpr double kInertiaTriangleTolerance = 1e-9;
 
+// The mass of the links attached below `link` through fixed joints, which a
+// simulator lumps into one rigid body with it (as Gazebo does).
+double fixedChildrenMass(const urdf::Link& link) {
+  double mass = 0.0;
+  for (const auto& child : link.child_links) {
+    if (!child || !child->parent_joint || child->parent_joint->type != urdf::Joint::FIXED) continue;
+    mass += (child->inertial ? child->inertial->mass : 0.0) + fixedChildrenMass(*child);
+  }
+  return mass;
+}
+
 void checkInertial(const urdf::Link& link, const std::string& source_name) {
   const urdf::JointConstSharedPtr& joint = link.parent_joint;
   const bool moving = joint && joint->type != urdf::Joint::FIXED;
   const std::string moved_by = moving ? " (moved by joint '" + joint->name + "')" : "";
   const std::string where = "link '" + link.name + "'" + moved_by;
+  // A massless link carrying massive links on fixed joints is one rigid body
+  // with their mass.
+  const bool lumped_mass = fixedChildrenMass(link) > 0.0;
   if (!link.inertial) {
-    if (moving) {
-      fail(source_name, where + " has no <inertial>; add <inertial> with <mass> > 0 and <inertia>");
+    if (moving && !lumped_mass) {
+      fail(source_name, where +
+                            " has no <inertial>; add <inertial> with <mass> > 0 and <inertia> (loadRobotModelFile "
+                            "and the simulators leave such a link out with a warning, as Gazebo does)");
     }
     return;
   }
@@ -250,6 +282,7 @@ void checkInertial(const urdf::Link& link, const std::string& source_name) {
   }
   if (!moving) return;
   if (in.mass == 0.0) {
+    if (lumped_mass) return;
     fail(source_name, where + " <inertial><mass> is zero; a moving link needs a mass > 0");
   }
   Eigen::Matrix3d inertia;
@@ -371,7 +404,7 @@ std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string
   std::stringstream text;
   text << in.rdbuf();
   if (in.bad()) throw ConfigError(path + ": reading the URDF file failed");
-  return parseRobotModel(text.str(), path);
+  return parseRobotModel(simulatableUrdf(text.str(), path).xml, path);
 }
 
 }  // namespace servoloop

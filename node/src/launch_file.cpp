@@ -161,7 +161,9 @@ class Parser {
 
   RobotSpec robot(const YAML::Node& node, const std::string& key) const {
     requireMap(node, key, "{urdf: robot.urdf, controllers: [joint_state_controller]}");
-    checkKeys(node, key, {"urdf", "model", "namespace", "params", "controllers", "stopped_controllers"});
+    checkKeys(node, key,
+              {"urdf", "model", "namespace", "params", "controllers", "stopped_controllers", "fixed_base", "pose",
+               "self_collide"});
     RobotSpec robot;
     if (!node["urdf"]) fail(node, key, "missing 'urdf': give the robot description, e.g. urdf: robot.urdf");
     robot.urdf = existingFile(node["urdf"], key + ".urdf", "URDF file");
@@ -169,26 +171,60 @@ class Parser {
     if (node["namespace"]) {
       const std::string ns = string(node["namespace"], key + ".namespace");
       try {
-        // Namespaces follow the rules of topic names (they prefix every topic).
-        robot.robot_namespace = realtime::TopicBus::normalizeTopicName(ns);
+        // Namespaces follow the rules of topic names (they prefix every
+        // topic); "/" is the root namespace, as a robot launched without <group ns>.
+        robot.robot_namespace = ns == "/" ? ns : realtime::TopicBus::normalizeTopicName(ns);
       } catch (const Error& e) {
         fail(node["namespace"], key + ".namespace", e.what());
       }
     }
     const YAML::Node params = node["params"];
     if (params.IsDefined() && !params.IsNull()) {
-      if (params.IsScalar()) {
-        robot.params.push_back(existingFile(params, key + ".params", "parameter file"));
+      if (params.IsScalar() || params.IsMap()) {
+        robot.params.push_back(parameterFile(params, key + ".params"));
       } else if (!params.IsSequence()) {
         fail(params, key + ".params", "expected a list of YAML files, got " + describe(params));
       }
       for (std::size_t i = 0; params.IsSequence() && i < params.size(); ++i) {
-        robot.params.push_back(existingFile(params[i], fmt::format("{}.params[{}]", key, i), "parameter file"));
+        robot.params.push_back(parameterFile(params[i], fmt::format("{}.params[{}]", key, i)));
       }
     }
     robot.controllers = strings(node["controllers"], key + ".controllers");
     robot.stopped_controllers = strings(node["stopped_controllers"], key + ".stopped_controllers");
+    if (node["fixed_base"]) robot.fixed_base = boolean(node["fixed_base"], key + ".fixed_base");
+    if (node["self_collide"]) robot.self_collide = boolean(node["self_collide"], key + ".self_collide");
+    if (const YAML::Node pose = node["pose"]) {
+      if (!pose.IsSequence() || (pose.size() != 3 && pose.size() != 6)) {
+        fail(pose, key + ".pose",
+             "expected [x, y, z] or [x, y, z, roll, pitch, yaw] (m, rad), got " + describe(pose));
+      }
+      std::array<double, 6> values{};
+      for (std::size_t i = 0; i < pose.size(); ++i) values[i] = number(pose[i], fmt::format("{}.pose[{}]", key, i));
+      robot.pose = values;
+    }
     return robot;
+  }
+
+  // "file.yaml" (loaded at /) or {file: file.yaml, ns: /robot} (loaded under ns).
+  ParameterFile parameterFile(const YAML::Node& node, const std::string& key) const {
+    ParameterFile parameters;
+    if (node.IsScalar()) {
+      parameters.file = existingFile(node, key, "parameter file");
+      return parameters;
+    }
+    requireMap(node, key, "{file: controllers.yaml, ns: /robot}");
+    checkKeys(node, key, {"file", "ns"});
+    if (!node["file"]) fail(node, key, "missing 'file': the YAML file to load, e.g. {file: controllers.yaml, ns: /robot}");
+    parameters.file = existingFile(node["file"], key + ".file", "parameter file");
+    if (node["ns"]) {
+      const std::string ns = string(node["ns"], key + ".ns");
+      try {
+        parameters.ns = params::resolveName("/", ns);
+      } catch (const Error& e) {
+        fail(node["ns"], key + ".ns", e.what());
+      }
+    }
+    return parameters;
   }
 
   TimedPublication publication(const YAML::Node& node, const std::string& key) const {

@@ -80,7 +80,7 @@ RobotInstance* Node::robotForTopic(const std::string& topic) {
 }
 
 std::string Node::spawnRobot(const RobotSpec& spec) {
-  for (const auto& file : spec.params) parameters_.loadFile(file.string(), "/");
+  for (const auto& parameters : spec.params) parameters_.loadFile(parameters.file.string(), parameters.ns);
   RobotWorld world;
   world.plugins = plugins_;
   world.parameters = &parameters_;

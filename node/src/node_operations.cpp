@@ -1,6 +1,9 @@
 // The operations a node serves over IPC (docs/node_operations.md).
 #include "servoloop/node/node_operations.hpp"
 
+#include <array>
+#include <cmath>
+
 #include <filesystem>
 #include <limits>
 
@@ -349,7 +352,25 @@ json NodeOperations::modelSpawn(const json& request) {
     if (!std::filesystem::path(file).is_absolute()) {
       throw Error("'model.spawn': params file '" + file + "' must be an absolute path");
     }
-    spec.params.emplace_back(file);
+    spec.params.push_back(ParameterFile{file, "/"});
+  }
+  if (request.contains("pose")) {
+    const nlohmann::json& pose = request["pose"];
+    if (!pose.is_array() || (pose.size() != 3 && pose.size() != 6)) {
+      throw Error("'model.spawn': pose must be [x, y, z] or [x, y, z, roll, pitch, yaw]");
+    }
+    std::array<double, 6> values{};
+    for (std::size_t i = 0; i < pose.size(); ++i) {
+      if (!pose[i].is_number() || !std::isfinite(pose[i].get<double>())) {
+        throw Error("'model.spawn': pose[" + std::to_string(i) + "] must be a finite number");
+      }
+      values[i] = pose[i].get<double>();
+    }
+    spec.pose = values;
+  }
+  if (request.contains("fixed_base")) {
+    if (!request["fixed_base"].is_boolean()) throw Error("'model.spawn': fixed_base must be true or false");
+    spec.fixed_base = request["fixed_base"].get<bool>();
   }
   return {{"namespace", node_.spawnRobot(spec)}};
 }

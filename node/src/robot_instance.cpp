@@ -20,6 +20,7 @@
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/hardware_interface/simulatable_urdf.hpp"
 
 namespace servoloop::node {
 namespace {
@@ -58,6 +59,15 @@ void writeWorldSettings(params::ParameterStore& store, const std::string& ns, co
                     store.get<bool>(ground_plane, world.ground_plane) != world.ground_plane);
 }
 
+// The launch file's (or spawn request's) base, pose and self-collision
+// settings, written where the backend reads them; they win over a parameter file.
+void writeSpawnSettings(params::ParameterStore& store, const std::string& ns, const RobotSpec& spec) {
+  const std::string sim = params::resolveName(ns, "sim");
+  if (spec.fixed_base) store.set(sim + "/fixed_base", *spec.fixed_base);
+  if (spec.self_collide) store.set(sim + "/self_collide", *spec.self_collide);
+  if (spec.pose) store.set(sim + "/pose", std::vector<double>(spec.pose->begin(), spec.pose->end()));
+}
+
 }  // namespace
 
 RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
@@ -68,11 +78,12 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   params::ParameterStore& store = *world.parameters;
 
   // Robot description and namespace.
-  const std::string xml = readTextFile(spec.urdf);
+  const std::string xml = simulatableUrdf(readTextFile(spec.urdf), spec.urdf.string()).xml;
   model_ = parseRobotModel(xml, spec.urdf.string());
   robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
   namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);
   writeWorldSettings(store, namespace_, world.world);
+  writeSpawnSettings(store, namespace_, spec);
 
   // The simulated hardware, from its backend plugin.
   try {
@@ -92,7 +103,20 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   info.urdf_path = spec.urdf.string();
   info.robot_namespace = namespace_;
   if (store.has(namespace_)) info.parameters = store.node(namespace_);
-  sim_hw_->init(info);
+  // The exception comes from the backend's library, which may be unloaded
+  // with backend_ when this constructor unwinds; its message is copied into
+  // an exception of the node's own while the library is still loaded.
+  try {
+    sim_hw_->init(info);
+  } catch (const ConfigError& e) {
+    throw ConfigError(fmt::format("backend '{}': {}", backend_name_, e.what()));
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("backend '{}' failed to initialise the robot: {}", backend_name_, e.what()));
+  } catch (...) {
+    throw Error(fmt::format("backend '{}' failed to initialise the robot with an exception that is not a "
+                            "std::exception",
+                            backend_name_));
+  }
 
   // Topics, controllers and the loop.
   bus_ = std::make_unique<realtime::TopicBus>();
@@ -122,7 +146,7 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
     throw ConfigError(fmt::format("robot '{}': controller_manager.update_rate {} Hz with world.time_step {} s: {}",
                                   namespace_, update_rate_hz, sim_hw_->timeStep().seconds, e.what()));
   }
-  loadControllers(spec);
+  loadControllers(spec, store);
 }
 
 RobotInstance::~RobotInstance() {
@@ -137,11 +161,42 @@ RobotInstance::~RobotInstance() {
   if (bus_) bus_->stop();
 }
 
-void RobotInstance::loadControllers(const RobotSpec& spec) {
+void RobotInstance::loadControllers(const RobotSpec& spec, const params::ParameterStore& store) {
+  const auto load = [&](const std::string& name) {
+    if (manager_->loadController(name)) return true;
+    launch_failures_.push_back("controller '" + name + "' did not load");
+    hintWhereParametersAre(name, store);
+    return false;
+  };
   for (const std::string& name : spec.controllers) {
-    if (manager_->loadController(name)) launch_controllers_.push_back(name);
+    if (load(name)) launch_controllers_.push_back(name);
   }
-  for (const std::string& name : spec.stopped_controllers) manager_->loadController(name);
+  for (const std::string& name : spec.stopped_controllers) load(name);
+}
+
+// A controller whose type is not under the robot's namespace often sits
+// elsewhere: a file of top-level controllers loaded at "/" (ROS loads it into
+// the namespace with <rosparam ns=...>). Say where its type was found.
+void RobotInstance::hintWhereParametersAre(const std::string& name, const params::ParameterStore& store) const {
+  const std::string expected = params::resolveName(namespace_, name) + "/type";
+  if (store.has(expected)) return;
+  const std::string suffix = "/" + name + "/type";
+  std::string found;
+  for (const std::string& key : store.list("/")) {
+    if (key.size() >= suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      found += (found.empty() ? "'" : ", '") + key + "'";
+    }
+  }
+  if (found.empty()) {
+    logger().error("robot '{}': no '{}' anywhere in the parameters; add the controller to a YAML file listed under "
+                   "the robot's params:",
+                   namespace_, suffix.substr(1));
+    return;
+  }
+  logger().error(
+      "robot '{}': looked for '{}' but the parameters have {}; load that file into the robot's namespace "
+      "(params: [{{file: FILE.yaml, ns: {}}}], as <rosparam ns=...>) or move the controller under it",
+      namespace_, expected, found, namespace_);
 }
 
 // Loop thread, before the first physics step. In the manager, a controller
@@ -180,6 +235,9 @@ void RobotInstance::startLaunchControllers() {
       if (manager_->switchPending()) manager_->update(time, period);
       if (const controller_manager::ServiceResult result = manager_->requestSwitch(request); !result) {
         logger().error("robot '{}': starting controllers failed: {}", namespace_, result.message);
+        std::string names;
+        for (const std::string& name : group->second) names += (names.empty() ? "'" : ", '") + name + "'";
+        launch_failures_.push_back("controller(s) " + names + " did not start: " + result.message);
       }
     }
     manager_->update(time, period);

@@ -13,6 +13,7 @@ RobotSummary summarizeRobot(RobotInstance& robot) {
   }
   summary.joints = robot.joints();
   summary.loop = robot.loop().statistics().snapshot();
+  summary.launch_failures = robot.launchFailures();
   return summary;
 }
 
@@ -51,6 +52,7 @@ nlohmann::json toJson(const RunSummary& summary) {
                         {"overruns", loop.overruns},
                         {"schedule_resets", loop.schedule_resets},
                         {"hardware_errors", loop.hardware_errors}}}});
+    if (!robot.launch_failures.empty()) robots.back()["launch_failures"] = robot.launch_failures;
   }
   return {{"sim_time", summary.sim_time_s},
           {"wall_time", summary.wall_time_s},
@@ -74,6 +76,7 @@ std::string toText(const RunSummary& summary) {
                           joint.position, joint.velocity, joint.effort);
     }
     text += "  " + controller_manager::LoopStatistics::summary(robot.loop) + "\n";
+    for (const std::string& failure : robot.launch_failures) text += "  launch failure: " + failure + "\n";
   }
   return text;
 }

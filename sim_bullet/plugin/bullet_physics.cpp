@@ -29,6 +29,10 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   world_settings.gravity = settings.gravity;
   world_settings.time_step_s = settings.time_step_s;
   world_settings.ground_plane = settings.ground_plane;
+  world_settings.fixed_base = sim_common::isFixedBase(model, settings.base) ? FixedBase::fixed : FixedBase::floating;
+  world_settings.initial_base_position = settings.base_position;
+  world_settings.initial_base_orientation = settings.base_orientation;
+  world_settings.self_collision = settings.self_collide;
   for (const sim_common::EngineJointConfig& joint : joints) {
     if (!(joint.reflected_rotor_inertia > 0.0)) continue;
     const urdf::JointConstSharedPtr urdf_joint = model.getJoint(joint.name);

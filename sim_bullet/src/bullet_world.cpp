@@ -16,6 +16,7 @@
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyGearConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
@@ -40,6 +41,9 @@ constexpr double kRigidConstraintImpulse = 1e8;
 // Effort bound of a motor on a joint with no <limit effort>.
 constexpr double kUnlimitedMotorEffort = 1e9;
 constexpr int kSolverIterations = 50;
+// Share of a mimic joint's position error (q_m − multiplier·q_l − offset) the
+// gear constraint removes per step; its velocity row holds the rates exact.
+constexpr double kMimicErrorReduction = 0.2;
 // Convex hulls get Bullet's margin outside the hull; keep it at 1 mm.
 constexpr double kMeshCollisionMargin = 0.001;
 
@@ -160,7 +164,8 @@ struct BulletWorld::Impl {
     body->setMaxCoordinateVelocity(kMaxCoordinateVelocity);
     body->setMaxAppliedImpulse(kRigidConstraintImpulse);
     body->setUseGyroTerm(true);
-    body->setHasSelfCollision(true);  // parent/child pairs are still excluded (setup flags)
+    // Parent/child pairs stay excluded either way (disableParentCollision).
+    body->setHasSelfCollision(settings.self_collision);
     body->finalizeMultiDof();
     world->addMultiBody(body.get());
   }
@@ -231,6 +236,31 @@ struct BulletWorld::Impl {
         world->addMultiBodyConstraint(friction.get());
         constraints.push_back(std::move(friction));
       }
+    }
+  }
+
+  // <mimic joint multiplier offset>: q_m = multiplier·q_l + offset, held by a
+  // gear constraint between the two links: its row is q̇_m + ratio·q̇_l = 0
+  // with ratio = −multiplier, and its position target q_m + ratio·q_l = offset.
+  void createMimicConstraints() {
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      const urdf::Joint& joint = *tree.bodies[j + 1].joint;
+      if (!joint.mimic) continue;
+      const auto leader = std::find(joint_names.begin(), joint_names.end(), joint.mimic->joint_name);
+      if (leader == joint_names.end()) {
+        throw ConfigError("joint '" + joint.name + "' <mimic joint=\"" + joint.mimic->joint_name +
+                          "\">: no movable joint of that name; name a revolute, continuous or prismatic joint");
+      }
+      const int leader_link = static_cast<int>(leader - joint_names.begin());
+      auto gear = std::make_unique<btMultiBodyGearConstraint>(body.get(), static_cast<int>(j), body.get(), leader_link,
+                                                              btVector3(0, 0, 0), btVector3(0, 0, 0),
+                                                              btMatrix3x3::getIdentity(), btMatrix3x3::getIdentity());
+      gear->setGearRatio(-joint.mimic->multiplier);
+      gear->setRelativePositionTarget(joint.mimic->offset);
+      gear->setErp(kMimicErrorReduction);
+      gear->setMaxAppliedImpulse(kRigidConstraintImpulse);
+      world->addMultiBodyConstraint(gear.get());
+      constraints.push_back(std::move(gear));
     }
   }
 
@@ -399,6 +429,7 @@ BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings&
   w.createWorld();
   w.createMultiBody();
   w.createJointConstraints();
+  w.createMimicConstraints();
   w.createColliders();
   const int frames = static_cast<int>(w.tree.bodies.size());
   w.scratch_rotations.resize(frames);

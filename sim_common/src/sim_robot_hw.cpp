@@ -10,6 +10,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/hardware_interface/simulatable_urdf.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 
 namespace servoloop::sim_common {
@@ -89,7 +90,8 @@ void SimRobotHW::init(const hi::HardwareInfo& info) {
   joint_limits_ = hi::loadRobotJointLimits(*model_, info.parameters, ns);
 
   // World settings and motor parameters.
-  settings_ = parseSimSettings(info.parameters, *model_, ns);
+  settings_ = parseSimSettings(info.parameters, *model_, ns, urdf_self_collide_);
+  checkBase(ns);
   configureActuators(ns, info.parameters);
 
   // Per-joint tables, sized once: nothing on the real-time path resizes them.
@@ -118,6 +120,23 @@ void SimRobotHW::init(const hi::HardwareInfo& info) {
                 transmissions_->numActuators(), settings_.time_step_s);
 }
 
+// A root link without mass fixes the base (pybullet's static-base
+// convention); say so, since a URDF alone does not show it. A floating base
+// needs a mass.
+void SimRobotHW::checkBase(const std::string& ns) const {
+  const urdf::LinkConstSharedPtr root = model_->getRoot();
+  const bool root_has_mass = rigidBodyMass(*root) > 0.0;
+  if (!isFixedBase(*model_, settings_.base) && !root_has_mass) {
+    throw ConfigError(source_name_ + ": root link '" + root->name + "' (with the links fixed to it) has no mass but " + ns +
+                      "/sim/fixed_base is false; give the root link an <inertial> with <mass> > 0, or fix the base");
+  }
+  if (settings_.base != BaseMode::automatic || root->name == "world" || !isFixedBase(*model_, settings_.base)) return;
+  logger().info(
+      "{}: root link '{}' has no mass, so the base is fixed in the world (pybullet's convention for a static "
+      "base); to let it float, give it an <inertial> and set {}/sim/fixed_base: false",
+      source_name_, root->name, ns);
+}
+
 void SimRobotHW::loadModel(const hi::HardwareInfo& info) {
   source_name_ = info.urdf_path.empty() ? std::string("robot_description") : info.urdf_path;
   std::string xml = info.urdf_xml;
@@ -127,6 +146,8 @@ void SimRobotHW::loadModel(const hi::HardwareInfo& info) {
     }
     xml = readTextFile(info.urdf_path);
   }
+  xml = simulatableUrdf(xml, source_name_).xml;
+  urdf_self_collide_ = urdfRequestsSelfCollision(xml);
   model_ = parseRobotModel(xml, source_name_);
   transmissions::RobotTransmissions::Options options;
   options.implicit_simple_transmissions = true;
@@ -181,9 +202,27 @@ void SimRobotHW::configureEngineJoints() {
     config.reflected_rotor_inertia = reflected_inertia;
     const auto initial_it = settings_.initial_positions.find(config.name);
     config.initial_position = initial_it == settings_.initial_positions.end() ? 0.0 : initial_it->second;
+    if (limits_it != joint_limits_.end()) warnAboutLimits(config, limits_it->second.limits);
   }
   for (std::size_t k = 0; k < joint_count; ++k) tr.joint(JointIndex(k)) = transmissions::JointValues{};
   for (std::size_t a = 0; a < actuator_count; ++a) tr.actuator(ActuatorIndex(a)) = transmissions::ActuatorValues{};
+}
+
+// Limits that leave a joint stuck are legal URDF; say what they do.
+void SimRobotHW::warnAboutLimits(const EngineJointConfig& joint, const hi::JointLimits& limits) const {
+  if (limits.has_effort_limits && limits.max_effort == 0.0) {
+    logger().warn(
+        "{}: joint '{}' has an effort limit of 0 (<limit effort=\"0\"> or joint_limits max_effort): every "
+        "command to it is held to zero effort, so it cannot be driven; give it a positive effort limit",
+        source_name_, joint.name);
+  }
+  if (limits.has_position_limits &&
+      (joint.initial_position < limits.min_position || joint.initial_position > limits.max_position)) {
+    logger().warn(
+        "{}: joint '{}' starts at {} outside its position limits [{}, {}]; the limits push it back at the first "
+        "step; set <ns>/sim/initial_positions/{} to a position inside them",
+        source_name_, joint.name, joint.initial_position, limits.min_position, limits.max_position, joint.name);
+  }
 }
 
 void SimRobotHW::readEngineState() noexcept {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string_view>
 
+#include <tinyxml2.h>
+
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 
@@ -107,17 +109,57 @@ void readInitialPositions(const YAML::Node& node, const std::string& path,
 
 }  // namespace
 
+bool urdfRequestsSelfCollision(const std::string& urdf_xml) {
+  tinyxml2::XMLDocument document;
+  if (document.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) return false;
+  const tinyxml2::XMLElement* robot = document.RootElement();
+  if (robot == nullptr) return false;
+  bool requested = false;
+  for (auto* gazebo = robot->FirstChildElement("gazebo"); gazebo != nullptr;
+       gazebo = gazebo->NextSiblingElement("gazebo")) {
+    if (gazebo->Attribute("reference") != nullptr) continue;  // a link's settings, not the model's
+    const tinyxml2::XMLElement* flag = gazebo->FirstChildElement("self_collide");
+    if (flag == nullptr || flag->GetText() == nullptr) continue;
+    const std::string text = flag->GetText();
+    requested = text.find("true") != std::string::npos || text.find('1') != std::string::npos;
+  }
+  return requested;
+}
+
+bool isFixedBase(const urdf::ModelInterface& model, BaseMode mode) {
+  switch (mode) {
+    case BaseMode::fixed: return true;
+    case BaseMode::floating: return false;
+    case BaseMode::automatic: break;
+  }
+  const urdf::LinkConstSharedPtr root = model.getRoot();
+  if (!root) return false;
+  if (root->name == "world") return true;
+  return !(rigidBodyMass(*root) > 0.0);
+}
+
+double rigidBodyMass(const urdf::Link& link) {
+  double mass = link.inertial ? link.inertial->mass : 0.0;
+  for (const auto& child : link.child_links) {
+    if (child && child->parent_joint && child->parent_joint->type == urdf::Joint::FIXED) mass += rigidBodyMass(*child);
+  }
+  return mass;
+}
+
 SimSettings parseSimSettings(const YAML::Node& robot_ns, const urdf::ModelInterface& model,
-                             const std::string& ns) {
+                             const std::string& ns, bool urdf_self_collide) {
   SimSettings settings;
+  settings.self_collide = urdf_self_collide;
   if (!robot_ns || !robot_ns.IsMap()) return settings;
   const YAML::Node sim = robot_ns["sim"];
   if (!sim.IsDefined() || sim.IsNull()) return settings;
   const std::string sim_path = keyPath(ns, "sim");
-  requireMap(sim, sim_path, "simulation settings (time_step, gravity, ground_plane, initial_positions)");
+  requireMap(sim, sim_path,
+             "simulation settings (time_step, gravity, ground_plane, initial_positions, fixed_base, pose, "
+             "self_collide)");
 
-  static constexpr std::array<std::string_view, 4> kKnown = {"time_step", "gravity", "ground_plane",
-                                                             "initial_positions"};
+  static constexpr std::array<std::string_view, 7> kKnown = {
+      "time_step", "gravity", "ground_plane", "initial_positions", "fixed_base", "pose", "self_collide"};
   warnUnknownKeys(sim, sim_path, kKnown);
 
   if (const YAML::Node value = sim["time_step"]; value.IsDefined()) {
@@ -142,6 +184,26 @@ SimSettings parseSimSettings(const YAML::Node& robot_ns, const urdf::ModelInterf
   }
   if (const YAML::Node value = sim["initial_positions"]; value.IsDefined() && !value.IsNull()) {
     readInitialPositions(value, keyPath(sim_path, "initial_positions"), model, settings);
+  }
+  if (const YAML::Node value = sim["fixed_base"]; value.IsDefined() && !value.IsNull()) {
+    settings.base = readBool(value, keyPath(sim_path, "fixed_base")) ? BaseMode::fixed : BaseMode::floating;
+  }
+  if (const YAML::Node value = sim["pose"]; value.IsDefined() && !value.IsNull()) {
+    const std::string path = keyPath(sim_path, "pose");
+    if (!value.IsSequence() || (value.size() != 3 && value.size() != 6)) {
+      throw ConfigError(path + ": expected [x, y, z] or [x, y, z, roll, pitch, yaw] (m, rad), got " +
+                        describe(value));
+    }
+    double p[6] = {0, 0, 0, 0, 0, 0};
+    for (std::size_t i = 0; i < value.size(); ++i) p[i] = readNumber(value[i], path + "[" + std::to_string(i) + "]");
+    settings.base_position = Eigen::Vector3d(p[0], p[1], p[2]);
+    // URDF's rpy: roll about X, then pitch about Y, then yaw about Z, all fixed axes.
+    settings.base_orientation = Eigen::AngleAxisd(p[5], Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(p[4], Eigen::Vector3d::UnitY()) *
+                                Eigen::AngleAxisd(p[3], Eigen::Vector3d::UnitX());
+  }
+  if (const YAML::Node value = sim["self_collide"]; value.IsDefined() && !value.IsNull()) {
+    settings.self_collide = readBool(value, keyPath(sim_path, "self_collide"));
   }
   return settings;
 }

@@ -71,16 +71,26 @@ class MjcfWriter {
   std::string write() {
     const urdf::LinkConstSharedPtr root = model_.getRoot();
     if (!root) throw ConfigError(source_name_ + ": the robot has no root link");
-    const bool fixed_base = root->name == "world";
+    const bool root_is_world = root->name == "world";
+    floating_base_ = !sim_common::isFixedBase(model_, settings_.base);
 
     std::ostringstream world;
-    if (settings_.ground_plane) world << "    <geom name=\"servoloop_ground_plane\" type=\"plane\" size=\"0 0 1\"/>\n";
-    if (fixed_base) {
+    if (settings_.ground_plane) {
+      // Without self-collision the robot's geoms (contype 1, conaffinity 2)
+      // touch the ground (contype 2, conaffinity 1) but not each other.
+      world << "    <geom name=\"servoloop_ground_plane\" type=\"plane\" size=\"0 0 1\""
+            << (settings_.self_collide ? "" : " contype=\"2\" conaffinity=\"1\"") << "/>\n";
+    }
+    if (root_is_world) {
       for (const auto& child : root->child_links) collectWorldWelded(*child);
       writeGeoms(*root, world, "    ");
       for (const auto& child : root->child_links) writeBody(*child, world, 2, /*welded_to_world=*/true);
     } else {
-      writeBody(*root, world, 2, /*welded_to_world=*/false);
+      if (!floating_base_) {  // the root body is welded to the world at the spawn pose
+        world_welded_links_.push_back(root->name);
+        for (const auto& child : root->child_links) collectWorldWelded(*child);
+      }
+      writeBody(*root, world, 2, /*welded_to_world=*/!floating_base_);
     }
 
     const double dt = settings_.time_step_s;
@@ -97,10 +107,12 @@ class MjcfWriter {
         << "    <joint solreflimit=\"" << number(kStopTimeConstantInSteps * dt) << " 1\" solimplimit=\""
         << kStopImpedance << "\" solreffriction=\"" << number(kStopTimeConstantInSteps * dt)
         << " 1\" solimpfriction=\"" << kStopImpedance << "\"/>\n"
+        << (settings_.self_collide ? "" : "    <geom contype=\"1\" conaffinity=\"2\"/>\n")
         << "  </default>\n";
     if (!assets_.str().empty()) out << "  <asset>\n" << assets_.str() << "  </asset>\n";
     out << "  <worldbody>\n" << world.str() << "  </worldbody>\n";
     if (!excludes_.str().empty()) out << "  <contact>\n" << excludes_.str() << "  </contact>\n";
+    writeMimicEqualities(out);
     out << "</mujoco>\n";
     return out.str();
   }
@@ -112,13 +124,19 @@ class MjcfWriter {
     const urdf::JointSharedPtr& joint = link.parent_joint;
     ++body_count_;
     out << indent << "<body name=\"" << xmlEscape(link.name) << "\"";
-    if (joint) out << " " << poseAttributes(joint->parent_to_joint_origin_transform);
+    if (joint) {
+      out << " " << poseAttributes(joint->parent_to_joint_origin_transform);
+    } else {
+      out << " " << basePoseAttributes();
+    }
     out << ">\n";
 
     bool moves = false;
-    if (!joint) {
-      out << indent << "  <freejoint name=\"" << xmlEscape(link.name) << "_floating_base\"/>\n";
-      moves = true;
+    if (!joint) {  // the root link: free, or welded to the world at the spawn pose
+      if (floating_base_) {
+        out << indent << "  <freejoint name=\"" << xmlEscape(link.name) << "_floating_base\"/>\n";
+        moves = true;
+      }
     } else if (isMovable(*joint)) {
       writeJoint(*joint, out, indent + "  ");
       moves = true;
@@ -141,6 +159,34 @@ class MjcfWriter {
     const bool children_welded_to_world = welded_to_world && !moves;
     for (const auto& child : link.child_links) writeBody(*child, out, depth + 1, children_welded_to_world);
     out << indent << "</body>\n";
+  }
+
+  // <mimic>: q_m = offset + multiplier·q_l, as a joint equality (MuJoCo's
+  // polynomial y = a0 + a1·x with both joints' reference positions at 0),
+  // solved with the stiffness of the joint stops.
+  void writeMimicEqualities(std::ostringstream& out) const {
+    std::ostringstream equalities;
+    for (const auto& [name, joint] : model_.joints_) {
+      if (!joint || !joint->mimic || !isMovable(*joint)) continue;
+      const urdf::JointConstSharedPtr leader = model_.getJoint(joint->mimic->joint_name);
+      if (!leader || !isMovable(*leader)) {
+        throw ConfigError(source_name_ + ": joint '" + name + "' <mimic joint=\"" + joint->mimic->joint_name +
+                          "\">: no movable joint of that name; name a revolute, continuous or prismatic joint");
+      }
+      equalities << "    <joint joint1=\"" << xmlEscape(name) << "\" joint2=\"" << xmlEscape(leader->name)
+                 << "\" polycoef=\"" << number(joint->mimic->offset) << " " << number(joint->mimic->multiplier)
+                 << " 0 0 0\" solref=\"" << number(kStopTimeConstantInSteps * settings_.time_step_s)
+                 << " 1\" solimp=\"" << kStopImpedance << "\"/>\n";
+    }
+    if (!equalities.str().empty()) out << "  <equality>\n" << equalities.str() << "  </equality>\n";
+  }
+
+  // pos/quat of the root link: the spawn pose of the settings.
+  std::string basePoseAttributes() const {
+    const Eigen::Vector3d& p = settings_.base_position;
+    const Eigen::Quaterniond q = settings_.base_orientation.normalized();
+    return "pos=\"" + vec3(p.x(), p.y(), p.z()) + "\" quat=\"" + number(q.w()) + " " + vec3(q.x(), q.y(), q.z()) +
+           "\"";
   }
 
   // The links attached to the world link through fixed joints only.
@@ -255,6 +301,7 @@ class MjcfWriter {
   std::ostringstream assets_;
   std::ostringstream excludes_;
   std::vector<std::string> world_welded_links_;  // (not the world link itself: it is <worldbody>)
+  bool floating_base_ = true;
   int body_count_ = 0;
   int movable_joint_count_ = 0;
   int mesh_count_ = 0;

@@ -2,7 +2,9 @@
 // flags, and one test per error (each message names the file, line, key, fix).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "servoloop/node/launch_file.hpp"
@@ -54,7 +56,8 @@ TEST(LaunchFile, SeedLaunchFileWithJointController) {
   const RobotSpec& robot = launch.robots[0];
   EXPECT_EQ(robot.urdf, (kOneDof / "minimal_robot_description_w_jnt_ctl.urdf").lexically_normal());
   ASSERT_EQ(robot.params.size(), 1u);
-  EXPECT_EQ(robot.params[0], (kOneDof / "control_config" / "one_dof_ctl_params.yaml").lexically_normal());
+  EXPECT_EQ(robot.params[0].file, (kOneDof / "control_config" / "one_dof_ctl_params.yaml").lexically_normal());
+  EXPECT_EQ(robot.params[0].ns, "/");
   EXPECT_EQ(robot.controllers, (std::vector<std::string>{"joint_state_controller", "joint1_position_controller"}));
   EXPECT_TRUE(robot.stopped_controllers.empty());
   EXPECT_TRUE(robot.robot_namespace.empty());  // the URDF gives it
@@ -164,6 +167,18 @@ INSTANTIATE_TEST_SUITE_P(
                   {"robots[0].controllers", "list of names"}},
         ErrorCase{"RobotBadNamespace", "robots:\n  - {urdf: minimal_robot_description.urdf, namespace: '9lives'}",
                   {"robots[0].namespace"}},
+        ErrorCase{"RobotParamsNoFile",
+                  "robots:\n  - {urdf: minimal_robot_description.urdf, params: [{ns: /a}]}",
+                  {"robots[0].params[0]", "missing 'file'"}},
+        ErrorCase{"RobotParamsUnknownKey",
+                  "robots:\n  - {urdf: minimal_robot_description.urdf, params: [{file: x.yaml, namespace: /a}]}",
+                  {"robots[0].params[0].namespace", "ns"}},
+        ErrorCase{"RobotPoseTwoNumbers", "robots:\n  - {urdf: minimal_robot_description.urdf, pose: [1, 2]}",
+                  {"robots[0].pose", "[x, y, z, roll, pitch, yaw]"}},
+        ErrorCase{"RobotPoseNotNumber", "robots:\n  - {urdf: minimal_robot_description.urdf, pose: [1, 2, up]}",
+                  {"robots[0].pose[2]"}},
+        ErrorCase{"RobotFixedBaseNotBool", "robots:\n  - {urdf: minimal_robot_description.urdf, fixed_base: yes please}",
+                  {"robots[0].fixed_base"}},
         ErrorCase{"PublishNoTopic", "publish:\n  - {value: 1.0}", {"publish[0]", "missing 'topic'"}},
         ErrorCase{"PublishNoValue", "publish:\n  - {topic: /a/command}", {"publish[0]", "missing 'value'"}},
         ErrorCase{"PublishBadTopic", "publish:\n  - {topic: '/a b', value: 1}", {"publish[0].topic"}},
@@ -177,6 +192,39 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"RecordUnknownKey", "record:\n  - {topic: /a, file: a.csv, rate: 10}", {"record[0].rate"}},
         ErrorCase{"PlotNotString", "plot: [a.png]", {"plot", "non-empty string"}}),
     [](const ::testing::TestParamInfo<ErrorCase>& info) { return std::string(info.param.name); });
+
+// A parameter file with a namespace (roslaunch's <rosparam file ns>), the
+// root namespace, and the base, pose and self-collision keys.
+TEST(LaunchFile, RobotParametersNamespaceBaseAndPose) {
+  const LaunchFile launch = parse(R"(
+robots:
+  - urdf: minimal_robot_description.urdf
+    namespace: /
+    params: [control_config/one_dof_ctl_params.yaml, {file: control_config/minimal_joint_controller.yaml, ns: arm}]
+    fixed_base: true
+    self_collide: true
+    pose: [1, 2, 3, 0.1, 0.2, 0.3]
+  - urdf: minimal_robot_description.urdf
+    params: {file: control_config/one_dof_ctl_params.yaml, ns: /a/b}
+    pose: [0, 0, 0.5]
+)");
+  ASSERT_EQ(launch.robots.size(), 2u);
+  const RobotSpec& first = launch.robots[0];
+  EXPECT_EQ(first.robot_namespace, "/");
+  ASSERT_EQ(first.params.size(), 2u);
+  EXPECT_EQ(first.params[0].ns, "/");
+  EXPECT_EQ(first.params[1].file, (kOneDof / "control_config" / "minimal_joint_controller.yaml").lexically_normal());
+  EXPECT_EQ(first.params[1].ns, "/arm");
+  EXPECT_EQ(first.fixed_base, std::optional<bool>(true));
+  EXPECT_EQ(first.self_collide, std::optional<bool>(true));
+  EXPECT_EQ(first.pose, (std::optional<std::array<double, 6>>(std::array<double, 6>{1, 2, 3, 0.1, 0.2, 0.3})));
+  const RobotSpec& second = launch.robots[1];
+  ASSERT_EQ(second.params.size(), 1u);
+  EXPECT_EQ(second.params[0].ns, "/a/b");
+  EXPECT_FALSE(second.fixed_base.has_value());
+  EXPECT_FALSE(second.self_collide.has_value());
+  EXPECT_EQ(second.pose, (std::optional<std::array<double, 6>>(std::array<double, 6>{0, 0, 0.5, 0, 0, 0})));
+}
 
 TEST(LaunchFile, MissingFileIsNamed) {
   try {

@@ -188,7 +188,7 @@ ScenarioRun runScenario(double time_step_s = 0.0) {
 
   // The robot namespace's parameters, with the world settings where the node
   // writes them (<ns>/sim).
-  YAML::Node params = YAML::LoadFile(robot.params[0].string())["one_DOF_robot"];
+  YAML::Node params = YAML::LoadFile(robot.params[0].file.string())["one_DOF_robot"];
   require(params["minimal_joint_controller"]["type"].as<std::string>() ==
               "minimal_joint_controller/MinimalJointController",
           "the raw PD controller");

@@ -89,6 +89,78 @@ TEST_F(SimSettingsTest, InitialPositionsMustNameAMovableJointInsideItsLimits) {
               HasSubstr("/robot/sim/initial_positions/arm_joint: expected a number, got 'up'"));
 }
 
+TEST_F(SimSettingsTest, BaseAndSelfCollisionDefaultToGazebos) {
+  const SimSettings settings = parse("{}");
+  EXPECT_EQ(settings.base, BaseMode::automatic);
+  EXPECT_FALSE(settings.self_collide);
+  EXPECT_EQ(settings.base_position, Eigen::Vector3d::Zero());
+  EXPECT_TRUE(settings.base_orientation.isApprox(Eigen::Quaterniond::Identity()));
+  // The URDF's <gazebo><self_collide> is the default a parameter overrides.
+  EXPECT_TRUE(parseSimSettings(YAML::Load("{}"), *model_, "/robot", true).self_collide);
+  EXPECT_FALSE(parseSimSettings(YAML::Load("{sim: {self_collide: false}}"), *model_, "/robot", true).self_collide);
+}
+
+TEST_F(SimSettingsTest, ReadsFixedBaseAndThePoseAsUrdfRpy) {
+  const SimSettings settings = parse("{sim: {fixed_base: true, self_collide: true, pose: [1, 2, 3, 0.1, 0.2, 0.3]}}");
+  EXPECT_EQ(settings.base, BaseMode::fixed);
+  EXPECT_TRUE(settings.self_collide);
+  EXPECT_EQ(settings.base_position, Eigen::Vector3d(1, 2, 3));
+  // URDF rpy: R = Rz(yaw) Ry(pitch) Rx(roll); its first column, worked by hand:
+  // (cos y cos p, sin y cos p, −sin p).
+  const Eigen::Matrix3d r = settings.base_orientation.toRotationMatrix();
+  EXPECT_NEAR(r(0, 0), std::cos(0.3) * std::cos(0.2), 1e-15);
+  EXPECT_NEAR(r(1, 0), std::sin(0.3) * std::cos(0.2), 1e-15);
+  EXPECT_NEAR(r(2, 0), -std::sin(0.2), 1e-15);
+  // and its last row: (−sin p, cos p sin r, cos p cos r).
+  EXPECT_NEAR(r(2, 1), std::cos(0.2) * std::sin(0.1), 1e-15);
+  EXPECT_NEAR(r(2, 2), std::cos(0.2) * std::cos(0.1), 1e-15);
+
+  EXPECT_EQ(parse("{sim: {fixed_base: false}}").base, BaseMode::floating);
+  EXPECT_EQ(parse("{sim: {pose: [0, 0, 0.5]}}").base_position, Eigen::Vector3d(0, 0, 0.5));
+}
+
+TEST_F(SimSettingsTest, BadBaseValuesNameTheirKey) {
+  EXPECT_THAT(errorOf("{sim: {pose: [1, 2]}}"), HasSubstr("/robot/sim/pose: expected [x, y, z] or [x, y, z, roll"));
+  EXPECT_THAT(errorOf("{sim: {pose: [1, 2, .nan]}}"), HasSubstr("/robot/sim/pose[2]"));
+  EXPECT_THAT(errorOf("{sim: {fixed_base: maybe}}"), HasSubstr("/robot/sim/fixed_base: expected a boolean"));
+  EXPECT_THAT(errorOf("{sim: {self_collide: 3}}"), HasSubstr("/robot/sim/self_collide: expected a boolean"));
+}
+
+TEST(SimSettingsUrdf, SelfCollisionIsTheModelsGazeboTagOnly) {
+  EXPECT_FALSE(urdfRequestsSelfCollision("<robot name='r'><link name='a'/></robot>"));
+  EXPECT_TRUE(urdfRequestsSelfCollision(
+      "<robot name='r'><link name='a'/><gazebo><self_collide>true</self_collide></gazebo></robot>"));
+  EXPECT_TRUE(urdfRequestsSelfCollision(
+      "<robot name='r'><link name='a'/><gazebo><self_collide> 1 </self_collide></gazebo></robot>"));
+  // A link's <gazebo reference=...> settings are not the model's.
+  EXPECT_FALSE(urdfRequestsSelfCollision(
+      "<robot name='r'><link name='a'/><gazebo reference='a'><self_collide>true</self_collide></gazebo></robot>"));
+  EXPECT_FALSE(urdfRequestsSelfCollision(
+      "<robot name='r'><link name='a'/><gazebo><self_collide>false</self_collide></gazebo></robot>"));
+  EXPECT_FALSE(urdfRequestsSelfCollision("not xml"));
+}
+
+// The base is fixed by a root named world, or by a root body without mass —
+// the root link and what is fixed to it, lumped as Gazebo does: a massless
+// base_footprint carrying a heavy base_link floats.
+TEST(SimSettingsUrdf, FixedBaseFollowsTheRootBodysMass) {
+  const std::string inertial =
+      R"(<inertial><mass value="3"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>)";
+  const auto model = [&](const std::string& root_inertial, const std::string& fixed_child_inertial) {
+    return parseRobotModel(R"(<robot name="r"><link name="base_footprint">)" + root_inertial +
+                               R"(</link><link name="base_link">)" + fixed_child_inertial +
+                               R"(</link><joint name="f" type="fixed"><parent link="base_footprint"/>
+                               <child link="base_link"/></joint></robot>)",
+                           "r.urdf");
+  };
+  EXPECT_FALSE(isFixedBase(*model("", inertial), BaseMode::automatic));
+  EXPECT_FALSE(isFixedBase(*model(inertial, ""), BaseMode::automatic));
+  EXPECT_TRUE(isFixedBase(*model("", ""), BaseMode::automatic));
+  EXPECT_TRUE(isFixedBase(*model(inertial, inertial), BaseMode::fixed));
+  EXPECT_FALSE(isFixedBase(*model("", ""), BaseMode::floating));
+  EXPECT_DOUBLE_EQ(rigidBodyMass(*model(inertial, inertial)->getRoot()), 6.0);
+}
+
 TEST(ActuatorParametersTest, DefaultsAndValues) {
   const auto parameters = parseActuatorParameters(
       YAML::Load("actuators: {motor1: {max_effort: 0.2, rotor_inertia: 1.0e-4}}"), {"motor1", "motor2"},

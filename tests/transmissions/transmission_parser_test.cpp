@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "log_capture.hpp"
 #include "servoloop/core/errors.hpp"
 
 namespace st = servoloop::transmissions;
@@ -135,6 +136,46 @@ TEST(TransmissionParser, AcceptsLegacyTypeAttribute) {
   EXPECT_EQ(infos[0].type, st::kSimpleTransmissionType);
 }
 
+// gazebo_ros_control loads a robot whose transmission type it cannot model;
+// so does servoloop: the transmission is skipped with one warning.
+TEST(TransmissionParser, SkipsAnUnknownTypeWithOneWarning) {
+  servoloop::test::LogCapture log;
+  const auto infos = st::parseTransmissions(robotWith(R"(
+  <transmission name="belt">
+    <type>transmission_interface/BeltTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>2</mechanicalReduction></actuator>
+  </transmission>)" + std::string(kSimpleOk)),
+                                            "belt.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  EXPECT_EQ(infos[0].name, "t_slide");
+  EXPECT_EQ(log.count("unknown type 'transmission_interface/BeltTransmission'"), 1u) << log.text();
+  EXPECT_NE(log.text().find("belt.urdf: transmission 'belt'"), std::string::npos) << log.text();
+  EXPECT_NE(log.text().find("skipped"), std::string::npos) << log.text();
+}
+
+// The pre-2015 form (rrbot and other older descriptions): the interface is in
+// the <actuator> only; the joint takes it, with a deprecation warning.
+TEST(TransmissionParser, TakesTheActuatorInterfacesOfThePre2015Form) {
+  servoloop::test::LogCapture log;
+  const auto infos = st::parseTransmissions(robotWith(R"(
+  <transmission name="tran1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"/>
+    <actuator name="motor1">
+      <hardwareInterface>VelocityJointInterface</hardwareInterface>
+      <mechanicalReduction>1</mechanicalReduction>
+    </actuator>
+  </transmission>)"),
+                                            "old.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  ASSERT_EQ(infos[0].joints.size(), 1u);
+  EXPECT_EQ(infos[0].joints[0].hardware_interfaces, std::vector<std::string>{"VelocityJointInterface"});
+  EXPECT_EQ(log.count("deprecated pre-2015 form"), 1u) << log.text();
+  EXPECT_NE(log.text().find("joint 'j1'"), std::string::npos) << log.text();
+  EXPECT_NE(log.text().find("move <hardwareInterface>"), std::string::npos) << log.text();
+}
+
 TEST(TransmissionParser, OrdersTwoJointTransmissionsByRole) {
   const auto infos = st::parseTransmissions(robotWith(R"(
   <transmission name="wrist">
@@ -221,10 +262,6 @@ std::vector<MalformedCase> malformedCases() {
        transmission("t1", "", kJ1M1),
        "'t1'",
        {"has no <type>", "add e.g. <type>transmission_interface/SimpleTransmission"}},
-      {"UnknownType",
-       transmission("t1", "transmission_interface/BeltTransmission", kJ1M1),
-       "'t1'",
-       {"unknown type 'transmission_interface/BeltTransmission'", "use transmission_interface/SimpleTransmission"}},
       {"SimpleActuatorWithoutReduction",
        transmission("tran1", kSimpleType, joint("j1") + actuator("motor1", kEffort)),
        "'tran1'",

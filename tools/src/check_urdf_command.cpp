@@ -23,6 +23,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/hardware_interface/simulatable_urdf.hpp"
 #include "servoloop/transmissions/robot_transmissions.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 
@@ -272,10 +273,15 @@ void printText(const ordered_json& report) {
   }
   if (report["hardware"]["joints"].empty()) std::cout << "  none (no movable joint)\n";
   std::cout << "  actuators: " << joinStrings(report["hardware"]["actuators"]) << "\n";
+  if (!report["skipped"]["links"].empty()) {
+    std::cout << "\nleft out (no mass, as Gazebo does): links " << joinStrings(report["skipped"]["links"])
+              << "; joints " << joinStrings(report["skipped"]["joints"]) << "\n";
+  }
 }
 
 void runCheckUrdf(const CheckUrdfOptions& options) {
-  const std::string xml = readFile(options.file);
+  const SimulatableUrdf simulatable = simulatableUrdf(readFile(options.file), options.file);
+  const std::string& xml = simulatable.xml;
   const auto model = parseRobotModel(xml, options.file);
   const auto transmissions = tr::parseTransmissions(xml, options.file);
   tr::RobotTransmissions::Options hardware_options;
@@ -295,6 +301,9 @@ void runCheckUrdf(const CheckUrdfOptions& options) {
   report["transmissions"] = ordered_json::array();
   for (const auto& info : transmissions) report["transmissions"].push_back(transmissionJson(info));
   report["hardware"] = hardwareJson(hardware);
+  report["skipped"] = {{"links", simulatable.skipped_links},
+                       {"joints", simulatable.skipped_joints},
+                       {"transmissions", simulatable.skipped_transmissions}};
 
   if (options.json) {
     std::cout << report.dump(2) << "\n";

@@ -148,6 +148,20 @@ void runLaunch(const LaunchOptions& options) {
     plotRecordings(launch);
     logger().info("plot written to {}", launch.plot.string());
   }
+  // A batch run is judged by its exit status: what the launch file asked for
+  // must have happened.
+  std::size_t failures = 0;
+  for (const node::RobotSummary& robot : summary.robots) {
+    for (const std::string& failure : robot.launch_failures) {
+      logger().error("robot {}: {}", robot.robot_namespace, failure);
+      ++failures;
+    }
+  }
+  if (options.duration_s && failures > 0) {
+    logger().error("{} controller(s) of the launch file did not load or start (see above); exit status 1",
+                   failures);
+    throw CliExit{1};
+  }
 }
 
 void addLaunchCommand(CLI::App& root) {

@@ -1,5 +1,7 @@
 // `servoloop spawn-model`: gazebo_ros's spawn_model for a running world. Adds a
 // robot from a URDF file to the world served on default.sock (or the only node).
+#include <array>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -24,6 +26,9 @@ struct SpawnModelOptions {
   std::string model;
   std::string ns;
   std::vector<std::string> params;
+  std::array<double, 6> pose{};  // x y z roll pitch yaw, as gazebo_ros spawn_model's -x -y -z -R -P -Y
+  bool pose_given = false;
+  bool fixed_base = false;
 };
 
 void runSpawnModel(const SpawnModelOptions& options) {
@@ -34,6 +39,8 @@ void runSpawnModel(const SpawnModelOptions& options) {
   nlohmann::json request{{"urdf", urdf}, {"model", options.model}};
   if (!options.ns.empty()) request["namespace"] = normalizeNamespace(options.ns);
   if (!params.empty()) request["params"] = params;
+  if (options.pose_given) request["pose"] = options.pose;
+  if (options.fixed_base) request["fixed_base"] = true;
 
   servoloop::ipc::IpcClient client = connectToWorld();
   const auto reply = client.call("model.spawn", request, kSpawnCallTimeoutS);
@@ -53,7 +60,21 @@ void addSpawnModelCommand(CLI::App& root) {
   spawn->add_option("--param", options->params,
                     "YAML parameter file to load before the robot starts (repeatable)")
       ->type_name("FILE.yaml");
-  spawn->callback([options] { runSpawnModel(*options); });
+  const char* names[6] = {"-x", "-y", "-z", "-R", "-P", "-Y"};
+  const char* help[6] = {"Spawn x (m)", "Spawn y (m)", "Spawn z (m)", "Spawn roll (rad)", "Spawn pitch (rad)",
+                         "Spawn yaw (rad)"};
+  for (int i = 0; i < 6; ++i) {
+    spawn->add_option(names[i], options->pose[i], help[i])->type_name("NUM");
+  }
+  spawn->add_flag("--fixed-base", options->fixed_base,
+                  "Weld the robot's root link to the world at the spawn pose (pybullet's useFixedBase)");
+  spawn->callback([options, spawn] {
+    for (const char* name : {"-x", "-y", "-z", "-R", "-P", "-Y"}) options->pose_given |= spawn->count(name) > 0;
+    for (const double value : options->pose) {
+      if (!std::isfinite(value)) throw ConfigError("spawn-model: the spawn pose must be finite numbers (m, rad)");
+    }
+    runSpawnModel(*options);
+  });
 }
 
 }  // namespace

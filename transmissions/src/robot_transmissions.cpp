@@ -50,6 +50,9 @@ RobotTransmissions::RobotTransmissions(const urdf::ModelInterface& robot,
     // urdfdom keeps joints in a name-ordered map, so implicit joints come by name.
     for (const auto& [name, urdf_joint] : robot.joints_) {
       if (!urdf_joint || !isSingleDofMovable(*urdf_joint) || hasJoint(name)) continue;
+      // A mimic joint follows its leader through the physics; it is not
+      // actuated on its own (it gets an actuator only from a <transmission>).
+      if (urdf_joint->mimic) continue;
       TransmissionInfo info;
       info.name = name + "_implicit_transmission";
       info.type = kSimpleTransmissionType;

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/transmissions/differential_transmission.hpp"
 #include "servoloop/transmissions/four_bar_linkage_transmission.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
@@ -184,9 +185,28 @@ struct UsedNames {
   std::map<std::string, int> transmission_count;
 };
 
+// The pre-2015 form names the interfaces in the <actuator> only. ros_control
+// still takes them for the joint, with a deprecation warning; so does
+// servoloop. True when the first <actuator> had interfaces to take.
+bool takeLegacyActuatorInterfaces(const tinyxml2::XMLElement* transmission, const std::string& owner,
+                                  const std::string& label, const std::string& source_name,
+                                  TransmissionJointInfo& joint, Problems& problems) {
+  const tinyxml2::XMLElement* actuator = transmission->FirstChildElement("actuator");
+  if (actuator == nullptr || actuator->FirstChildElement("hardwareInterface") == nullptr) return false;
+  joint.hardware_interfaces = readHardwareInterfaces(actuator, owner, true, problems);
+  std::string names;
+  for (const auto& name : joint.hardware_interfaces) names += (names.empty() ? "" : ", ") + name;
+  logger().warn(
+      "{}: transmission {}: {} has no <hardwareInterface>; taking the one(s) of its <actuator> ({}), the "
+      "deprecated pre-2015 form; move <hardwareInterface>hardware_interface/...</hardwareInterface> into the "
+      "<joint> element",
+      source_name, label, owner, names);
+  return true;
+}
+
 void readJoints(const tinyxml2::XMLElement* transmission, const urdf::ModelInterface& robot,
-                const std::string& label, UsedNames& used, TransmissionInfo& info,
-                Problems& problems) {
+                const std::string& label, const std::string& source_name, UsedNames& used,
+                TransmissionInfo& info, Problems& problems) {
   for (auto* element = transmission->FirstChildElement("joint"); element != nullptr;
        element = element->NextSiblingElement("joint")) {
     TransmissionJointInfo joint;
@@ -201,7 +221,8 @@ void readJoints(const tinyxml2::XMLElement* transmission, const urdf::ModelInter
     const std::string owner = "joint '" + joint.name + "'";
 
     joint.hardware_interfaces = readHardwareInterfaces(element, owner, true, problems);
-    if (element->FirstChildElement("hardwareInterface") == nullptr) {
+    if (element->FirstChildElement("hardwareInterface") == nullptr &&
+        !takeLegacyActuatorInterfaces(transmission, owner, label, source_name, joint, problems)) {
       problems.add(owner +
                    " has no <hardwareInterface>; add e.g. "
                    "<hardwareInterface>hardware_interface/EffortJointInterface"
@@ -394,13 +415,17 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
           "has no <type>; add e.g. "
           "<type>transmission_interface/SimpleTransmission</type>");
     } else if (rule == nullptr) {
-      problems.add("unknown type '" + written_type +
-                   "'; use transmission_interface/SimpleTransmission, "
-                   "transmission_interface/DifferentialTransmission or "
-                   "transmission_interface/FourBarLinkageTransmission");
+      // As gazebo_ros_control: a type the simulation cannot model is skipped,
+      // not fatal; its joints are driven as if it were not there.
+      logger().warn(
+          "{}: transmission {}: unknown type '{}'; the transmission is skipped (its joints get the implicit "
+          "SimpleTransmission, reduction 1, when simulated). Use transmission_interface/SimpleTransmission, "
+          "transmission_interface/DifferentialTransmission or transmission_interface/FourBarLinkageTransmission",
+          source_name, label, written_type);
+      continue;
     }
 
-    readJoints(element, *robot, label, used, info, problems);
+    readJoints(element, *robot, label, source_name, used, info, problems);
     readActuators(element, label, used, info, problems);
     if (rule != nullptr) validateForType(info, *rule, problems);
     infos.push_back(std::move(info));

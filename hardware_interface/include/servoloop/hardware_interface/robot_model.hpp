@@ -9,8 +9,10 @@
 
 namespace servoloop {
 
-// Reads and validates the URDF file at `path`; see parseRobotModel for what is
-// checked. Throws ConfigError if the file is missing or unreadable.
+// Reads the URDF file at `path`, leaves out what cannot be simulated the way
+// Gazebo does (simulatableUrdf: massless moving links, with a warning) and
+// validates the rest; see parseRobotModel for what is checked. Throws
+// ConfigError if the file is missing or unreadable.
 std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string& path);
 
 // Parses and validates URDF text. `source_name` names the input in every error

@@ -18,7 +18,9 @@
 // non-real-time; errors are servoloop::ConfigError naming the launch file, the
 // line, the key and the fix.
 #include <array>
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -43,14 +45,26 @@ struct ControllerManagerSettings {
   double update_rate_hz = 0.0;
 };
 
+// A rosparam-style YAML file and the namespace it is loaded into (as
+// roslaunch's <rosparam file=... ns=...>).
+struct ParameterFile {
+  std::filesystem::path file;  // absolute
+  std::string ns = "/";        // absolute; "/" loads the file unchanged
+};
+
 // One robot to spawn.
 struct RobotSpec {
   std::filesystem::path urdf;  // absolute
   std::string model;           // model name; "" = the URDF's robot name
   std::string robot_namespace; // "" = not given (see robot_namespace.hpp)
-  std::vector<std::filesystem::path> params;  // absolute; loaded at "/" unchanged
+  std::vector<ParameterFile> params;
   std::vector<std::string> controllers;          // loaded and started
   std::vector<std::string> stopped_controllers;  // loaded only
+  // Written into <namespace>/sim/ when given (sim_settings.hpp): fixed_base,
+  // pose [x, y, z, roll, pitch, yaw] (m, rad) and self_collide.
+  std::optional<bool> fixed_base;
+  std::optional<std::array<double, 6>> pose;
+  std::optional<bool> self_collide;
 };
 
 // A message published once, at simulated time time_s.

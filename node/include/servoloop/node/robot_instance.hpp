@@ -119,11 +119,16 @@ class RobotInstance {
   // EffortJointInterface, ...).
   std::vector<std::pair<std::string, std::vector<std::string>>> jointInterfaces() const;
 
+  // What the launch asked for and did not happen: controllers that did not
+  // load, switches that did not start them. Read after stop().
+  const std::vector<std::string>& launchFailures() const { return launch_failures_; }
+
  private:
   void driveLoop(std::optional<double> duration_s);
   std::uint64_t stepsAt(double time_s) const;
   void publishDue(std::uint64_t steps_taken);
-  void loadControllers(const RobotSpec& spec);
+  void loadControllers(const RobotSpec& spec, const params::ParameterStore& store);
+  void hintWhereParametersAre(const std::string& name, const params::ParameterStore& store) const;
   void startLaunchControllers();
 
   std::string namespace_;
@@ -143,6 +148,7 @@ class RobotInstance {
   // Loaded controllers of spec.controllers, started by the loop thread before
   // its first physics step.
   std::vector<std::string> launch_controllers_;
+  std::vector<std::string> launch_failures_;  // written before the loop runs, read after it stopped
   std::vector<TimedPublication> publications_;  // sorted by time before start
   std::size_t next_publication_ = 0;            // loop thread only
 

@@ -25,6 +25,7 @@ struct RobotSummary {
   std::vector<ControllerSummary> controllers;
   std::vector<JointReading> joints;  // final state
   controller_manager::LoopStatisticsSnapshot loop;
+  std::vector<std::string> launch_failures;  // see RobotInstance::launchFailures
 };
 
 struct RunSummary {

@@ -25,6 +25,9 @@ struct WorldSettings {
   double time_step_s{0.001};                 // one solver step per step() call
   bool ground_plane{false};                  // static plane z = 0 (normal +z)
   FixedBase fixed_base{FixedBase::automatic};
+  // Collisions between the robot's own links (never between a parent and its
+  // child). Off by default, as in Gazebo.
+  bool self_collision{false};
   // setJointPositionTarget: the motor drives the position error down with this
   // time constant (first order), as fast as the effort limit allows. >= time_step_s.
   double position_motor_time_constant_s{0.02};

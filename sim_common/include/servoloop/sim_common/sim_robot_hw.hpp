@@ -115,6 +115,8 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   LimitEnforcement limitEnforcement(JointIndex joint, JointCommandMode mode) const noexcept;
 
  private:
+  void warnAboutLimits(const EngineJointConfig& joint, const hardware_interface::JointLimits& limits) const;
+  void checkBase(const std::string& ns) const;
   void loadModel(const hardware_interface::HardwareInfo& info);
   void configureActuators(const std::string& ns, const YAML::Node& parameters);
   void configureEngineJoints();
@@ -130,6 +132,7 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   std::unique_ptr<PhysicsEngine> engine_;
   std::string source_name_;
   std::shared_ptr<const urdf::ModelInterface> model_;
+  bool urdf_self_collide_ = false;  // <gazebo><self_collide> of the description
   std::unique_ptr<transmissions::RobotTransmissions> transmissions_;
   hardware_interface::RobotJointLimits joint_limits_;
   SimSettings settings_;

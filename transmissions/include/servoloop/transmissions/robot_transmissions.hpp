@@ -79,8 +79,8 @@ struct JointCommandInterfaces {
 struct RobotTransmissionsOptions {
   // Give every revolute, continuous or prismatic joint that no <transmission>
   // names an implicit SimpleTransmission (reduction 1, offset 0,
-  // EffortJointInterface, actuator "<joint>_motor"). Off: such joints are not
-  // part of either space.
+  // EffortJointInterface, actuator "<joint>_motor"); mimic joints excepted,
+  // since they follow their leader. Off: such joints are not part of either space.
   bool implicit_simple_transmissions = false;
   // Names the robot description in messages (usually its file name).
   std::string source_name = "URDF";

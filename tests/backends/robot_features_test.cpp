@@ -1,0 +1,229 @@
+// ROS robots as users bring them, run with the built `servoloop launch` (a
+// child process) on bullet and mujoco, each result checked against geometry
+// worked out by hand:
+//
+//  - self-collision is off unless asked for (Gazebo's default): two sliding
+//    fingers (tests/assets/features/fingers.urdf) pass through each other to
+//    finger_a's 0.6 m limit; with `self_collide: true` in the launch file, or
+//    <gazebo><self_collide>true</self_collide></gazebo> in the URDF, finger_a
+//    stops where the boxes touch, 0.4 m (+ finger_b's 1 mm of travel);
+//  - the same robot loads although it carries a massless moving link, a
+//    <verbose> element, a pre-2015 transmission and an unknown transmission
+//    type, each with its warning; its controllers sit at the top level of
+//    their YAML, loaded into the namespace by `params: [{file, ns}]`;
+//  - bases: `fixed_base: true` holds a robot whose root has mass, and the
+//    spawn pose turns it (pitch pi/2 makes the pendulum rest at q = -pi/2); a
+//    root link without mass is a fixed base (pybullet's convention), with a note.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "child_process.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kAssets = fs::path(SERVOLOOP_SOURCE_DIR) / "tests" / "assets" / "features";
+
+struct CliResult {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+class FeatureRun : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+#ifndef SERVOLOOP_HAVE_MUJOCO
+    if (GetParam() == "mujoco") GTEST_SKIP() << "the mujoco backend is not built here";
+#endif
+#ifndef SERVOLOOP_HAVE_BULLET
+    if (GetParam() == "bullet") GTEST_SKIP() << "the bullet backend is not built here";
+#endif
+  }
+
+  fs::path write(const std::string& name, const std::string& text) const {
+    const fs::path file = temp_.path() / name;
+    std::ofstream(file) << text;
+    return file;
+  }
+
+  CliResult launch(const fs::path& launch_file, const std::string& flags) const {
+    const auto result = servoloop::testing::runShell(
+        std::string("exec '") + SERVOLOOP_CLI_EXE + "' launch '" + launch_file.string() + "' --backend " +
+            GetParam() + " --json " + flags,
+        {temp_.path(), temp_.path(),
+         {{"SERVOLOOP_PLUGIN_PATH", std::nullopt}, {"SERVOLOOP_RUN_DIR", temp_.path().string()}}},
+        300.0);
+    EXPECT_FALSE(result.timed_out) << flags;
+    return {result.status, result.out, result.err};
+  }
+
+  // The final state of `joint` in a run's JSON summary.
+  static json joint(const CliResult& result, const std::string& name) {
+    const json summary = json::parse(result.out);
+    for (const json& j : summary["robots"][0]["joints"]) {
+      if (j["name"] == name) return j;
+    }
+    ADD_FAILURE() << "no joint '" << name << "' in " << result.out;
+    return json{{"position", NAN}, {"velocity", NAN}};
+  }
+
+  // The fingers in a world without gravity; finger_a pushed by 5 N.
+  fs::path fingersLaunch(const std::string& urdf, const std::string& robot_extra) const {
+    return write("fingers.launch.yaml", R"(world:
+  gravity: [0, 0, 0]
+robots:
+  - urdf: ')" + urdf + R"('
+    namespace: /fingers
+    params: [{file: ')" + (kAssets / "fingers_controllers.yaml").string() + R"(', ns: /fingers}]
+    controllers: [joint_state_controller, finger_a_effort]
+)" + robot_extra + R"(
+publish:
+  - {topic: /fingers/finger_a_effort/command, value: 5.0}
+)");
+  }
+
+  servoloop::testing::TempDir temp_{"servoloop-features"};
+};
+
+// Where finger_a ends: pushed with 5 N against 2 N·s/m of damping it moves at
+// up to 2.5 m/s and covers 0.6 m well within the 2 s run.
+constexpr double kFingerLimit = 0.6;
+constexpr double kFingersTouch = 0.4;  // 0.5 m between centres − two half-widths of 0.05 m
+// finger_b's 1 mm of travel, plus contact margin and penetration: bullet's
+// hull margin is 1 mm, mujoco's soft contact sinks a few mm under 5 N.
+constexpr double kContactTolerance = 0.01;
+
+TEST_P(FeatureRun, FingersPassThroughEachOtherWithoutSelfCollision) {
+  const CliResult result = launch(fingersLaunch((kAssets / "fingers.urdf").string(), ""), "--duration 2");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NEAR(joint(result, "finger_a_slide")["position"].get<double>(), kFingerLimit, 2e-3) << result.err;
+
+  // The description loaded although Gazebo-only tolerance was needed; each
+  // thing skipped or taken over is said once, naming the element and the fix.
+  EXPECT_NE(result.err.find("link 'camera' (moved by joint 'camera_pan') has no <inertial>"), std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("unknown type 'transmission_interface/BeltTransmission'"), std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("deprecated pre-2015 form"), std::string::npos) << result.err;
+  const json summary = json::parse(result.out);
+  for (const json& j : summary["robots"][0]["joints"]) EXPECT_NE(j["name"], "camera_pan") << result.out;
+}
+
+TEST_P(FeatureRun, LaunchFileSelfCollideStopsTheFingersWhereTheyTouch) {
+  const CliResult result =
+      launch(fingersLaunch((kAssets / "fingers.urdf").string(), "    self_collide: true\n"), "--duration 2");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const double a = joint(result, "finger_a_slide")["position"].get<double>();
+  const double b = joint(result, "finger_b_slide")["position"].get<double>();
+  EXPECT_NEAR(a - b, kFingersTouch, kContactTolerance);
+  EXPECT_GT(b, -kContactTolerance);
+  EXPECT_LT(b, 0.001 + kContactTolerance);
+}
+
+TEST_P(FeatureRun, UrdfGazeboSelfCollideStopsTheFingersToo) {
+  std::ifstream in(kAssets / "fingers.urdf");
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  urdf.replace(urdf.rfind("</robot>"), 8, "<gazebo><self_collide>true</self_collide></gazebo></robot>");
+  const CliResult result = launch(fingersLaunch(write("fingers_self.urdf", urdf).string(), ""), "--duration 2");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const double a = joint(result, "finger_a_slide")["position"].get<double>();
+  const double b = joint(result, "finger_b_slide")["position"].get<double>();
+  EXPECT_NEAR(a - b, kFingersTouch, kContactTolerance);
+}
+
+TEST_P(FeatureRun, FixedBaseAndSpawnPoseTurnTheHanger) {
+  const fs::path file = write("hanger.launch.yaml", R"(robots:
+  - urdf: ')" + (kAssets / "hanger.urdf").string() + R"('
+    fixed_base: true
+    pose: [0.3, -0.2, 2.0, 0, 1.5707963267948966, 0]
+)");
+  const CliResult result = launch(file, "--duration 12");
+  ASSERT_EQ(result.status, 0) << result.err;
+  // Damping ratio ~0.23 at ~4.4 rad/s: the swing decays as e^(−t); after 12 s
+  // it is below 1e-5 rad.
+  EXPECT_NEAR(joint(result, "swing")["position"].get<double>(), -std::numbers::pi / 2, 1e-3);
+}
+
+TEST_P(FeatureRun, RootWithoutMassIsAFixedBaseWithANote) {
+  std::ifstream in(kAssets / "hanger.urdf");
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto begin = urdf.find("<inertial>");
+  urdf.erase(begin, urdf.find("</inertial>") + 11 - begin);  // the mount's
+  const fs::path file = write("hanger.launch.yaml", R"(robots:
+  - urdf: ')" + write("static_hanger.urdf", urdf).string() + R"('
+    pose: [0, 0, 2.0, 0, 1.5707963267948966, 0]
+)");
+  const CliResult result = launch(file, "--duration 12");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NEAR(joint(result, "swing")["position"].get<double>(), -std::numbers::pi / 2, 1e-3);
+  EXPECT_NE(result.err.find("root link 'mount' has no mass, so the base is fixed"), std::string::npos)
+      << result.err;
+}
+
+// The root namespace, as a robot launched without <group ns>: controllers
+// of a top-level YAML loaded at "/" run, their topics are at the root.
+TEST_P(FeatureRun, RobotInTheRootNamespace) {
+  const fs::path file = write("root.launch.yaml", R"(world:
+  gravity: [0, 0, 0]
+robots:
+  - urdf: ')" + (kAssets / "fingers.urdf").string() + R"('
+    namespace: /
+    params: [')" + (kAssets / "fingers_controllers.yaml").string() + R"(']
+    controllers: [joint_state_controller, finger_a_effort]
+publish:
+  - {topic: /finger_a_effort/command, value: 5.0}
+)");
+  const CliResult result = launch(file, "--duration 2");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(json::parse(result.out)["robots"][0]["namespace"], "/");
+  EXPECT_NEAR(joint(result, "finger_a_slide")["position"].get<double>(), kFingerLimit, 2e-3) << result.err;
+}
+
+// A controller file loaded at "/" while the robot has its own namespace: the
+// error says where the controller's type was found and how to load it there.
+TEST_P(FeatureRun, ControllersLoadedOutsideTheNamespaceAreFoundForTheError) {
+  const fs::path file = write("wrong_ns.launch.yaml", R"(robots:
+  - urdf: ')" + (kAssets / "fingers.urdf").string() + R"('
+    namespace: /fingers
+    params: [')" + (kAssets / "fingers_controllers.yaml").string() + R"(']
+    controllers: [finger_a_effort]
+)");
+  const CliResult result = launch(file, "--duration 0.1");
+  EXPECT_EQ(result.status, 1) << result.err;
+  EXPECT_NE(result.err.find("looked for '/fingers/finger_a_effort/type' but the parameters have "
+                            "'/finger_a_effort/type'"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("ns: /fingers"), std::string::npos) << result.err;
+}
+
+// A batch run whose launch file asks for a controller that does not load
+// (no such parameters) still runs and reports, then exits non-zero naming it.
+TEST_P(FeatureRun, BatchRunWithAControllerThatDoesNotLoadExitsNonZero) {
+  const fs::path file = write("hanger.launch.yaml", R"(robots:
+  - urdf: ')" + (kAssets / "hanger.urdf").string() + R"('
+    fixed_base: true
+    controllers: [no_such_controller]
+)");
+  const CliResult result = launch(file, "--duration 0.1");
+  EXPECT_EQ(result.status, 1) << result.err;
+  EXPECT_NE(result.err.find("controller 'no_such_controller' did not load"), std::string::npos) << result.err;
+  const json summary = json::parse(result.out);
+  EXPECT_EQ(summary["robots"][0]["launch_failures"][0], "controller 'no_such_controller' did not load");
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, FeatureRun, ::testing::Values("bullet", "mujoco"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+}  // namespace
