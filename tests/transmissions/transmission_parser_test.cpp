@@ -154,6 +154,25 @@ TEST(TransmissionParser, SkipsAnUnknownTypeWithOneWarning) {
   EXPECT_NE(log.text().find("skipped"), std::string::npos) << log.text();
 }
 
+// pr2_mechanism_model's form (PR2, ros_controllers' diffbot test robot):
+// type attribute, reduction on the transmission, no hardware interface.
+// Skipped with one warning; other transmissions are still read.
+TEST(TransmissionParser, SkipsThePr2MechanismFormWithOneWarning) {
+  servoloop::test::LogCapture log;
+  const auto infos = st::parseTransmissions(robotWith(R"(
+  <transmission name="caster_trans" type="SimpleTransmission">
+    <actuator name="caster_motor"/>
+    <joint name="j1"/>
+    <mechanicalReduction>-79.2</mechanicalReduction>
+  </transmission>)" + std::string(kSimpleOk)),
+                                            "pr2.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  EXPECT_EQ(infos[0].name, "t_slide");
+  EXPECT_EQ(log.count("pr2.urdf: transmission 'caster_trans': the pre-ros_control form"), 1u) << log.text();
+  EXPECT_NE(log.text().find("<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>"),
+            std::string::npos);
+}
+
 // The pre-2015 form (rrbot and other older descriptions): the interface is in
 // the <actuator> only; the joint takes it, with a deprecation warning.
 TEST(TransmissionParser, TakesTheActuatorInterfacesOfThePre2015Form) {

@@ -345,6 +345,18 @@ void validateForType(TransmissionInfo& info, const TypeRule& rule, Problems& pro
   }
 }
 
+// True for pr2_mechanism_model's transmissions, which predate ros_control: a
+// type="..." attribute and no <hardwareInterface> in any joint or actuator.
+bool isPr2MechanismForm(const tinyxml2::XMLElement* transmission) {
+  if (transmission->Attribute("type") == nullptr || transmission->FirstChildElement("type") != nullptr) return false;
+  for (const char* tag : {"joint", "actuator"}) {
+    for (auto* e = transmission->FirstChildElement(tag); e != nullptr; e = e->NextSiblingElement(tag)) {
+      if (e->FirstChildElement("hardwareInterface") != nullptr) return false;
+    }
+  }
+  return true;
+}
+
 // The type as written: the <type> child, else the legacy type="..." attribute.
 std::string readType(const tinyxml2::XMLElement* transmission) {
   std::string type = elementText(transmission->FirstChildElement("type"));
@@ -405,6 +417,19 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
       problems.add("has no name attribute; add name=\"<unique transmission name>\"");
     } else if (++used.transmission_count[info.name] == 2) {
       problems.add("the name is used by more than one <transmission>; give each a unique name");
+    }
+
+    if (isPr2MechanismForm(element)) {
+      // The pre-ros_control form (pr2_mechanism_model: type="..." attribute, no
+      // hardware interface anywhere). ros_control cannot use it either; the
+      // simulation skips it and drives the joints as if it were not there.
+      logger().warn(
+          "{}: transmission {}: the pre-ros_control form (type=\"{}\" attribute, no <hardwareInterface>) is "
+          "skipped; its joints get the implicit SimpleTransmission (EffortJointInterface, reduction 1) when "
+          "simulated. To keep it, write <type>transmission_interface/SimpleTransmission</type> and put "
+          "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface> in each <joint>",
+          source_name, label, element->Attribute("type"));
+      continue;
     }
 
     const std::string written_type = readType(element);
