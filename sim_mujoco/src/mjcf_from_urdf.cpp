@@ -6,9 +6,11 @@
 #include <sstream>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/sim_common/stl_mesh.hpp"
 
 namespace servoloop::sim_mujoco {
@@ -97,7 +99,8 @@ class MjcfWriter {
     const int contacts = std::max(kMinContacts, kContactsPerBody * (body_count_ + 1));
     std::ostringstream out;
     out << "<mujoco model=\"" << xmlEscape(model_.getName()) << "\">\n"
-        << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
+        << "  <compiler angle=\"radian\" inertiafromgeom=\"false\""
+        << (unbalanced_inertias_.empty() ? "" : " balanceinertia=\"true\"") << "/>\n"
         << "  <option timestep=\"" << number(dt) << "\" gravity=\""
         << vec3(settings_.gravity.x(), settings_.gravity.y(), settings_.gravity.z())
         << "\" integrator=\"RK4\"/>\n"
@@ -220,13 +223,25 @@ class MjcfWriter {
     out << "/>\n";
   }
 
-  static void writeInertial(const urdf::Link& link, std::ostringstream& out, const std::string& indent) {
+  void writeInertial(const urdf::Link& link, std::ostringstream& out, const std::string& indent) {
     if (!link.inertial || !(link.inertial->mass > 0.0)) return;
     const urdf::Inertial& inertial = *link.inertial;
     Eigen::Matrix3d inertia;
     inertia << inertial.ixx, inertial.ixy, inertial.ixz,  //
         inertial.ixy, inertial.iyy, inertial.iyz,          //
         inertial.ixz, inertial.iyz, inertial.izz;
+    // MuJoCo refuses principal moments with A + B < C, which rounded values
+    // in real descriptions (PR2's) break by a hair and which ODE (Gazebo)
+    // accepts. MuJoCo's balanceinertia then raises the two smaller moments;
+    // the link is named once.
+    const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+    if (moments(0) + moments(1) < moments(2)) {
+      unbalanced_inertias_.push_back(link.name);
+      logger().warn(
+          "{}: link '{}': principal moments {}, {}, {} break A + B >= C, which MuJoCo requires; the mujoco backend "
+          "lets MuJoCo balance them (balanceinertia). Correct the <inertia> to silence this",
+          source_name_, link.name, moments(0), moments(1), moments(2));
+    }
     double w = 1.0, x = 0.0, y = 0.0, z = 0.0;
     inertial.origin.rotation.getQuaternion(x, y, z, w);
     // The tensor is given in the <inertial><origin> frame; MuJoCo wants it in
@@ -302,6 +317,7 @@ class MjcfWriter {
   std::ostringstream excludes_;
   std::vector<std::string> world_welded_links_;  // (not the world link itself: it is <worldbody>)
   bool floating_base_ = true;
+  std::vector<std::string> unbalanced_inertias_;
   int body_count_ = 0;
   int movable_joint_count_ = 0;
   int mesh_count_ = 0;

@@ -1,4 +1,6 @@
-// <mimic> on MuJoCo: a joint equality holds q_follower = multiplier·q_drive +
+// Real robots' features on MuJoCo.
+//
+// <mimic>: a joint equality holds q_follower = multiplier·q_drive +
 // offset, and the pair moves with the inertia virtual work gives (the same
 // case as tests/sim_bullet/bullet_world_mimic_test.cpp, worked out there):
 // I_eff = 0.01 + 0.25·0.01 = 0.0125 kg m², q_drive(1 s) = 0.02 / (2 I_eff) = 0.8 rad.
@@ -8,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "log_capture.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
@@ -55,6 +58,24 @@ TEST(MujocoMimic, UnknownLeaderIsNamed) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("joint 'j' <mimic joint=\"ghost\">"), std::string::npos) << e.what();
   }
+}
+
+// Principal moments a hair off A + B >= C (rounded values, as in PR2's
+// description; servoloop's loader accepts them within 1e-9 relative) load with
+// MuJoCo balancing them and one warning naming the link.
+TEST(MujocoInertia, RoundedMomentsBreakingTheTriangleByAHairAreBalanced) {
+  const std::string urdf = R"(<robot name="r"><link name="world"/><link name="plate"><inertial><mass value="1"/>
+    <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.20000000000002"/></inertial></link>
+    <joint name="j" type="continuous"><parent link="world"/><child link="plate"/><axis xyz="0 0 1"/></joint></robot>)";
+  const auto model = parseRobotModel(urdf, "r.urdf");
+  test::LogCapture log;
+  std::vector<sim_common::EngineJointConfig> joints(1);
+  joints[0].name = "j";
+  MujocoPhysics engine;
+  EXPECT_NO_THROW(engine.init(*model, sim_common::SimSettings{}, joints, "r.urdf"));
+  EXPECT_EQ(log.count("link 'plate': principal moments"), 1u) << log.text();
+  EXPECT_NE(mjcfFromUrdf(*model, sim_common::SimSettings{}, {}, "r.urdf").find("balanceinertia=\"true\""),
+            std::string::npos);
 }
 
 }  // namespace
