@@ -328,9 +328,11 @@ std::vector<fs::path> packageSearchRoots(const fs::path& base_dir) {
   return roots;
 }
 
-// Returns the absolute path of an existing mesh file; throws naming the link otherwise.
+// Returns the absolute path of an existing mesh file. A missing one throws
+// naming the link when `required` (collision: every backend needs it);
+// otherwise (visual: no backend draws it) it is one warning and the URI stays.
 std::string resolveMesh(const std::string& uri, const fs::path& base_dir, const std::string& what,
-                        const std::string& source_name) {
+                        const std::string& source_name, bool required) {
   std::vector<fs::path> candidates;
   const std::string package_prefix = "package://";
   const std::string file_prefix = "file://";
@@ -356,22 +358,29 @@ std::string resolveMesh(const std::string& uri, const fs::path& base_dir, const 
     tried += (tried.empty() ? "" : ", ") + candidates[i].lexically_normal().string();
   }
   if (candidates.size() > 4) tried += ", ...";
+  if (!required) {
+    logger().warn("{}: {} mesh '{}' not found (looked for {}); no backend draws visual meshes, so the robot loads "
+                  "without it",
+                  source_name, what, uri, tried);
+    return uri;
+  }
   fail(source_name, what + " mesh '" + uri + "' not found (looked for " + tried +
                         "); fix the filename or add the file (package:// URIs search ROS_PACKAGE_PATH and the "
                         "URDF's parent folders)");
 }
 
 void resolveMeshes(urdf::Link& link, const fs::path& base_dir, const std::string& source_name) {
-  auto resolve = [&](const urdf::GeometrySharedPtr& geometry, const std::string& element) {
+  auto resolve = [&](const urdf::GeometrySharedPtr& geometry, const std::string& element, bool required) {
     if (!geometry || geometry->type != urdf::Geometry::MESH) return;
     auto* mesh = static_cast<urdf::Mesh*>(geometry.get());
-    mesh->filename = resolveMesh(mesh->filename, base_dir, "link '" + link.name + "' " + element, source_name);
+    mesh->filename =
+        resolveMesh(mesh->filename, base_dir, "link '" + link.name + "' " + element, source_name, required);
   };
   for (const auto& c : link.collision_array) {
-    if (c) resolve(c->geometry, "<collision>");
+    if (c) resolve(c->geometry, "<collision>", true);
   }
   for (const auto& v : link.visual_array) {
-    if (v) resolve(v->geometry, "<visual>");
+    if (v) resolve(v->geometry, "<visual>", false);
   }
   // urdfdom also keeps the first element as link.collision/link.visual; they
   // share the geometry objects with the arrays, so they are resolved already.

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "log_capture.hpp"
 #include "servoloop/core/errors.hpp"
 
 namespace servoloop {
@@ -269,8 +270,18 @@ TEST(RobotModel, MissingMeshFileIsNamed) {
 
 TEST(RobotModel, MissingPackageMeshIsNamed) {
   const std::string link = R"(<link name="arm">)" + kGoodInertial +
-                           R"(<visual><geometry><mesh filename="package://nopkg/arm.stl"/></geometry></visual></link>)";
-  EXPECT_CONTAINS(errorOf(robot(kGoodJoint, link)), "link 'arm' <visual> mesh 'package://nopkg/arm.stl' not found");
+                           R"(<collision><geometry><mesh filename="package://nopkg/arm.stl"/></geometry></collision></link>)";
+  EXPECT_CONTAINS(errorOf(robot(kGoodJoint, link)), "link 'arm' <collision> mesh 'package://nopkg/arm.stl' not found");
+}
+
+// Descriptions shipped without their visual meshes (large .dae files left
+// out) still load: no backend draws them. One warning names the file.
+TEST(RobotModel, MissingVisualMeshIsAWarning) {
+  const std::string link = R"(<link name="arm">)" + kGoodInertial +
+                           R"(<visual><geometry><mesh filename="package://nopkg/arm.dae"/></geometry></visual></link>)";
+  test::LogCapture log;
+  EXPECT_EQ(errorOf(robot(kGoodJoint, link)), "");
+  EXPECT_EQ(log.count("link 'arm' <visual> mesh 'package://nopkg/arm.dae' not found"), 1u) << log.text();
 }
 
 TEST(RobotModel, MeshesResolveRelativeAndPackageUris) {

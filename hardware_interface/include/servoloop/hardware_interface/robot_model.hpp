@@ -30,7 +30,8 @@ std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string
 //     inertia, geometry sizes, mesh scale) is not finite;
 //   - a link moved by a non-fixed joint has no <inertial>, a mass <= 0 or an
 //     inertia tensor that is not positive definite; any link has mass < 0;
-//   - a mesh file (visual or collision) does not exist.
+//   - a collision mesh file does not exist (a missing visual mesh is one
+//     warning: no backend draws it).
 //
 // Mesh filenames in the returned model are rewritten to absolute paths:
 // relative paths resolve against the URDF's folder; `file://` URIs are taken as
