@@ -1,6 +1,7 @@
 #include "servoloop/node/message_json.hpp"
 
 #include <algorithm>
+#include <initializer_list>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -24,6 +25,7 @@ const std::map<std::string_view, std::vector<std::string_view>>& fieldTable() {
       {control_msgs::JointControllerState::kTypeName,
        {"stamp", "set_point", "process_value", "process_value_dot", "error", "time_step", "command", "p", "i",
         "d", "i_clamp", "antiwindup"}},
+      {nav_msgs::Odometry::kTypeName, {"stamp", "frame_id", "child_frame_id", "pose", "twist"}},
   };
   return table;
 }
@@ -96,6 +98,47 @@ class FieldReader {
       }
     }
   }
+
+  void text(const char* field, std::string& out) const {
+    if (const json* value = find(field)) {
+      if (!value->is_string()) fail(field, "a string", *value);
+      out = value->get<std::string>();
+    }
+  }
+
+  // A nested object of numbers, e.g. pose.position {x, y, z}: `components`
+  // names its fields, `out` receives them in that order; missing ones stay.
+  void numberObject(const std::string& field, const json* value, std::initializer_list<const char*> components,
+                    std::initializer_list<double*> out) const {
+    if (value == nullptr) return;
+    if (!value->is_object()) fail(field, "an object", *value);
+    for (const auto& [key, item] : value->items()) {
+      bool known = false;
+      for (const char* c : components) known |= key == c;
+      if (!known) fail(field + "." + key, "one of the fields of " + field, item);
+    }
+    auto target = out.begin();
+    for (const char* c : components) {
+      if (auto it = value->find(c); it != value->end()) **target = toDouble(field + "." + c, *it);
+      ++target;
+    }
+  }
+
+  // A nested object whose fields are objects, e.g. pose {position, orientation}.
+  const json* child(const std::string& field, const json* parent, const char* key,
+                    std::initializer_list<const char*> keys) const {
+    if (parent == nullptr) return nullptr;
+    if (!parent->is_object()) fail(field, "an object", *parent);
+    for (const auto& [k, item] : parent->items()) {
+      bool known = false;
+      for (const char* c : keys) known |= k == c;
+      if (!known) fail(field + "." + k, "one of the fields of " + field, item);
+    }
+    auto it = parent->find(key);
+    return it == parent->end() ? nullptr : &*it;
+  }
+
+  const json* field(const char* name) const { return find(name); }
 
   [[noreturn]] void fail(const std::string& field, const std::string& expected, const json& got) const {
     const std::string where = field.empty() ? "" : " field '" + field + "':";
@@ -252,6 +295,20 @@ json toJson(const control_msgs::JointControllerState& msg) {
               {"i_clamp", msg.i_clamp},     {"antiwindup", msg.antiwindup}};
 }
 
+json toJson(const nav_msgs::Odometry& msg) {
+  return json{{"stamp", msg.stamp},
+              {"frame_id", msg.frame_id},
+              {"child_frame_id", msg.child_frame_id},
+              {"pose",
+               {{"position", {{"x", msg.position.x}, {"y", msg.position.y}, {"z", msg.position.z}}},
+                {"orientation",
+                 {{"x", msg.orientation.x}, {"y", msg.orientation.y}, {"z", msg.orientation.z},
+                  {"w", msg.orientation.w}}}}},
+              {"twist",
+               {{"linear", {{"x", msg.linear.x}, {"y", msg.linear.y}, {"z", msg.linear.z}}},
+                {"angular", {{"x", msg.angular.x}, {"y", msg.angular.y}, {"z", msg.angular.z}}}}}};
+}
+
 void fromJson(const json& value, std_msgs::Float64& out) {
   if (value.is_number()) {  // `topic pub /cmd std_msgs/Float64 1.0`
     out.data = value.get<double>();
@@ -303,6 +360,24 @@ void fromJson(const json& value, control_msgs::JointControllerState& out) {
   reader.number("d", out.d);
   reader.number("i_clamp", out.i_clamp);
   reader.boolean("antiwindup", out.antiwindup);
+}
+
+void fromJson(const json& value, nav_msgs::Odometry& out) {
+  FieldReader reader(nav_msgs::Odometry::kTypeName, value);
+  reader.number("stamp", out.stamp);
+  reader.text("frame_id", out.frame_id);
+  reader.text("child_frame_id", out.child_frame_id);
+  const json* pose = reader.field("pose");
+  reader.numberObject("pose.position", reader.child("pose", pose, "position", {"position", "orientation"}),
+                      {"x", "y", "z"}, {&out.position.x, &out.position.y, &out.position.z});
+  reader.numberObject("pose.orientation", reader.child("pose", pose, "orientation", {"position", "orientation"}),
+                      {"x", "y", "z", "w"},
+                      {&out.orientation.x, &out.orientation.y, &out.orientation.z, &out.orientation.w});
+  const json* twist = reader.field("twist");
+  reader.numberObject("twist.linear", reader.child("twist", twist, "linear", {"linear", "angular"}),
+                      {"x", "y", "z"}, {&out.linear.x, &out.linear.y, &out.linear.z});
+  reader.numberObject("twist.angular", reader.child("twist", twist, "angular", {"linear", "angular"}),
+                      {"x", "y", "z"}, {&out.angular.x, &out.angular.y, &out.angular.z});
 }
 
 // --- YAML / text input ----------------------------------------------------------------
@@ -376,6 +451,7 @@ void withMessageFromJson(std::string_view type_name, const json& value, Fn&& fn)
   if (type_name == control_msgs::JointControllerState::kTypeName) {
     return decode(control_msgs::JointControllerState{});
   }
+  if (type_name == nav_msgs::Odometry::kTypeName) return decode(nav_msgs::Odometry{});
   std::string known;
   for (const std::string& type : knownMessageTypes()) known += (known.empty() ? "" : ", ") + type;
   throw Error("unknown message type '" + std::string(type_name) + "'; known types: " + known);
@@ -396,6 +472,7 @@ json toJson(const realtime::MessageView& msg) {
   if (const auto* m = msg.as<std_msgs::Float64MultiArray>()) return toJson(*m);
   if (const auto* m = msg.as<sensor_msgs::JointState>()) return toJson(*m);
   if (const auto* m = msg.as<control_msgs::JointControllerState>()) return toJson(*m);
+  if (const auto* m = msg.as<nav_msgs::Odometry>()) return toJson(*m);
   throw Error("message type '" + std::string(msg.type) + "' has no JSON form");
 }
 

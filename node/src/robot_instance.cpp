@@ -21,6 +21,7 @@
 #include "servoloop/core/logging.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
+#include "servoloop/node/ground_truth_publisher.hpp"
 
 namespace servoloop::node {
 namespace {
@@ -139,6 +140,13 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
 
   controller_manager::SimulationLoop::Options options;
   options.topic_bus = bus_.get();
+  if (GroundTruthPublisher::applies(*sim_hw_)) {
+    const std::string topic = params::resolveName(namespace_, "ground_truth/odom");
+    ground_truth_ = std::make_unique<GroundTruthPublisher>(*sim_hw_, *bus_, topic, model_->getRoot()->name);
+    options.cycle_hook = ground_truth_.get();
+    logger().info("robot '{}': floating base; its ground truth is published on {} (nav_msgs/Odometry, {} Hz)",
+                  namespace_, topic, GroundTruthPublisher::kDefaultRateHz);
+  }
   options.real_time_factor = real_time_factor_;
   try {
     loop_ = std::make_unique<controller_manager::SimulationLoop>(*sim_hw_, *manager_, options);

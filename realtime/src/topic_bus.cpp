@@ -33,7 +33,8 @@ std::string topicNames(const std::map<std::string, std::shared_ptr<detail::Topic
 std::string knownTypesText() {
   std::string text;
   for (std::string_view type : {std_msgs::Float64::kTypeName, std_msgs::Float64MultiArray::kTypeName,
-                                sensor_msgs::JointState::kTypeName, control_msgs::JointControllerState::kTypeName}) {
+                                sensor_msgs::JointState::kTypeName, control_msgs::JointControllerState::kTypeName,
+                                nav_msgs::Odometry::kTypeName}) {
     text += (text.empty() ? "" : ", ") + std::string(type);
   }
   return text;
@@ -67,6 +68,7 @@ TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view
   if (type_name == control_msgs::JointControllerState::kTypeName) {
     return typedTopicLocked<control_msgs::JointControllerState>(name);
   }
+  if (type_name == nav_msgs::Odometry::kTypeName) return typedTopicLocked<nav_msgs::Odometry>(name);
   // A type only a plugin knows can still be used once that plugin typed the topic.
   auto it = topics.find(name);
   if (it != topics.end() && it->second->type() == type_name) return *it->second;
@@ -233,5 +235,6 @@ SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64MultiArray, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::JointState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, )
 
 }  // namespace servoloop::realtime

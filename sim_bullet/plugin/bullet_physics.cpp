@@ -73,6 +73,16 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   placeAtInitialPositions();
 }
 
+bool BulletPhysics::readBaseState(sim_common::EngineBaseState& out) const noexcept {
+  if (!world_ || world_->isFixedBase()) return false;
+  const BaseState base = world_->baseState();
+  out.position = base.position;
+  out.orientation = base.orientation;
+  out.linear_velocity = base.linear_velocity;
+  out.angular_velocity = base.angular_velocity;
+  return true;
+}
+
 void BulletPhysics::applyMotorEffortLimits() {
   for (std::size_t j = 0; j < world_index_.size(); ++j) {
     world_->setJointMotorEffortLimit(world_index_[j], motor_effort_limits_[j]);

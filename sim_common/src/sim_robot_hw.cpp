@@ -225,6 +225,21 @@ void SimRobotHW::warnAboutLimits(const EngineJointConfig& joint, const hi::Joint
   }
 }
 
+bool SimRobotHW::readBaseGroundTruth(hi::BaseGroundTruth& out) const noexcept {
+  EngineBaseState base;
+  if (!engine_ || !engine_->readBaseState(base)) return false;
+  for (int i = 0; i < 3; ++i) {
+    out.position[i] = base.position[i];
+    out.linear_velocity[i] = base.linear_velocity[i];
+    out.angular_velocity[i] = base.angular_velocity[i];
+  }
+  out.orientation[0] = base.orientation.x();
+  out.orientation[1] = base.orientation.y();
+  out.orientation[2] = base.orientation.z();
+  out.orientation[3] = base.orientation.w();
+  return true;
+}
+
 void SimRobotHW::readEngineState() noexcept {
   transmissions::RobotTransmissions& tr = *transmissions_;
   engine_->readJointStates(engine_states_);

@@ -1,5 +1,7 @@
 #include "servoloop/sim_mujoco/mujoco_physics.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -49,6 +51,20 @@ void MujocoPhysics::DataDeleter::operator()(mjData_* data) const noexcept { mj_d
 MujocoPhysics::MujocoPhysics() = default;
 MujocoPhysics::~MujocoPhysics() = default;
 
+// MuJoCo's free joint: qpos = position, quaternion (w, x, y, z) of the body
+// frame; qvel = linear velocity of its origin in world axes, then angular
+// velocity in the body's own axes.
+bool MujocoPhysics::readBaseState(sim_common::EngineBaseState& out) const noexcept {
+  if (base_qpos_address_ < 0 || !data_) return false;
+  const double* q = data_->qpos + base_qpos_address_;
+  const double* v = data_->qvel + base_dof_address_;
+  out.position = Eigen::Vector3d(q[0], q[1], q[2]);
+  out.orientation = Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized();
+  out.linear_velocity = Eigen::Vector3d(v[0], v[1], v[2]);
+  out.angular_velocity = out.orientation * Eigen::Vector3d(v[3], v[4], v[5]);
+  return true;
+}
+
 void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                          const std::vector<sim_common::EngineJointConfig>& joints, const std::string& source_name) {
   std::map<std::string, double> armature;
@@ -60,6 +76,14 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   if (!data_) throw Error(source_name + ": MuJoCo could not allocate its simulation data");
 
   const mjModel& m = *model_;
+  base_qpos_address_ = base_dof_address_ = -1;
+  for (int j = 0; j < m.njnt; ++j) {
+    if (m.jnt_type[j] == mjJNT_FREE) {
+      base_qpos_address_ = m.jnt_qposadr[j];
+      base_dof_address_ = m.jnt_dofadr[j];
+      break;
+    }
+  }
   joints_.clear();
   initial_positions_.clear();
   resizeJointCommands(joints.size());

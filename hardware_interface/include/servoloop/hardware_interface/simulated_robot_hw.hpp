@@ -8,6 +8,15 @@ namespace servoloop::hardware_interface {
 // loop steps it in lockstep with simulated time. Every simulation backend
 // (bullet, mujoco, mock) implements this one interface, so the same robot,
 // controllers and YAML run on any of them.
+// Ground truth of a floating robot's root link, world frame: the pose of the
+// link frame, the velocity of its origin and its angular velocity (world axes).
+struct BaseGroundTruth {
+  double position[3] = {0.0, 0.0, 0.0};          // m
+  double orientation[4] = {0.0, 0.0, 0.0, 1.0};  // quaternion x, y, z, w: link -> world
+  double linear_velocity[3] = {0.0, 0.0, 0.0};   // m/s
+  double angular_velocity[3] = {0.0, 0.0, 0.0};  // rad/s
+};
+
 class SimulatedRobotHW : public RobotHW {
  public:
   // Non-real-time. The physics time step fixed at init (world settings).
@@ -28,6 +37,11 @@ class SimulatedRobotHW : public RobotHW {
   // measured when it was engaged and effort/velocity commands are zero, as
   // gazebo_ros_control's emergency stop does.
   virtual void setEmergencyStop(bool engaged) = 0;
+
+  // Real-time. The root link's state after the last step when the robot's
+  // base floats; false (out untouched) for a fixed base or a simulator that
+  // does not track it.
+  virtual bool readBaseGroundTruth(BaseGroundTruth& /*out*/) const noexcept { return false; }
 };
 
 }  // namespace servoloop::hardware_interface

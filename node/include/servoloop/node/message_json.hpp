@@ -31,11 +31,13 @@ nlohmann::json toJson(const std_msgs::Float64& msg);
 nlohmann::json toJson(const std_msgs::Float64MultiArray& msg);
 nlohmann::json toJson(const sensor_msgs::JointState& msg);
 nlohmann::json toJson(const control_msgs::JointControllerState& msg);
+nlohmann::json toJson(const nav_msgs::Odometry& msg);
 
 void fromJson(const nlohmann::json& json, std_msgs::Float64& out);
 void fromJson(const nlohmann::json& json, std_msgs::Float64MultiArray& out);
 void fromJson(const nlohmann::json& json, sensor_msgs::JointState& out);
 void fromJson(const nlohmann::json& json, control_msgs::JointControllerState& out);
+void fromJson(const nlohmann::json& json, nav_msgs::Odometry& out);
 
 template <class Msg>
 Msg messageFromJson(const nlohmann::json& json) {

@@ -40,6 +40,7 @@
 #include <urdf_model/model.h>
 
 #include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/node/ground_truth_publisher.hpp"
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/controller_manager/plugin_controller_factory.hpp"
 #include "servoloop/params/parameter_store.hpp"
@@ -142,6 +143,8 @@ class RobotInstance {
   plugin::PluginPtr<hardware_interface::RobotHW> backend_;
   hardware_interface::SimulatedRobotHW* sim_hw_ = nullptr;
   std::unique_ptr<realtime::TopicBus> bus_;
+  // Floating bases only; the loop calls it, so it outlives loop_.
+  std::unique_ptr<GroundTruthPublisher> ground_truth_;
   std::unique_ptr<controller_manager::ControllerManager> manager_;
   std::unique_ptr<controller_manager::SimulationLoop> loop_;
 

@@ -64,4 +64,36 @@ struct JointControllerState {
 
 }  // namespace control_msgs
 
+namespace geometry_msgs {
+
+struct Point {
+  double x = 0.0, y = 0.0, z = 0.0;
+};
+struct Quaternion {
+  double x = 0.0, y = 0.0, z = 0.0, w = 1.0;
+};
+struct Vector3 {
+  double x = 0.0, y = 0.0, z = 0.0;
+};
+
+}  // namespace geometry_msgs
+
+namespace nav_msgs {
+
+// Where a body is and how it moves: the pose of child_frame_id in frame_id,
+// and its twist in child_frame_id's axes, as ROS's Odometry (the covariances
+// are left out). m, rad, m/s, rad/s.
+struct Odometry {
+  static constexpr std::string_view kTypeName = "nav_msgs/Odometry";
+  double stamp = 0.0;  // control time, s
+  std::string frame_id;
+  std::string child_frame_id;
+  geometry_msgs::Point position;
+  geometry_msgs::Quaternion orientation;
+  geometry_msgs::Vector3 linear;   // twist.linear, child frame
+  geometry_msgs::Vector3 angular;  // twist.angular, child frame
+};
+
+}  // namespace nav_msgs
+
 }  // namespace servoloop

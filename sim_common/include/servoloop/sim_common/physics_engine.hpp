@@ -63,6 +63,16 @@ inline double motorEffortBound(const EngineJointConfig& joint) noexcept {
   return joint.motor_effort_limit > 0.0 ? joint.motor_effort_limit : std::numeric_limits<double>::infinity();
 }
 
+// The root link of a floating robot, ground truth: the pose of its frame in
+// the world, and the velocity of that frame's origin and its angular
+// velocity, both in world axes.
+struct EngineBaseState {
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};                // m
+  Eigen::Quaterniond orientation{Eigen::Quaterniond::Identity()};   // root link -> world
+  Eigen::Vector3d linear_velocity{Eigen::Vector3d::Zero()};         // m/s, world axes
+  Eigen::Vector3d angular_velocity{Eigen::Vector3d::Zero()};        // rad/s, world axes
+};
+
 // Threading: init() and reset() are non-real-time (they may allocate and
 // throw). Every other method runs on the real-time thread: no allocation, no
 // locks, no logging, no exceptions. Joint indices are those of the `joints`
@@ -94,6 +104,10 @@ class PhysicsEngine {
   virtual void setJointEffort(std::size_t joint, double effort) noexcept = 0;
   virtual void setJointVelocityTarget(std::size_t joint, double velocity) noexcept = 0;
   virtual void setJointPositionTarget(std::size_t joint, double position) noexcept = 0;
+
+  // Real-time. The floating root link's state after the last step; false
+  // (out untouched) for a fixed base or an engine that does not track one.
+  virtual bool readBaseState(EngineBaseState& /*out*/) const noexcept { return false; }
 
   // Real-time. Every joint's state at once, `states[j]` for joint j, as the
   // getters above give it; `states` holds one entry per joint of init()'s

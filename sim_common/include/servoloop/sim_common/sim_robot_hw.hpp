@@ -99,6 +99,8 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   transmissions::RobotTransmissions& transmissions() { return *transmissions_; }
   const transmissions::RobotTransmissions& transmissions() const { return *transmissions_; }
   const urdf::ModelInterface& model() const { return *model_; }
+
+  bool readBaseGroundTruth(hardware_interface::BaseGroundTruth& out) const noexcept override;
   const SimSettings& settings() const noexcept { return settings_; }
   const hardware_interface::RobotJointLimits& jointLimits() const noexcept { return joint_limits_; }
   const ActuatorParameters& actuatorParameters(ActuatorIndex actuator) const {

@@ -66,6 +66,7 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
             const std::vector<sim_common::EngineJointConfig>& joints, const std::string& source_name) override;
 
   double jointPosition(std::size_t joint) const noexcept override;
+  bool readBaseState(sim_common::EngineBaseState& out) const noexcept override;
   double jointVelocity(std::size_t joint) const noexcept override;
   // The effort applied during the last step: the effort command in effort
   // mode, the motor's effort in velocity/position mode.
@@ -112,6 +113,8 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   std::unique_ptr<mjModel_, ModelDeleter> model_;
   std::unique_ptr<mjData_, DataDeleter> data_;
   std::string mjcf_;
+  int base_qpos_address_ = -1;  // the root's free joint; -1 for a fixed base
+  int base_dof_address_ = -1;
   std::vector<Joint> joints_;
   std::vector<double> initial_positions_;
   double position_motor_time_constant_s_ = kPositionMotorTimeConstant_s;
