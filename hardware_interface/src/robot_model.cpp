@@ -18,7 +18,9 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/hardware_interface/package_path.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
+#include "servoloop/hardware_interface/xacro.hpp"
 
 namespace servoloop {
 namespace {
@@ -312,38 +314,21 @@ void checkInertial(const urdf::Link& link, const std::string& source_name) {
   }
 }
 
-std::vector<fs::path> packageSearchRoots(const fs::path& base_dir) {
-  std::vector<fs::path> roots;
-  if (const char* env = std::getenv("ROS_PACKAGE_PATH")) {
-    std::stringstream ss(env);
-    std::string dir;
-    while (std::getline(ss, dir, ':')) {
-      if (!dir.empty()) roots.emplace_back(dir);
-    }
-  }
-  for (fs::path p = fs::absolute(base_dir); !p.empty(); p = p.parent_path()) {
-    roots.push_back(p);
-    if (p == p.parent_path()) break;
-  }
-  return roots;
-}
-
 // Returns the absolute path of an existing mesh file. A missing one throws
 // naming the link when `required` (collision: every backend needs it);
 // otherwise (visual: no backend draws it) it is one warning and the URI stays.
 std::string resolveMesh(const std::string& uri, const fs::path& base_dir, const std::string& what,
                         const std::string& source_name, bool required) {
   std::vector<fs::path> candidates;
-  const std::string package_prefix = "package://";
   const std::string file_prefix = "file://";
-  if (uri.rfind(package_prefix, 0) == 0) {
-    const std::string rest = uri.substr(package_prefix.size());
-    const auto slash = rest.find('/');
-    const std::string package = rest.substr(0, slash);
-    const std::string relative = slash == std::string::npos ? "" : rest.substr(slash + 1);
-    for (const auto& root : packageSearchRoots(base_dir)) {
-      if (root.filename() == package) candidates.push_back(root / relative);
-      candidates.push_back(root / package / relative);
+  if (uri.rfind("package://", 0) == 0) {
+    try {
+      candidates.push_back(resolvePackageUri(uri, base_dir, source_name));
+    } catch (const ConfigError& e) {
+      if (required) fail(source_name, what + " mesh '" + uri + "': " + e.what());
+      logger().warn("{}: {} mesh '{}': {}; no backend draws visual meshes, so the robot loads without it",
+                    source_name, what, uri, e.what());
+      return uri;
     }
   } else {
     fs::path path = uri.rfind(file_prefix, 0) == 0 ? fs::path(uri.substr(file_prefix.size())) : fs::path(uri);
@@ -365,8 +350,7 @@ std::string resolveMesh(const std::string& uri, const fs::path& base_dir, const 
     return uri;
   }
   fail(source_name, what + " mesh '" + uri + "' not found (looked for " + tried +
-                        "); fix the filename or add the file (package:// URIs search ROS_PACKAGE_PATH and the "
-                        "URDF's parent folders)");
+                        "); fix the filename or add the file");
 }
 
 void resolveMeshes(urdf::Link& link, const fs::path& base_dir, const std::string& source_name) {
@@ -401,19 +385,14 @@ std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& x
   return model;
 }
 
-std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string& path) {
+std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string& path, const XacroArgs& args) {
   std::error_code ec;
   if (!fs::exists(path, ec)) {
     throw ConfigError(path + ": URDF file not found; check the path (relative paths start at " +
                       fs::current_path().string() + ")");
   }
   if (fs::is_directory(path, ec)) throw ConfigError(path + ": is a folder, not a URDF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": URDF file cannot be read; check its permissions");
-  std::stringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ConfigError(path + ": reading the URDF file failed");
-  return parseRobotModel(simulatableUrdf(text.str(), path).xml, path);
+  return parseRobotModel(simulatableUrdf(readRobotDescription(path, args), path).xml, path);
 }
 
 }  // namespace servoloop

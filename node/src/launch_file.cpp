@@ -163,10 +163,17 @@ class Parser {
     requireMap(node, key, "{urdf: robot.urdf, controllers: [joint_state_controller]}");
     checkKeys(node, key,
               {"urdf", "model", "namespace", "params", "controllers", "stopped_controllers", "fixed_base", "pose",
-               "self_collide"});
+               "self_collide", "xacro_args"});
     RobotSpec robot;
     if (!node["urdf"]) fail(node, key, "missing 'urdf': give the robot description, e.g. urdf: robot.urdf");
     robot.urdf = existingFile(node["urdf"], key + ".urdf", "URDF file");
+    if (const YAML::Node args = node["xacro_args"]; args.IsDefined() && !args.IsNull()) {
+      if (!args.IsMap()) fail(args, key + ".xacro_args", "expected a map of xacro arguments, e.g. {prefix: left_}, got " + describe(args));
+      for (const auto& kv : args) {
+        const std::string name = kv.first.as<std::string>();
+        robot.xacro_args[name] = string(kv.second, key + ".xacro_args." + name);
+      }
+    }
     if (node["model"]) robot.model = string(node["model"], key + ".model");
     if (node["namespace"]) {
       const std::string ns = string(node["namespace"], key + ".namespace");

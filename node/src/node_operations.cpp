@@ -368,6 +368,14 @@ json NodeOperations::modelSpawn(const json& request) {
     }
     spec.pose = values;
   }
+  if (request.contains("xacro_args")) {
+    const nlohmann::json& args = request["xacro_args"];
+    if (!args.is_object()) throw Error("'model.spawn': xacro_args must be an object of name: value strings");
+    for (const auto& [name, value] : args.items()) {
+      if (!value.is_string()) throw Error("'model.spawn': xacro_args." + name + " must be a string");
+      spec.xacro_args[name] = value.get<std::string>();
+    }
+  }
   if (request.contains("fixed_base")) {
     if (!request["fixed_base"].is_boolean()) throw Error("'model.spawn': fixed_base must be true or false");
     spec.fixed_base = request["fixed_base"].get<bool>();

@@ -21,6 +21,7 @@
 #include "servoloop/core/logging.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
+#include "servoloop/hardware_interface/xacro.hpp"
 #include "servoloop/node/ground_truth_publisher.hpp"
 
 namespace servoloop::node {
@@ -28,14 +29,6 @@ namespace {
 
 // Simulated time between two bus flushes of a free-running loop.
 constexpr double kFreeRunningFlushInterval_s = 0.01;
-
-std::string readTextFile(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(fmt::format("URDF file '{}' cannot be read; check the path", path.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // Writes one world setting to the robot's sim/ parameters, where the backend
 // reads it, warning when a parameter file said otherwise.
@@ -79,7 +72,7 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   params::ParameterStore& store = *world.parameters;
 
   // Robot description and namespace.
-  const std::string xml = simulatableUrdf(readTextFile(spec.urdf), spec.urdf.string()).xml;
+  const std::string xml = simulatableUrdf(readRobotDescription(spec.urdf, spec.xacro_args), spec.urdf.string()).xml;
   model_ = parseRobotModel(xml, spec.urdf.string());
   robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
   namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);

@@ -11,6 +11,7 @@
 #include "servoloop/core/logging.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
+#include "servoloop/hardware_interface/xacro.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 
 namespace servoloop::sim_common {
@@ -51,14 +52,6 @@ bool offers(const transmissions::JointCommandInterfaces& offered, JointCommandMo
     case JointCommandMode::none: return true;
   }
   return false;
-}
-
-std::string readTextFile(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw ConfigError(path + ": cannot read the robot description; check the path");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
 }
 
 }  // namespace
@@ -144,7 +137,7 @@ void SimRobotHW::loadModel(const hi::HardwareInfo& info) {
     if (info.urdf_path.empty()) {
       throw ConfigError("simulation: no robot description given (neither URDF text nor a URDF path)");
     }
-    xml = readTextFile(info.urdf_path);
+    xml = readRobotDescription(info.urdf_path);
   }
   xml = simulatableUrdf(xml, source_name_).xml;
   urdf_self_collide_ = urdfRequestsSelfCollision(xml);

@@ -184,4 +184,49 @@ TEST_F(CliLaunch, BadLaunchFileKeyIsOneLine) {
       << result.err;
 }
 
+// A xacro robot: its launch file's xacro_args reach the expansion, a bad one
+// is one error naming the xacro file and line, and `servoloop xacro` and
+// `check-urdf` take the same file with name:=value arguments.
+const std::string kXacroRobot =
+    (fs::path(SERVOLOOP_SOURCE_DIR) / "tests" / "assets" / "xacro" / "two_wheel_arm.urdf.xacro").string();
+
+TEST_F(CliLaunch, XacroRobotRunsWithItsLaunchFileArguments) {
+  std::ofstream(dir_ / "xacro.launch.yaml") << "world: {backend: mock}\nrobots:\n  - urdf: '" << kXacroRobot
+                                             << "'\n    xacro_args: {arm_length: 0.6}\n";
+  CliResult result = run("launch xacro.launch.yaml --duration 0.05 --json");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json summary = json::parse(result.out);
+  std::vector<std::string> joints;
+  for (const auto& joint : summary.at("robots").at(0).at("joints")) joints.push_back(joint.at("name"));
+  EXPECT_EQ(joints, (std::vector<std::string>{"arm_joint", "left_wheel_joint", "right_wheel_joint"}));
+
+  // The argument is used in ${arm_length / 2} on line 47 of the xacro file.
+  std::ofstream(dir_ / "bad.launch.yaml") << "world: {backend: mock}\nrobots:\n  - urdf: '" << kXacroRobot
+                                           << "'\n    xacro_args: {arm_length: long}\n";
+  result = run("launch bad.launch.yaml --duration 0.05");
+  EXPECT_NE(result.status, 0);
+  EXPECT_EQ(lines(result.err), 1) << result.err;
+  EXPECT_NE(result.err.find(kXacroRobot + ":47: xacro: ${arm_length / 2}: unsupported operand types for /: str"),
+            std::string::npos)
+      << result.err;
+}
+
+TEST_F(CliLaunch, XacroCommandAndCheckUrdfTakeNameColonEqualsArguments) {
+  CliResult result = run("xacro '" + kXacroRobot + "' arm_length:=0.6 -o arm.urdf");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const std::string urdf = readFile(dir_ / "arm.urdf");
+  // The arm's mass is 2 kg/m times its length (0.6 m): 1.2 kg.
+  EXPECT_NE(urdf.find(R"(<mass value="1.2"/>)"), std::string::npos) << urdf;
+  EXPECT_EQ(urdf.find("xacro:"), std::string::npos) << "nothing of xacro is left";
+
+  result = run("check-urdf '" + kXacroRobot + "' arm_length:=0.6");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("robot name is: two_wheel_arm"), std::string::npos) << result.out;
+
+  result = run("check-urdf '" + kXacroRobot + "' arm_length=0.6");
+  EXPECT_NE(result.status, 0);
+  EXPECT_EQ(lines(result.err), 1) << result.err;
+  EXPECT_NE(result.err.find("'arm_length=0.6' is not name:=value"), std::string::npos) << result.err;
+}
+
 }  // namespace

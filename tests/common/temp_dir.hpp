@@ -25,7 +25,7 @@ class TempDir {
 
 // The whole content of a file ("" when it cannot be read).
 std::string readFile(const std::filesystem::path& path);
-// Writes `content` to `path`, replacing it.
+// Writes `content` to `path`, replacing it (its folders are made as needed).
 void writeFile(const std::filesystem::path& path, const std::string& content);
 
 }  // namespace servoloop::testing

@@ -271,7 +271,10 @@ TEST(RobotModel, MissingMeshFileIsNamed) {
 TEST(RobotModel, MissingPackageMeshIsNamed) {
   const std::string link = R"(<link name="arm">)" + kGoodInertial +
                            R"(<collision><geometry><mesh filename="package://nopkg/arm.stl"/></geometry></collision></link>)";
-  EXPECT_CONTAINS(errorOf(robot(kGoodJoint, link)), "link 'arm' <collision> mesh 'package://nopkg/arm.stl' not found");
+  const std::string message = errorOf(robot(kGoodJoint, link));
+  EXPECT_CONTAINS(message, "link 'arm' <collision> mesh 'package://nopkg/arm.stl'");
+  EXPECT_CONTAINS(message, "ROS package 'nopkg' not found");
+  EXPECT_CONTAINS(message, "ROS_PACKAGE_PATH");
 }
 
 // Descriptions shipped without their visual meshes (large .dae files left
@@ -281,7 +284,8 @@ TEST(RobotModel, MissingVisualMeshIsAWarning) {
                            R"(<visual><geometry><mesh filename="package://nopkg/arm.dae"/></geometry></visual></link>)";
   test::LogCapture log;
   EXPECT_EQ(errorOf(robot(kGoodJoint, link)), "");
-  EXPECT_EQ(log.count("link 'arm' <visual> mesh 'package://nopkg/arm.dae' not found"), 1u) << log.text();
+  EXPECT_EQ(log.count("link 'arm' <visual> mesh 'package://nopkg/arm.dae'"), 1u) << log.text();
+  EXPECT_EQ(log.count("ROS package 'nopkg' not found"), 1u) << log.text();
 }
 
 TEST(RobotModel, MeshesResolveRelativeAndPackageUris) {

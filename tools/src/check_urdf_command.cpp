@@ -24,6 +24,7 @@
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
+#include "servoloop/hardware_interface/xacro.hpp"
 #include "servoloop/transmissions/robot_transmissions.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 
@@ -37,6 +38,7 @@ using servoloop::formatDouble;
 
 struct CheckUrdfOptions {
   std::string file;
+  std::vector<std::string> xacro_args;  // name:=value, for a .xacro file
   bool json = false;
 };
 
@@ -279,8 +281,15 @@ void printText(const ordered_json& report) {
   }
 }
 
+std::string description(const CheckUrdfOptions& options) {
+  if (!isXacroPath(options.file)) return readFile(options.file);
+  XacroArgs args;
+  for (const auto& text : options.xacro_args) args.insert(parseXacroArg(text));
+  return expandXacroFile(options.file, args);
+}
+
 void runCheckUrdf(const CheckUrdfOptions& options) {
-  const SimulatableUrdf simulatable = simulatableUrdf(readFile(options.file), options.file);
+  const SimulatableUrdf simulatable = simulatableUrdf(description(options), options.file);
   const std::string& xml = simulatable.xml;
   const auto model = parseRobotModel(xml, options.file);
   const auto transmissions = tr::parseTransmissions(xml, options.file);
@@ -317,7 +326,10 @@ void addCheckUrdfCommand(CLI::App& root) {
   CLI::App* check = root.add_subcommand(
       "check-urdf",
       "Validate a URDF and show its tree, joints, limits, transmissions and hardware interfaces");
-  check->add_option("file", options->file, "URDF file")->required()->type_name("FILE");
+  check->add_option("file", options->file, "URDF file, or xacro file (.xacro) to expand first")
+      ->required()
+      ->type_name("FILE");
+  check->add_option("xacro_args", options->xacro_args, "xacro arguments for a .xacro file")->type_name("NAME:=VALUE");
   check->add_flag("--json", options->json, "Print the report as one JSON object");
   check->callback([options] { runCheckUrdf(*options); });
 }

@@ -13,6 +13,7 @@
 #include "command_registry.hpp"
 #include "node_connection.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/hardware_interface/xacro.hpp"
 
 namespace servoloop::cli {
 namespace {
@@ -29,6 +30,7 @@ struct SpawnModelOptions {
   std::array<double, 6> pose{};  // x y z roll pitch yaw, as gazebo_ros spawn_model's -x -y -z -R -P -Y
   bool pose_given = false;
   bool fixed_base = false;
+  std::vector<std::string> xacro_args;  // name:=value
 };
 
 void runSpawnModel(const SpawnModelOptions& options) {
@@ -41,6 +43,10 @@ void runSpawnModel(const SpawnModelOptions& options) {
   if (!params.empty()) request["params"] = params;
   if (options.pose_given) request["pose"] = options.pose;
   if (options.fixed_base) request["fixed_base"] = true;
+  for (const auto& arg : options.xacro_args) {
+    const auto [name, value] = parseXacroArg(arg);
+    request["xacro_args"][name] = value;
+  }
 
   servoloop::ipc::IpcClient client = connectToWorld();
   const auto reply = client.call("model.spawn", request, kSpawnCallTimeoutS);
@@ -52,7 +58,9 @@ void addSpawnModelCommand(CLI::App& root) {
   auto options = std::make_shared<SpawnModelOptions>();
   CLI::App* spawn = root.add_subcommand(
       "spawn-model", "Add a robot from a URDF file to the running world (gazebo_ros spawn_model)");
-  spawn->add_option("--urdf", options->urdf, "URDF file")->required()->type_name("FILE");
+  spawn->add_option("--urdf", options->urdf, "URDF or xacro file")->required()->type_name("FILE");
+  spawn->add_option("--xacro-arg", options->xacro_args, "xacro argument for a .xacro file (repeatable)")
+      ->type_name("NAME:=VALUE");
   spawn->add_option("--model", options->model, "Model name")->required()->type_name("NAME");
   spawn->add_option("-N,--namespace", options->ns,
                     "Robot namespace (default: the URDF's robotNamespace, else /<model>)")

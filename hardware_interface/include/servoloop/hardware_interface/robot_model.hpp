@@ -7,13 +7,16 @@
 
 #include <urdf_model/model.h>
 
+#include "servoloop/hardware_interface/xacro.hpp"
+
 namespace servoloop {
 
-// Reads the URDF file at `path`, leaves out what cannot be simulated the way
+// Reads the URDF file at `path` (a .xacro file is expanded with `args` first),
+// leaves out what cannot be simulated the way
 // Gazebo does (simulatableUrdf: massless moving links, with a warning) and
 // validates the rest; see parseRobotModel for what is checked. Throws
 // ConfigError if the file is missing or unreadable.
-std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string& path);
+std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string& path, const XacroArgs& args = {});
 
 // Parses and validates URDF text. `source_name` names the input in every error
 // message (normally the file path); relative mesh paths resolve against its

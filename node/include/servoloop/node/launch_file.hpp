@@ -18,9 +18,8 @@
 // non-real-time; errors are servoloop::ConfigError naming the launch file, the
 // line, the key and the fix.
 #include <array>
-#include <array>
 #include <filesystem>
-#include <optional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -54,7 +53,8 @@ struct ParameterFile {
 
 // One robot to spawn.
 struct RobotSpec {
-  std::filesystem::path urdf;  // absolute
+  std::filesystem::path urdf;  // absolute; a .xacro file is expanded with xacro_args
+  std::map<std::string, std::string> xacro_args;
   std::string model;           // model name; "" = the URDF's robot name
   std::string robot_namespace; // "" = not given (see robot_namespace.hpp)
   std::vector<ParameterFile> params;

@@ -1,0 +1,126 @@
+#include "servoloop/hardware_interface/package_path.hpp"
+
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+#include <tinyxml2.h>
+
+#include "servoloop/core/errors.hpp"
+
+namespace servoloop {
+namespace fs = std::filesystem;
+namespace {
+
+// rospack stops at a package and does not descend further; a bound on depth
+// keeps a ROS_PACKAGE_PATH entry such as $HOME from crawling a whole disk.
+constexpr int kMaxCrawlDepth = 5;
+
+// The <name> in `folder`/package.xml, or "" when there is none.
+std::string packageXmlName(const fs::path& folder) {
+  std::error_code ec;
+  const fs::path manifest = folder / "package.xml";
+  if (!fs::is_regular_file(manifest, ec)) return "";
+  tinyxml2::XMLDocument document;
+  if (document.LoadFile(manifest.c_str()) != tinyxml2::XML_SUCCESS) return "";
+  const tinyxml2::XMLElement* root = document.RootElement();
+  const tinyxml2::XMLElement* name = root ? root->FirstChildElement("name") : nullptr;
+  if (name == nullptr || name->GetText() == nullptr) return "";
+  std::string text = name->GetText();
+  const auto first = text.find_first_not_of(" \t\r\n");
+  const auto last = text.find_last_not_of(" \t\r\n");
+  return first == std::string::npos ? "" : text.substr(first, last - first + 1);
+}
+
+bool crawl(const fs::path& folder, const std::string& name, int depth, fs::path& found) {
+  const std::string here = packageXmlName(folder);
+  if (!here.empty()) {
+    if (here != name) return false;
+    found = folder;
+    return true;
+  }
+  if (depth >= kMaxCrawlDepth) return false;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec), end;
+       !ec && it != end; it.increment(ec)) {
+    const auto& entry = *it;
+    std::error_code type_ec;
+    if (!entry.is_directory(type_ec) || entry.is_symlink(type_ec)) continue;
+    const std::string base = entry.path().filename().string();
+    if (base.empty() || base[0] == '.') continue;
+    if (crawl(entry.path(), name, depth + 1, found)) return true;
+  }
+  return false;
+}
+
+std::vector<fs::path> rosPackagePath() {
+  std::vector<fs::path> roots;
+  if (const char* env = std::getenv("ROS_PACKAGE_PATH")) {
+    std::stringstream ss(env);
+    std::string dir;
+    while (std::getline(ss, dir, ':')) {
+      if (!dir.empty()) roots.emplace_back(dir);
+    }
+  }
+  return roots;
+}
+
+std::vector<fs::path> foldersAbove(const fs::path& near) {
+  std::vector<fs::path> folders;
+  std::error_code ec;
+  fs::path start = fs::absolute(near, ec);
+  if (!fs::is_directory(start, ec)) start = start.parent_path();
+  for (fs::path p = start.lexically_normal(); !p.empty(); p = p.parent_path()) {
+    folders.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  return folders;
+}
+
+}  // namespace
+
+fs::path findPackage(const std::string& name, const fs::path& near, const std::string& source_name) {
+  if (name.empty()) throw ConfigError(source_name + ": an empty ROS package name; write package://<package>/<path>");
+  fs::path found;
+  const std::vector<fs::path> roots = rosPackagePath();
+  for (const auto& root : roots) {
+    if (crawl(root, name, 0, found)) return found;
+  }
+  const std::vector<fs::path> above = foldersAbove(near);
+  std::error_code ec;
+  for (const auto& folder : above) {
+    if (packageXmlName(folder) == name) return folder;
+    for (fs::directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec), end;
+         !ec && it != end; it.increment(ec)) {
+      std::error_code type_ec;
+      if (it->is_directory(type_ec) && packageXmlName(it->path()) == name) return it->path();
+    }
+  }
+  for (const auto& folder : above) {
+    if (folder.filename() == name) return folder;
+    if (fs::is_directory(folder / name, ec)) return folder / name;
+  }
+  std::string looked = "ROS_PACKAGE_PATH ";
+  if (roots.empty()) {
+    looked += "(not set)";
+  } else {
+    for (std::size_t i = 0; i < roots.size(); ++i) looked += (i ? ":" : "") + roots[i].string();
+  }
+  looked += ", then package.xml files and folders named '" + name + "' above " +
+            (above.empty() ? near.string() : above.front().string());
+  throw ConfigError(source_name + ": ROS package '" + name + "' not found (looked in " + looked +
+                    "); add the folder that holds it to ROS_PACKAGE_PATH, e.g. export ROS_PACKAGE_PATH=/path/to/"
+                    "src:$ROS_PACKAGE_PATH");
+}
+
+fs::path resolvePackageUri(const std::string& uri, const fs::path& near, const std::string& source_name) {
+  const std::string prefix = "package://";
+  if (uri.rfind(prefix, 0) != 0) return uri;
+  const std::string rest = uri.substr(prefix.size());
+  const auto slash = rest.find('/');
+  const std::string package = rest.substr(0, slash);
+  const fs::path folder = findPackage(package, near, source_name);
+  return slash == std::string::npos ? folder : folder / rest.substr(slash + 1);
+}
+
+}  // namespace servoloop

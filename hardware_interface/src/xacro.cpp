@@ -1,0 +1,772 @@
+#include "servoloop/hardware_interface/xacro.hpp"
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include <tinyxml2.h>
+#include <yaml-cpp/yaml.h>
+
+#include "servoloop/core/errors.hpp"
+#include "servoloop/hardware_interface/package_path.hpp"
+#include "xacro_expression.hpp"
+
+namespace servoloop {
+namespace fs = std::filesystem;
+namespace {
+
+using tinyxml2::XMLDocument;
+using tinyxml2::XMLElement;
+using tinyxml2::XMLNode;
+using xacro::ExpressionError;
+using xacro::Value;
+
+// Macro calls and includes nest at most this deep (a macro calling itself
+// without end stops here), and an expansion makes at most this many nodes (a
+// few macros calling each other twice over would otherwise fill the memory).
+constexpr int kMaxNesting = 100;
+constexpr std::size_t kMaxOutputNodes = 2'000'000;
+constexpr std::uintmax_t kMaxFileBytes = 64u << 20;
+
+// A block: a macro's *name / **name parameter (already expanded in the caller)
+// or a <xacro:property> with a body (expanded where it is inserted).
+struct Block {
+  const XMLElement* holder = nullptr;
+  bool contents_only = false;
+  bool expanded = false;
+};
+
+struct Property {
+  std::optional<std::string> text;  // not evaluated yet (xacro evaluates on first use)
+  std::optional<Value> value;
+  std::optional<Block> block;
+  bool evaluating = false;
+};
+
+struct File {
+  std::string name;
+  fs::path dir;
+  std::set<std::string> prefixes;  // element prefixes bound to xacro's namespace
+};
+
+struct Macro {
+  struct Param {
+    std::string name;
+    int stars = 0;  // 1: *block, 2: **block contents
+    std::optional<std::string> default_text;
+    bool forward = false;  // ^: the caller's property of the same name
+  };
+  std::string name;
+  std::vector<Param> params;
+  const XMLElement* body = nullptr;
+  File file;
+};
+
+// xacro scopes are dynamic: a macro body sees its parameters, then the
+// properties where it is called.
+struct Scope {
+  Scope* parent = nullptr;
+  std::map<std::string, Property> properties;
+  std::map<std::string, std::shared_ptr<const Macro>> macros;
+  std::map<std::string, Scope*> namespaces;
+};
+
+std::string readFile(const fs::path& path, const std::string& what) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw ConfigError(path.string() + ": " + what + " not found");
+  if (fs::is_directory(path, ec)) throw ConfigError(path.string() + ": is a folder, not " + what);
+  const auto size = fs::file_size(path, ec);
+  if (!ec && size > kMaxFileBytes) {
+    throw ConfigError(path.string() + ": " + what + " is " + std::to_string(size >> 20) + " MiB; the limit is " +
+                      std::to_string(kMaxFileBytes >> 20) + " MiB");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path.string() + ": " + what + " cannot be read; check its permissions");
+  std::string text;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxFileBytes) {
+      throw ConfigError(path.string() + ": " + what + " is larger than " + std::to_string(kMaxFileBytes >> 20) +
+                        " MiB; is it a regular file?");
+    }
+  }
+  return text;
+}
+
+bool isXacroNamespace(const std::string& uri) { return uri.find("ros.org/wiki/xacro") != std::string::npos; }
+
+std::set<std::string> xacroPrefixes(const XMLElement* root) {
+  std::set<std::string> prefixes{"xacro"};
+  for (const auto* a = root->FirstAttribute(); a != nullptr; a = a->Next()) {
+    const std::string name = a->Name();
+    if (name.rfind("xmlns:", 0) == 0 && isXacroNamespace(a->Value())) prefixes.insert(name.substr(6));
+  }
+  return prefixes;
+}
+
+Value literalized(Value v) { return v.kind == Value::Kind::String ? xacro::literal(v.text) : v; }
+
+Value fromYaml(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Map: {
+      std::map<std::string, Value> items;
+      for (const auto& kv : node) items[kv.first.Scalar()] = fromYaml(kv.second);
+      return Value::ofDict(std::move(items));
+    }
+    case YAML::NodeType::Sequence: {
+      std::vector<Value> items;
+      for (const auto& item : node) items.push_back(fromYaml(item));
+      return Value::ofList(std::move(items));
+    }
+    case YAML::NodeType::Scalar: return node.Tag() == "!" ? Value::ofString(node.Scalar()) : xacro::literal(node.Scalar());
+    default: return Value::none();
+  }
+}
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+class Expander : public xacro::Names {
+ public:
+  explicit Expander(XacroArgs args) : args_(std::move(args)) {}
+
+  std::string run(const std::string& text, const std::string& source_name) {
+    const XMLDocument& input = parse(text, source_name);
+    const XMLElement* root = input.RootElement();
+    File file{source_name, fs::path(source_name).parent_path(), xacroPrefixes(root)};
+    if (file.dir.empty()) file.dir = fs::current_path();
+    files_.push_back(file);
+    Scope& global = newScope(nullptr);
+    output_.InsertEndChild(output_.NewDeclaration());
+    output_.InsertEndChild(output_.NewComment((" expanded by servoloop xacro from " + source_name + " ").c_str()));
+    XMLElement* out_root = output_.NewElement(root->Name());
+    output_.InsertEndChild(out_root);
+    guarded(root, [&] {
+      copyAttributes(root, out_root, global);
+      expandChildren(root, out_root, global);
+    });
+    tinyxml2::XMLPrinter printer;
+    output_.Print(&printer);
+    return printer.CStr();
+  }
+
+  // xacro::Names
+  std::optional<Value> lookup(const std::string& name) override { return lookupIn(*current_, name); }
+
+  Value loadYaml(const std::string& file) override {
+    fs::path path = file;
+    if (path.is_relative()) path = files_.back().dir / path;
+    try {
+      return fromYaml(YAML::Load(readFile(path, "YAML file")));
+    } catch (const YAML::Exception& e) {
+      throw ExpressionError("load_yaml('" + file + "'): " + path.string() + " is not valid YAML: " + e.what());
+    } catch (const ConfigError& e) {
+      throw ExpressionError(std::string("load_yaml('") + file + "'): " + e.what());
+    }
+  }
+
+ private:
+  const XMLDocument& parse(const std::string& text, const std::string& name) {
+    auto document = std::make_unique<XMLDocument>();
+    if (document->Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
+      throw ConfigError(name + ":" + std::to_string(document->ErrorLineNum()) + ": xacro: not well-formed XML (" +
+                        document->ErrorStr() + ")");
+    }
+    if (document->RootElement() == nullptr) throw ConfigError(name + ": xacro: the file has no root element");
+    names_[document.get()] = name;
+    documents_.push_back(std::move(document));
+    return *documents_.back();
+  }
+
+  Scope& newScope(Scope* parent) {
+    scopes_.push_back(std::make_unique<Scope>());
+    scopes_.back()->parent = parent;
+    return *scopes_.back();
+  }
+
+  [[noreturn]] void fail(const XMLNode* where, const std::string& message) const {
+    std::string location = files_.back().name;
+    if (where != nullptr) {
+      const auto it = names_.find(where->GetDocument());
+      if (it != names_.end()) location = it->second + ":" + std::to_string(where->GetLineNum());
+    }
+    std::string text = location + ": xacro: " + message;
+    for (auto it = calls_.rbegin(); it != calls_.rend(); ++it) text += "; in " + *it;
+    throw ConfigError(text);
+  }
+
+  template <typename F>
+  void guarded(const XMLElement* element, F&& f) {
+    try {
+      f();
+    } catch (const ExpressionError& e) {
+      fail(element, e.what());
+    }
+  }
+
+  // ----- properties and names -----
+
+  std::optional<Value> lookupIn(Scope& scope, const std::string& name) {
+    for (Scope* s = &scope; s != nullptr; s = s->parent) {
+      if (auto it = s->properties.find(name); it != s->properties.end()) return resolve(*s, name, it->second);
+    }
+    const auto dot = name.find('.');
+    if (dot == std::string::npos) return std::nullopt;
+    const std::string head = name.substr(0, dot);
+    const std::string rest = name.substr(dot + 1);
+    for (Scope* s = &scope; s != nullptr; s = s->parent) {
+      if (auto it = s->namespaces.find(head); it != s->namespaces.end()) return lookupIn(*it->second, rest);
+    }
+    std::optional<Value> value = lookupIn(scope, head);
+    if (!value) return std::nullopt;
+    std::string path = rest;
+    while (!path.empty()) {
+      const auto next = path.find('.');
+      const std::string key = path.substr(0, next);
+      if (value->kind != Value::Kind::Dict) {
+        throw ExpressionError("'" + name + "': '" + head + "' is a " + xacro::typeName(*value) + ", not a dict");
+      }
+      const auto it = value->dict->find(key);
+      if (it == value->dict->end()) throw ExpressionError("'" + name + "': no key '" + key + "'");
+      value = it->second;
+      path = next == std::string::npos ? "" : path.substr(next + 1);
+    }
+    return value;
+  }
+
+  Value resolve(Scope& owner, const std::string& name, Property& property) {
+    if (property.block) {
+      throw ExpressionError("property '" + name + "' is a block; insert it with <xacro:insert_block name=\"" + name +
+                            "\"/>");
+    }
+    if (!property.value) {
+      if (property.evaluating) throw ExpressionError("property '" + name + "' is defined in terms of itself");
+      property.evaluating = true;
+      try {
+        property.value = literalized(evalText(*property.text, owner));
+      } catch (const ExpressionError& e) {
+        property.evaluating = false;
+        throw ExpressionError("property '" + name + "' (\"" + *property.text + "\"): " + e.what());
+      }
+      property.evaluating = false;
+    }
+    return *property.value;
+  }
+
+  std::shared_ptr<const Macro> findMacro(Scope& scope, const std::string& name) {
+    for (Scope* s = &scope; s != nullptr; s = s->parent) {
+      if (auto it = s->macros.find(name); it != s->macros.end()) return it->second;
+    }
+    const auto dot = name.find('.');
+    if (dot == std::string::npos) return nullptr;
+    for (Scope* s = &scope; s != nullptr; s = s->parent) {
+      if (auto it = s->namespaces.find(name.substr(0, dot)); it != s->namespaces.end()) {
+        return findMacro(*it->second, name.substr(dot + 1));
+      }
+    }
+    return nullptr;
+  }
+
+  // ----- text: ${expression}, $(substitution), $${ and $$( escapes -----
+
+  Value evalText(const std::string& text, Scope& scope) {
+    std::vector<Value> parts;
+    std::string plain;
+    auto flush = [&] {
+      if (!plain.empty()) parts.push_back(Value::ofString(plain));
+      plain.clear();
+    };
+    std::size_t i = 0;
+    while (i < text.size()) {
+      if (text[i] != '$') {
+        plain += text[i++];
+        continue;
+      }
+      std::size_t j = i;
+      while (j < text.size() && text[j] == '$') ++j;
+      if (j >= text.size() || (text[j] != '{' && text[j] != '(')) {
+        plain.append(text, i, j - i);
+        i = j;
+        continue;
+      }
+      if (j - i >= 2) {  // $${ and $$( stand for ${ and $( themselves
+        plain.append(j - i - 1, '$');
+        plain += text[j];
+        i = j + 1;
+        continue;
+      }
+      if (text[j] == '{') {
+        const auto close = text.find('}', j);
+        if (close == std::string::npos) throw ExpressionError("'${' without a closing '}' in \"" + text + "\"");
+        std::string expression = text.substr(j + 1, close - j - 1);
+        // As xacro does, $(...) inside ${...} is substituted first: ${$(arg mass) * 2}.
+        if (expression.find("$(") != std::string::npos) expression = evalString(expression, scope);
+        flush();
+        Scope* saved = current_;
+        current_ = &scope;
+        try {
+          parts.push_back(xacro::evaluate(expression, *this));
+        } catch (const ExpressionError& e) {
+          current_ = saved;
+          throw ExpressionError("${" + expression + "}: " + e.what());
+        }
+        current_ = saved;
+        i = close + 1;
+      } else {
+        int depth = 0;
+        std::size_t close = j;
+        for (; close < text.size(); ++close) {
+          if (text[close] == '(') ++depth;
+          if (text[close] == ')' && --depth == 0) break;
+        }
+        if (close >= text.size()) throw ExpressionError("'$(' without a closing ')' in \"" + text + "\"");
+        flush();
+        parts.push_back(Value::ofString(substitute(text.substr(j + 1, close - j - 1), scope)));
+        i = close + 1;
+      }
+    }
+    flush();
+    if (parts.empty()) return Value::ofString("");
+    if (parts.size() == 1) return parts[0];
+    std::string joined;
+    for (const auto& p : parts) joined += xacro::str(p);
+    return Value::ofString(joined);
+  }
+
+  std::string evalString(const std::string& text, Scope& scope) { return xacro::str(evalText(text, scope)); }
+
+  // $(arg x), $(find pkg), $(env V), $(optenv V default), $(dirname), $(eval expr)
+  std::string substitute(const std::string& body, Scope& scope) {
+    const std::string inner = body.find("$(") != std::string::npos ? evalString(body, scope) : body;
+    const std::string trimmed = trim(inner);
+    const auto space = trimmed.find_first_of(" \t");
+    const std::string command = trimmed.substr(0, space);
+    const std::string rest = space == std::string::npos ? "" : trim(trimmed.substr(space + 1));
+    if (command == "arg") {
+      if (auto it = args_.find(rest); it != args_.end()) return it->second;
+      throw ExpressionError("$(arg " + rest + ") is not set: pass " + rest + ":=value, or declare <xacro:arg name=\"" +
+                            rest + "\" default=\"...\"/> before using it");
+    }
+    if (command == "find") {
+      try {
+        return findPackage(rest, files_.back().dir, files_.back().name).string();
+      } catch (const ConfigError& e) {
+        throw ExpressionError(std::string("$(find ") + rest + "): " + e.what());
+      }
+    }
+    if (command == "env" || command == "optenv") {
+      const auto split = rest.find_first_of(" \t");
+      const std::string variable = rest.substr(0, split);
+      if (const char* value = std::getenv(variable.c_str())) return value;
+      if (command == "optenv") return split == std::string::npos ? "" : trim(rest.substr(split + 1));
+      throw ExpressionError("$(env " + variable + "): the environment variable is not set; set it or use $(optenv " +
+                            variable + " default)");
+    }
+    if (command == "dirname") return files_.back().dir.string();
+    if (command == "eval") {
+      ArgNames arg_names(args_, *this);
+      return xacro::str(xacro::evaluate(rest, arg_names));
+    }
+    throw ExpressionError("unknown substitution $(" + trimmed +
+                          "); xacro knows $(arg), $(find), $(env), $(optenv), $(dirname) and $(eval)");
+  }
+
+  // $(eval ...) sees the arguments as names.
+  class ArgNames : public xacro::Names {
+   public:
+    ArgNames(const XacroArgs& args, xacro::Names& files) : args_(args), files_(files) {}
+    std::optional<Value> lookup(const std::string& name) override {
+      if (auto it = args_.find(name); it != args_.end()) return xacro::literal(it->second);
+      return std::nullopt;
+    }
+    Value loadYaml(const std::string& file) override { return files_.loadYaml(file); }
+
+   private:
+    const XacroArgs& args_;
+    xacro::Names& files_;
+  };
+
+  // ----- the XML walk -----
+
+  void countNode(const XMLNode* where) {
+    if (++output_nodes_ > kMaxOutputNodes) {
+      fail(where, "the expansion passed " + std::to_string(kMaxOutputNodes) +
+                      " XML nodes; a macro probably calls itself or another macro without end");
+    }
+  }
+
+  void copyAttributes(const XMLElement* in, XMLElement* out, Scope& scope) {
+    for (const auto* a = in->FirstAttribute(); a != nullptr; a = a->Next()) {
+      const std::string name = a->Name();
+      if (name.rfind("xmlns:", 0) == 0 && files_.back().prefixes.count(name.substr(6)) > 0) continue;
+      out->SetAttribute(a->Name(), evalString(a->Value(), scope).c_str());
+    }
+  }
+
+  void expandChildren(const XMLNode* in, XMLNode* out, Scope& scope) {
+    for (const XMLNode* node = in->FirstChild(); node != nullptr; node = node->NextSibling()) {
+      countNode(node);
+      if (const XMLElement* element = node->ToElement()) {
+        expandElement(element, out, scope);
+      } else if (const tinyxml2::XMLText* text = node->ToText()) {
+        if (text->CData()) {
+          out->InsertEndChild(text->ShallowClone(&output_));
+        } else {
+          std::string value;
+          guarded(in->ToElement(), [&] { value = evalString(text->Value(), scope); });
+          out->InsertEndChild(output_.NewText(value.c_str()));
+        }
+      } else if (node->ToComment() != nullptr) {
+        out->InsertEndChild(output_.NewComment(node->Value()));
+      }
+    }
+  }
+
+  const char* xacroName(const XMLElement* element) const {
+    const char* name = element->Name();
+    const char* colon = std::strchr(name, ':');
+    if (colon == nullptr) return nullptr;
+    return files_.back().prefixes.count(std::string(name, colon)) > 0 ? colon + 1 : nullptr;
+  }
+
+  void expandElement(const XMLElement* element, XMLNode* out, Scope& scope) {
+    const char* local = xacroName(element);
+    if (local == nullptr) {
+      XMLElement* copy = output_.NewElement(element->Name());
+      out->InsertEndChild(copy);
+      guarded(element, [&] { copyAttributes(element, copy, scope); });
+      expandChildren(element, copy, scope);
+      return;
+    }
+    const std::string what = local;
+    guarded(element, [&] {
+      if (what == "property") {
+        defineProperty(element, scope);
+      } else if (what == "arg") {
+        const std::string name = required(element, "name");
+        if (args_.count(name) == 0 && element->Attribute("default") != nullptr) {
+          args_[name] = evalString(element->Attribute("default"), scope);
+        }
+      } else if (what == "include") {
+        include(element, out, scope);
+      } else if (what == "macro") {
+        defineMacro(element, scope);
+      } else if (what == "if" || what == "unless") {
+        if (condition(element, scope) == (what == "if")) expandChildren(element, out, scope);
+      } else if (what == "insert_block") {
+        insertBlock(element, out, scope);
+      } else if (what == "element") {
+        const tinyxml2::XMLAttribute* name_attribute = nullptr;
+        for (const auto* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
+          const std::string attribute = a->Name();
+          const auto colon = attribute.find(':');
+          if (colon != std::string::npos && attribute.substr(colon) == ":name" &&
+              files_.back().prefixes.count(attribute.substr(0, colon)) > 0) {
+            name_attribute = a;
+          }
+        }
+        if (name_attribute == nullptr) fail(element, "<xacro:element> needs the attribute xacro:name");
+        const std::string name = evalString(name_attribute->Value(), scope);
+        if (name.empty()) fail(element, "<xacro:element xacro:name=...> gives an empty element name");
+        XMLElement* created = output_.NewElement(name.c_str());
+        out->InsertEndChild(created);
+        for (const auto* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
+          if (a != name_attribute) created->SetAttribute(a->Name(), evalString(a->Value(), scope).c_str());
+        }
+        expandChildren(element, created, scope);
+      } else if (what == "attribute") {
+        XMLElement* parent = out->ToElement();
+        if (parent == nullptr) fail(element, "<xacro:attribute> must sit inside an element");
+        parent->SetAttribute(evalString(required(element, "name"), scope).c_str(),
+                             evalString(required(element, "value"), scope).c_str());
+      } else if (what == "call") {
+        callMacro(element, evalString(required(element, "macro"), scope), out, scope, "macro");
+      } else {
+        callMacro(element, what, out, scope, "");
+      }
+    });
+  }
+
+  std::string required(const XMLElement* element, const char* attribute) {
+    const char* value = element->Attribute(attribute);
+    if (value == nullptr) fail(element, std::string("<") + element->Name() + "> needs the attribute " + attribute);
+    return value;
+  }
+
+  void defineProperty(const XMLElement* element, Scope& scope) {
+    const std::string name = required(element, "name");
+    if (name.empty()) fail(element, "<xacro:property> with an empty name");
+    Scope* target = &scope;
+    const char* where = element->Attribute("scope");
+    const std::string where_text = where ? where : "";
+    if (where_text == "parent") {
+      target = scope.parent != nullptr ? scope.parent : &scope;
+    } else if (where_text == "global") {
+      while (target->parent != nullptr) target = target->parent;
+    } else if (!where_text.empty()) {
+      fail(element, "scope=\"" + where_text + "\" is neither \"parent\" nor \"global\"");
+    }
+    Property property;
+    if (const char* value = element->Attribute("value")) {
+      property.text = value;
+      const char* lazy = element->Attribute("lazy_eval");
+      if (target != &scope || (lazy != nullptr && std::string(lazy) == "false")) {
+        property.value = literalized(evalText(value, scope));
+      }
+    } else if (const char* fallback = element->Attribute("default")) {
+      if (lookupIn(scope, name)) return;
+      property.text = fallback;
+    } else {
+      property.block = Block{element, true, false};
+    }
+    target->properties[name] = std::move(property);
+  }
+
+  bool condition(const XMLElement* element, Scope& scope) {
+    const Value v = evalText(required(element, "value"), scope);
+    switch (v.kind) {
+      case Value::Kind::Bool: return v.boolean;
+      case Value::Kind::Int: return v.integer != 0;
+      case Value::Kind::Float: return static_cast<long long>(v.real) != 0;
+      case Value::Kind::String: {
+        const Value parsed = xacro::literal(trim(v.text));
+        if (parsed.kind == Value::Kind::Bool) return parsed.boolean;
+        if (parsed.kind == Value::Kind::Int) return parsed.integer != 0;
+        break;
+      }
+      default: break;
+    }
+    fail(element, std::string("<") + element->Name() + " value=\"" + element->Attribute("value") + "\"> is \"" +
+                      xacro::str(v) + "\", which is not a boolean (true, false, 1 or 0)");
+  }
+
+  void include(const XMLElement* element, XMLNode* out, Scope& scope) {
+    const std::string filename = evalString(required(element, "filename"), scope);
+    fs::path path = filename;
+    if (path.is_relative()) path = files_.back().dir / path;
+    path = path.lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+      const char* optional = element->Attribute("optional");
+      if (optional != nullptr && literalized(Value::ofString(optional)).boolean) return;
+      fail(element, "<xacro:include filename=\"" + filename + "\">: " + path.string() +
+                        " not found; fix the filename (relative names start at " + files_.back().dir.string() + ")");
+    }
+    if (static_cast<int>(files_.size()) > kMaxNesting) {
+      fail(element, "includes nest more than " + std::to_string(kMaxNesting) + " deep; does a file include itself?");
+    }
+    const std::string text = readFile(path, "xacro include");
+    const XMLDocument& document = parse(text, path.string());
+    const XMLElement* root = document.RootElement();
+    files_.push_back(File{path.string(), path.parent_path(), xacroPrefixes(root)});
+    Scope* target = &scope;
+    if (const char* ns = element->Attribute("ns")) {
+      target = &newScope(&scope);
+      scope.namespaces[evalString(ns, scope)] = target;
+    }
+    expandChildren(root, out, *target);
+    files_.pop_back();
+  }
+
+  void defineMacro(const XMLElement* element, Scope& scope) {
+    auto macro = std::make_shared<Macro>();
+    macro->name = required(element, "name");
+    macro->body = element;
+    macro->file = files_.back();
+    const char* params = element->Attribute("params");
+    std::string text = params != nullptr ? params : "";
+    std::size_t i = 0;
+    while (i < text.size()) {
+      while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+      if (i >= text.size()) break;
+      std::string token;
+      char quote = 0;
+      while (i < text.size() && (quote != 0 || !std::isspace(static_cast<unsigned char>(text[i])))) {
+        if (quote == 0 && (text[i] == '\'' || text[i] == '"')) {
+          quote = text[i];
+        } else if (text[i] == quote) {
+          quote = 0;
+        }
+        token += text[i++];
+      }
+      Macro::Param param;
+      while (param.stars < 2 && !token.empty() && token[0] == '*') {
+        ++param.stars;
+        token.erase(0, 1);
+      }
+      auto assign = token.find(":=");
+      std::size_t skip = 2;
+      if (assign == std::string::npos) {
+        assign = token.find('=');
+        skip = 1;
+      }
+      param.name = token.substr(0, assign);
+      if (assign != std::string::npos) {
+        std::string fallback = token.substr(assign + skip);
+        if (fallback.size() >= 2 && fallback.front() == '"' && fallback.back() == '"') {
+          fallback = fallback.substr(1, fallback.size() - 2);
+        }
+        if (!fallback.empty() && fallback[0] == '^') {
+          param.forward = true;
+          if (fallback.size() > 1 && fallback[1] == '|') param.default_text = fallback.substr(2);
+        } else {
+          param.default_text = fallback;
+        }
+      }
+      if (param.name.empty()) fail(element, "macro '" + macro->name + "': a parameter without a name in params=\"" + text + "\"");
+      macro->params.push_back(std::move(param));
+    }
+    scope.macros[macro->name] = std::move(macro);
+  }
+
+  void callMacro(const XMLElement* call, const std::string& name, XMLNode* out, Scope& scope, const std::string& via) {
+    const std::shared_ptr<const Macro> macro = findMacro(scope, name);
+    if (!macro) {
+      fail(call, "<" + std::string(call->Name()) + ">" + (via.empty() ? "" : " (macro=\"" + name + "\")") +
+                     ": no macro named '" + name +
+                     "' is defined here; define it with <xacro:macro name=\"" + name +
+                     "\" params=\"...\"> before this line, or include the file that does");
+    }
+    if (static_cast<int>(calls_.size()) >= kMaxNesting) {
+      fail(call, "macro calls nest more than " + std::to_string(kMaxNesting) + " deep; does macro '" + name +
+                     "' call itself without end?");
+    }
+    // The call's scope (and any made inside it) ends with the call: nothing
+    // outside keeps a reference to it.
+    const std::size_t scopes_before = scopes_.size();
+    Scope& local = newScope(&scope);
+    std::string known;
+    for (const auto& p : macro->params) known += (known.empty() ? "" : ", ") + std::string(p.stars, '*') + p.name;
+    for (const auto* a = call->FirstAttribute(); a != nullptr; a = a->Next()) {
+      const std::string attribute = a->Name();
+      if (!via.empty() && attribute == "macro") continue;
+      bool found = false;
+      for (const auto& p : macro->params) found = found || (p.stars == 0 && p.name == attribute);
+      if (!found) {
+        fail(call, "macro '" + name + "' has no parameter '" + attribute + "' (its parameters: " +
+                       (known.empty() ? "none" : known) + ")");
+      }
+      Property property;
+      property.value = literalized(evalText(a->Value(), scope));
+      local.properties[attribute] = std::move(property);
+    }
+    // Block arguments are the call's child elements, expanded where the call is.
+    // The holder lives until the call returns (only the call's own scope
+    // refers to it); tinyxml2 keeps unattached nodes in a list it scans on
+    // every insertion, so leaving holders behind would make expansion quadratic.
+    XMLElement* blocks = nullptr;
+    if (call->FirstChildElement() != nullptr) {
+      blocks = output_.NewElement("blocks");
+      expandChildren(call, blocks, scope);
+    }
+    const XMLElement* next_block = blocks != nullptr ? blocks->FirstChildElement() : nullptr;
+    for (const auto& p : macro->params) {
+      if (p.stars > 0) {
+        if (next_block == nullptr) {
+          fail(call, "macro '" + name + "' needs a child element for its block parameter '" +
+                         std::string(p.stars, '*') + p.name + "'");
+        }
+        Property property;
+        property.block = Block{next_block, p.stars == 2, true};
+        local.properties[p.name] = std::move(property);
+        next_block = next_block->NextSiblingElement();
+        continue;
+      }
+      if (local.properties.count(p.name) > 0) continue;
+      Property property;
+      if (p.forward) {
+        if (auto forwarded = lookupIn(scope, p.name)) {
+          property.value = *forwarded;
+        } else if (p.default_text) {
+          property.value = literalized(evalText(*p.default_text, local));
+        } else {
+          fail(call, "macro '" + name + "': parameter " + p.name + ":=^ takes property '" + p.name +
+                         "' from where the macro is called, and it is not defined there");
+        }
+      } else if (p.default_text) {
+        property.value = literalized(evalText(*p.default_text, local));
+      } else {
+        fail(call, "macro '" + name + "' is called without its parameter '" + p.name + "'; add " + p.name + "=\"...\"");
+      }
+      local.properties[p.name] = std::move(property);
+    }
+    calls_.push_back("macro '" + name + "' called at " + names_.at(call->GetDocument()) + ":" +
+                     std::to_string(call->GetLineNum()));
+    files_.push_back(macro->file);
+    expandChildren(macro->body, out, local);
+    files_.pop_back();
+    calls_.pop_back();
+    if (blocks != nullptr) output_.DeleteNode(blocks);
+    scopes_.resize(scopes_before);
+  }
+
+  void insertBlock(const XMLElement* element, XMLNode* out, Scope& scope) {
+    const std::string name = evalString(required(element, "name"), scope);
+    for (Scope* s = &scope; s != nullptr; s = s->parent) {
+      const auto it = s->properties.find(name);
+      if (it == s->properties.end()) continue;
+      if (!it->second.block) fail(element, "'" + name + "' is a property with a value, not a block");
+      const Block block = *it->second.block;
+      if (!block.expanded) {
+        expandChildren(block.holder, out, scope);
+      } else if (block.contents_only) {
+        for (const XMLNode* n = block.holder->FirstChild(); n != nullptr; n = n->NextSibling()) {
+          out->InsertEndChild(n->DeepClone(&output_));
+        }
+      } else {
+        out->InsertEndChild(block.holder->DeepClone(&output_));
+      }
+      return;
+    }
+    fail(element, "<xacro:insert_block name=\"" + name + "\">: no block named '" + name +
+                      "' (a *" + name + " macro parameter or a <xacro:property name=\"" + name + "\"> with a body)");
+  }
+
+  XacroArgs args_;
+  std::vector<std::unique_ptr<XMLDocument>> documents_;
+  std::map<const XMLDocument*, std::string> names_;
+  std::vector<std::unique_ptr<Scope>> scopes_;
+  std::vector<File> files_;
+  std::vector<std::string> calls_;
+  Scope* current_ = nullptr;
+  XMLDocument output_;
+  std::size_t output_nodes_ = 0;
+};
+
+}  // namespace
+
+bool isXacroPath(const fs::path& path) { return path.extension() == ".xacro"; }
+
+std::string expandXacro(const std::string& text, const std::string& source_name, const XacroArgs& args) {
+  Expander expander(args);
+  return expander.run(text, source_name);
+}
+
+std::string expandXacroFile(const fs::path& path, const XacroArgs& args) {
+  return expandXacro(readFile(path, "xacro file"), path.string(), args);
+}
+
+std::string readRobotDescription(const fs::path& path, const XacroArgs& args) {
+  if (isXacroPath(path)) return expandXacroFile(path, args);
+  return readFile(path, "URDF file");
+}
+
+std::pair<std::string, std::string> parseXacroArg(const std::string& text) {
+  const auto assign = text.find(":=");
+  if (assign == std::string::npos || assign == 0) {
+    throw ConfigError("xacro argument '" + text + "' is not name:=value (e.g. prefix:=left_)");
+  }
+  return {text.substr(0, assign), text.substr(assign + 2)};
+}
+
+}  // namespace servoloop

@@ -1,0 +1,108 @@
+// Finding ROS packages for package:// URIs and $(find pkg): ROS_PACKAGE_PATH
+// first (by the <name> in package.xml, not the folder's name), then the
+// package.xml files above the description, and one error naming the package
+// and where it looked.
+#include "servoloop/hardware_interface/package_path.hpp"
+
+#include <cstdlib>
+#include <optional>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "servoloop/core/errors.hpp"
+#include "temp_dir.hpp"
+
+namespace servoloop {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::TempDir;
+using testing::writeFile;
+
+void writePackage(const fs::path& folder, const std::string& name) {
+  writeFile(folder / "package.xml", "<?xml version=\"1.0\"?>\n<package format=\"2\">\n  <name> " + name +
+                                        " </name>\n  <version>1.0.0</version>\n</package>\n");
+}
+
+// Sets ROS_PACKAGE_PATH for one test and puts back what was there.
+class PackagePathEnv {
+ public:
+  explicit PackagePathEnv(const std::optional<std::string>& value) {
+    if (const char* old = std::getenv("ROS_PACKAGE_PATH")) saved_ = old;
+    if (value) {
+      setenv("ROS_PACKAGE_PATH", value->c_str(), 1);
+    } else {
+      unsetenv("ROS_PACKAGE_PATH");
+    }
+  }
+  ~PackagePathEnv() {
+    if (saved_) {
+      setenv("ROS_PACKAGE_PATH", saved_->c_str(), 1);
+    } else {
+      unsetenv("ROS_PACKAGE_PATH");
+    }
+  }
+
+ private:
+  std::optional<std::string> saved_;
+};
+
+TEST(PackagePath, RosPackagePathIsSearchedByPackageXmlName) {
+  TempDir dir("servoloop-pkg");
+  writePackage(dir.path() / "ws1/src/group/arm_folder", "arm_description");
+  writePackage(dir.path() / "ws2/src/arm_description_copy", "arm_description");
+  // A folder with the package's name but a different package.xml is not it.
+  writePackage(dir.path() / "ws1/src/arm_description", "something_else");
+  PackagePathEnv env((dir.path() / "ws1/src").string() + ":" + (dir.path() / "ws2/src").string());
+  const fs::path elsewhere = dir.path() / "robot";
+  EXPECT_EQ(findPackage("arm_description", elsewhere, "r.urdf"), dir.path() / "ws1/src/group/arm_folder");
+  EXPECT_EQ(resolvePackageUri("package://arm_description/meshes/a.stl", elsewhere, "r.urdf"),
+            dir.path() / "ws1/src/group/arm_folder/meshes/a.stl");
+  EXPECT_EQ(resolvePackageUri("meshes/a.stl", elsewhere, "r.urdf"), fs::path("meshes/a.stl"));
+}
+
+TEST(PackagePath, PackagesAreNotSearchedInsideOtherPackages) {
+  TempDir dir("servoloop-pkg");
+  writePackage(dir.path() / "src/outer", "outer");
+  writePackage(dir.path() / "src/outer/inner", "inner");  // rospack stops at outer's package.xml
+  PackagePathEnv env((dir.path() / "src").string());
+  EXPECT_THROW(findPackage("inner", dir.path() / "elsewhere", "r.urdf"), ConfigError);
+}
+
+TEST(PackagePath, PackageXmlAboveTheDescriptionIsFoundWithoutTheEnvironment) {
+  TempDir dir("servoloop-pkg");
+  writePackage(dir.path() / "my_robot_description", "my_robot_description");
+  writePackage(dir.path() / "my_robot_gazebo", "my_robot_gazebo");
+  PackagePathEnv env(std::nullopt);
+  const fs::path urdf_dir = dir.path() / "my_robot_description/urdf";
+  EXPECT_EQ(findPackage("my_robot_description", urdf_dir, "r.urdf"), dir.path() / "my_robot_description");
+  // A sibling package, beside a folder above the description.
+  EXPECT_EQ(findPackage("my_robot_gazebo", urdf_dir, "r.urdf"), dir.path() / "my_robot_gazebo");
+}
+
+TEST(PackagePath, AFolderNamedLikeThePackageServesDescriptionsWithoutPackageXml) {
+  TempDir dir("servoloop-pkg");
+  fs::create_directories(dir.path() / "copied/ur_description/urdf");
+  PackagePathEnv env(std::nullopt);
+  EXPECT_EQ(findPackage("ur_description", dir.path() / "copied/ur_description/urdf", "ur5.urdf"),
+            dir.path() / "copied/ur_description");
+}
+
+TEST(PackagePath, AMissingPackageNamesItAndWhereItLooked) {
+  TempDir dir("servoloop-pkg");
+  PackagePathEnv env((dir.path() / "ws/src").string());
+  try {
+    findPackage("no_such_pkg_4711", dir.path() / "robot", "robot.urdf");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("robot.urdf: ROS package 'no_such_pkg_4711' not found"), std::string::npos) << message;
+    EXPECT_NE(message.find((dir.path() / "ws/src").string()), std::string::npos) << message;
+    EXPECT_NE(message.find("export ROS_PACKAGE_PATH="), std::string::npos) << message;
+  }
+  EXPECT_THROW(resolvePackageUri("package:///a.stl", dir.path(), "robot.urdf"), ConfigError);
+}
+
+}  // namespace
+}  // namespace servoloop
