@@ -10,7 +10,7 @@ packages=(
   libyaml-cpp-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
   libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
-  libmujoco-dev libpng-dev gnuplot-nox
+  libmujoco-dev libpng-dev gnuplot-nox libassimp-dev
 )
 
 missing=()

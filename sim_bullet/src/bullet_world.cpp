@@ -24,7 +24,7 @@
 
 #include "body_tree.hpp"
 #include "servoloop/core/errors.hpp"
-#include "servoloop/sim_common/stl_mesh.hpp"
+#include "servoloop/sim_common/collision_mesh.hpp"
 
 static_assert(std::is_same_v<btScalar, double>,
               "sim_bullet needs Bullet in double precision (the -float64 libraries and BT_USE_DOUBLE_PRECISION)");
@@ -284,15 +284,15 @@ struct BulletWorld::Impl {
         break;
       case urdf::Geometry::MESH: {
         const auto& mesh = static_cast<const urdf::Mesh&>(g);
-        if (!sim_common::hasStlExtension(mesh.filename)) {
-          throw ConfigError("link '" + spec.link_name + "' <collision> mesh '" + mesh.filename +
-                            "': only STL meshes are supported for collision; convert it to STL");
+        std::vector<Eigen::Vector3d> corners;
+        try {
+          corners = sim_common::collisionHullVertices(mesh.filename,
+                                                      Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z));
+        } catch (const ConfigError& error) {
+          throw ConfigError("link '" + spec.link_name + "' <collision> mesh: " + error.what());
         }
         auto hull = std::make_unique<btConvexHullShape>();
-        const Eigen::Vector3d scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-        for (const auto& v : sim_common::readStlVertices(mesh.filename)) {
-          hull->addPoint(toBt(Eigen::Vector3d(v.cwiseProduct(scale))), /*recalculateLocalAabb=*/false);
-        }
+        for (const auto& v : corners) hull->addPoint(toBt(v), /*recalculateLocalAabb=*/false);
         hull->recalcLocalAabb();
         hull->setMargin(kMeshCollisionMargin);
         shape = std::move(hull);

@@ -11,7 +11,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
-#include "servoloop/sim_common/stl_mesh.hpp"
+#include "servoloop/sim_common/collision_mesh.hpp"
 
 namespace servoloop::sim_mujoco {
 namespace {
@@ -289,19 +289,16 @@ class MjcfWriter {
   }
 
   std::string addMesh(const urdf::Link& link, const urdf::Mesh& mesh) {
-    if (!sim_common::hasStlExtension(mesh.filename)) {
-      throw ConfigError(source_name_ + ": link '" + link.name + "' <collision> mesh '" + mesh.filename +
-                        "': the mujoco backend collides with STL meshes only; convert it to STL");
-    }
     std::vector<Eigen::Vector3d> vertices;
     try {
-      vertices = sim_common::readStlVertices(mesh.filename);
+      vertices = sim_common::collisionHullVertices(mesh.filename,
+                                                   Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z));
     } catch (const ConfigError& error) {
       throw ConfigError(source_name_ + ": link '" + link.name + "' <collision> mesh: " + error.what());
     }
     const std::string name = "servoloop_mesh_" + std::to_string(mesh_count_++);
-    assets_ << "    <mesh name=\"" << name << "\" scale=\"" << vec3(mesh.scale.x, mesh.scale.y, mesh.scale.z)
-            << "\" vertex=\"";
+    // Scaled already (a mirroring scale included): MuJoCo gets the hull's corners.
+    assets_ << "    <mesh name=\"" << name << "\" vertex=\"";
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       assets_ << (i == 0 ? "" : " ") << vec3(vertices[i].x(), vertices[i].y(), vertices[i].z());
     }

@@ -156,6 +156,16 @@ TEST(BulletWorldBody, BinaryAndAsciiStlCubesLandAsConvexHulls) {
   EXPECT_NEAR(restingHeight(meshBoxUrdf("cube_ascii.stl"), "ascii.urdf"), kCubeHalfSide, kContactTolerance);
 }
 
+// A 0.2 x 0.4 x 0.6 m box, in COLLADA written in centimetres and in OBJ: it
+// lands on its 0.2 x 0.4 face, its centre 0.3 m up.
+TEST(BulletWorldBody, ColladaAndObjBoxesLandAsConvexHulls) {
+  EXPECT_NEAR(restingHeight(meshBoxUrdf("box_20x40x60cm_zup.dae"), "dae.urdf"), 0.3, kContactTolerance);
+  EXPECT_NEAR(restingHeight(meshBoxUrdf("box_20x40x60cm.obj"), "obj.urdf"), 0.3, kContactTolerance);
+  std::string scaled = meshBoxUrdf("box_20x40x60cm.obj");
+  scaled.replace(scaled.find(".obj\"/>"), 7, ".obj\" scale=\"1 -1 0.5\"/>");
+  EXPECT_NEAR(restingHeight(scaled, "scaled.urdf"), 0.15, kContactTolerance);
+}
+
 TEST(BulletWorldBody, MeshPendulumAssetLoads) {
   BulletWorld world(*loadRobotModelFile(kAssetsDir + "mesh_pendulum.urdf"));
   ASSERT_EQ(world.jointNames(), std::vector<std::string>{"hinge"});

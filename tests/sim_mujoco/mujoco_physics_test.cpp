@@ -389,13 +389,22 @@ TEST(MujocoPhysics, FloatingBaseFallsFreelyOrRestsOnTheGroundPlane) {
     const std::string mesh = R"(<mesh filename=")" + kAssetsDir + "meshes/" + file + R"("/>)";
     EXPECT_NEAR(heightAfterTwoSeconds(floatingCubeUrdf(mesh), true), -0.4, 5e-3) << file;
   }
+  // A 0.2 x 0.4 x 0.6 m box in COLLADA (written in cm) and OBJ: its bottom is
+  // 0.3 m below its centre, so the link frame rests at 0.3 - 0.5 = -0.2.
+  for (const std::string file : {"box_20x40x60cm_zup.dae", "box_20x40x60cm.obj"}) {
+    const std::string mesh = R"(<mesh filename=")" + kAssetsDir + "meshes/" + file + R"("/>)";
+    EXPECT_NEAR(heightAfterTwoSeconds(floatingCubeUrdf(mesh), true), -0.2, 5e-3) << file;
+  }
+  // Scaled (and mirrored) by <mesh scale>: the 0.6 m side halved.
+  const std::string scaled = R"(<mesh filename=")" + kAssetsDir + R"(meshes/box_20x40x60cm.obj" scale="1 -1 0.5"/>)";
+  EXPECT_NEAR(heightAfterTwoSeconds(floatingCubeUrdf(scaled), true), 0.15 - 0.5, 5e-3);
 }
 
 TEST(MujocoPhysics, RefusesWhatItCannotSimulateNamingTheElement) {
   const std::string dae = R"(<mesh filename=")" + kAssetsDir + R"(meshes/cube_binary.stl"/>)";
   std::string urdf = floatingCubeUrdf(dae);
-  // A non-STL mesh (the file need not exist for the writer's check).
-  urdf.replace(urdf.find("cube_binary.stl"), 15, "cube.dae");
+  // A mesh file that is not there.
+  urdf.replace(urdf.find("cube_binary.stl"), 15, "no_such_cube.dae");
   const auto model = urdf::parseURDF(urdf);
   ASSERT_TRUE(model);
   try {
@@ -403,7 +412,7 @@ TEST(MujocoPhysics, RefusesWhatItCannotSimulateNamingTheElement) {
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("link 'cube'"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("convert it to STL"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no_such_cube.dae: cannot read the mesh"), std::string::npos) << e.what();
   }
   const std::string floating = R"(<robot name="f"><link name="world"/>
     <joint name="free" type="floating"><parent link="world"/><child link="b"/></joint>

@@ -68,7 +68,7 @@ struct BodyMassProperties {
 // links attached by fixed joints are merged into their parent (mass, centre of
 // mass and inertia combined with the parallel-axis theorem). Floating and
 // planar joints are rejected. Collision shapes: box, cylinder (URDF axis z),
-// sphere, and STL meshes (binary or ASCII) as their convex hull. A link never
+// sphere, and meshes as their bounded convex hull (sim_common/collision_mesh.hpp). A link never
 // collides with its parent; other links of the robot collide with each other.
 //
 // Physics is what the URDF says and nothing more: Bullet's default link

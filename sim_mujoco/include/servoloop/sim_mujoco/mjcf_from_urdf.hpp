@@ -19,9 +19,10 @@
 //    holds against the full effort; <dynamics damping> → damping,
 //    <dynamics friction> → frictionloss; armature = the reflected rotor
 //    inertia the caller gives per joint;
-//  - <collision> box, cylinder, sphere, and STL meshes (binary or ASCII; the
-//    vertices go inline, MuJoCo collides with their convex hull). Other mesh
-//    formats are refused with an error naming the link and the file;
+//  - <collision> box, cylinder, sphere, and meshes: the corners of their
+//    bounded convex hull (sim_common/collision_mesh.hpp), scaled, go inline
+//    and MuJoCo collides with their hull. A mesh that cannot be read is an
+//    error naming the link and the file;
 //  - a link never collides with its parent body: MuJoCo filters parent/child
 //    pairs itself except when the parent is welded to the world, for which
 //    <contact><exclude> pairs are written;
@@ -40,7 +41,7 @@ namespace servoloop::sim_mujoco {
 // prismatic joint) added to that joint's own (MuJoCo's armature); joints not
 // listed get none. `source_name` names the URDF in errors. Throws
 // servoloop::ConfigError for what cannot be mapped (floating or planar joints,
-// non-STL collision meshes, unreadable meshes), naming the joint or link.
+// unreadable or flat collision meshes), naming the joint or link.
 std::string mjcfFromUrdf(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                          const std::map<std::string, double>& joint_armature, const std::string& source_name);
 
