@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -759,6 +760,32 @@ std::string expandXacroFile(const fs::path& path, const XacroArgs& args) {
 std::string readRobotDescription(const fs::path& path, const XacroArgs& args) {
   if (isXacroPath(path)) return expandXacroFile(path, args);
   return readFile(path, "URDF file");
+}
+
+std::string evaluatePythonExpression(const std::string& expression, const std::map<std::string, std::string>& names) {
+  class StringNames : public xacro::Names {
+   public:
+    explicit StringNames(const std::map<std::string, std::string>& names) : names_(names) {}
+    std::optional<Value> lookup(const std::string& name) override {
+      if (auto it = names_.find(name); it != names_.end()) return Value::ofString(it->second);
+      return std::nullopt;
+    }
+    Value loadYaml(const std::string& /*file*/) override {
+      throw xacro::ExpressionError("load_yaml is xacro's, not roslaunch's");
+    }
+
+   private:
+    const std::map<std::string, std::string>& names_;
+  };
+  // arg('x') and arg("x") are the variable x.
+  static const std::regex kArgCall(R"re(\barg\(\s*['"]([^'"]*)['"]\s*\))re");
+  const std::string text = std::regex_replace(expression, kArgCall, "$1");
+  StringNames lookup(names);
+  try {
+    return xacro::str(xacro::evaluate(text, lookup));
+  } catch (const xacro::ExpressionError& error) {
+    throw ConfigError("$(eval " + expression + "): " + error.what());
+  }
 }
 
 std::pair<std::string, std::string> parseXacroArg(const std::string& text) {

@@ -1,6 +1,7 @@
 // Launch file parsing: every problem becomes one ConfigError naming the file,
 // line, key and fix.
 #include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/roslaunch_xml.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -330,7 +331,13 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   return launch;
 }
 
-LaunchFile loadLaunchFile(const fs::path& path) {
+LaunchFile loadLaunchFile(const fs::path& path, const std::map<std::string, std::string>& roslaunch_args) {
+  if (isRoslaunchPath(path)) return loadRoslaunchFile(path, roslaunch_args);
+  if (!roslaunch_args.empty()) {
+    throw ConfigError(fmt::format("{}: name:=value arguments ({}:={}) are for ROS .launch files; a YAML launch file "
+                                  "takes none (a .xacro robot takes xacro_args: in the file)",
+                                  path.string(), roslaunch_args.begin()->first, roslaunch_args.begin()->second));
+  }
   std::ifstream in(path);
   if (!in) {
     throw ConfigError(fmt::format("launch file '{}' cannot be read ({}); check the path",

@@ -80,7 +80,13 @@ RobotInstance* Node::robotForTopic(const std::string& topic) {
 }
 
 std::string Node::spawnRobot(const RobotSpec& spec) {
-  for (const auto& parameters : spec.params) parameters_.loadFile(parameters.file.string(), parameters.ns);
+  for (const auto& parameters : spec.params) {
+    if (parameters.file.empty()) {
+      parameters_.loadString(parameters.yaml, parameters.source_name, parameters.ns);
+    } else {
+      parameters_.loadFile(parameters.file.string(), parameters.ns);
+    }
+  }
   RobotWorld world;
   world.plugins = plugins_;
   world.parameters = &parameters_;

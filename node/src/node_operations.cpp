@@ -352,7 +352,7 @@ json NodeOperations::modelSpawn(const json& request) {
     if (!std::filesystem::path(file).is_absolute()) {
       throw Error("'model.spawn': params file '" + file + "' must be an absolute path");
     }
-    spec.params.push_back(ParameterFile{file, "/"});
+    spec.params.push_back(ParameterFile{file, "/", "", ""});
   }
   if (request.contains("pose")) {
     const nlohmann::json& pose = request["pose"];

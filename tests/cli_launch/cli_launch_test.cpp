@@ -229,4 +229,28 @@ TEST_F(CliLaunch, XacroCommandAndCheckUrdfTakeNameColonEqualsArguments) {
   EXPECT_NE(result.err.find("'arm_length=0.6' is not name:=value"), std::string::npos) << result.err;
 }
 
+// The seed's ROS launch file runs unchanged, to the same result as its YAML
+// counterpart (same robot, controllers and trajectory, bit for bit).
+TEST_F(CliLaunch, SeedRosLaunchFileRunsAsItsYamlCounterpart) {
+  const std::string flags =
+      "' --backend mock --duration 1.5 --json --pub /one_DOF_robot/joint1_position_controller/command:=1.0@0.5";
+  const CliResult xml = run("launch '" + (kOneDof / "minimal_robot_w_jnt_ctl.launch").string() + flags);
+  ASSERT_EQ(xml.status, 0) << xml.err;
+  const CliResult yaml = run("launch '" + kSeedLaunch + flags);
+  ASSERT_EQ(yaml.status, 0) << yaml.err;
+  const json a = json::parse(xml.out)["robots"][0];
+  const json b = json::parse(yaml.out)["robots"][0];
+  EXPECT_EQ(a["namespace"], "/one_DOF_robot");
+  EXPECT_EQ(a["controllers"], b["controllers"]);
+  EXPECT_EQ(a["joints"], b["joints"]);
+  EXPECT_GT(a["joints"][0]["position"].get<double>(), 0.1) << "the command moved the joint";
+
+  // name:=value arguments belong to ROS launch files only.
+  const CliResult args = run("launch '" + kSeedLaunch + "' use_gui:=false --duration 0.1");
+  EXPECT_NE(args.status, 0);
+  EXPECT_EQ(lines(args.err), 1) << args.err;
+  EXPECT_NE(args.err.find("name:=value arguments (use_gui:=false) are for ROS .launch files"), std::string::npos)
+      << args.err;
+}
+
 }  // namespace

@@ -185,7 +185,7 @@ TEST(NodeTiming, EffortInterfaceVelocityLimitDoesNotBrakeButSoftLimitsDo) {
                            "      k_position: 20.0\n      k_velocity: 50.0\n"
                            "      soft_lower_limit: 0.0\n      soft_upper_limit: 2.0\n";
   LaunchFile launch = seedLaunch("bullet");
-  launch.robots.at(0).params.push_back(ParameterFile{limits, "/"});
+  launch.robots.at(0).params.push_back(ParameterFile{limits, "/", "", ""});
   const double with_soft_limits =
       peakVelocity(runRecording(launch, 3.0, kCommandTopic, {kJointStates}).at(kJointStates));
   EXPECT_LT(with_soft_limits, 0.5 + 4.905 / 50.0 + 0.02);

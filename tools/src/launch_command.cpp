@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,6 +32,7 @@ namespace fs = std::filesystem;
 
 struct LaunchOptions {
   std::string file;
+  std::vector<std::string> roslaunch_args;  // name:=value, for ROS .launch files
   std::string backend;
   std::optional<double> duration_s;
   std::optional<double> real_time_factor;
@@ -77,7 +79,16 @@ class ShutdownSignals {
 
 // The launch file with the command line's flags applied on top.
 node::LaunchFile launchFileWithFlags(const LaunchOptions& options) {
-  node::LaunchFile launch = node::loadLaunchFile(options.file);
+  std::map<std::string, std::string> roslaunch_args;
+  for (const std::string& text : options.roslaunch_args) {
+    const auto assign = text.find(":=");
+    if (assign == std::string::npos || assign == 0) {
+      throw Error("'" + text + "' is not name:=value; launch takes FILE, then name:=value arguments for a ROS "
+                  ".launch file, then options");
+    }
+    roslaunch_args[text.substr(0, assign)] = text.substr(assign + 2);
+  }
+  node::LaunchFile launch = node::loadLaunchFile(options.file, roslaunch_args);
   for (const std::string& text : options.publications) launch.publish.push_back(node::parsePubFlag(text));
   for (const std::string& text : options.recordings) {
     node::RecordSpec record = node::parseRecordFlag(text);
@@ -168,9 +179,12 @@ void addLaunchCommand(CLI::App& root) {
   auto options = std::make_shared<LaunchOptions>();
   CLI::App* launch = root.add_subcommand(
       "launch", "Start a world from a launch file: backend, robots, controllers, timed publications, recordings");
-  launch->add_option("file", options->file, "Launch file (YAML), e.g. robots/one_dof/one_dof_w_jnt_ctl.launch.yaml")
+  launch->add_option("file", options->file,
+                     "Launch file: YAML (robots/one_dof/one_dof_w_jnt_ctl.launch.yaml) or a ROS .launch file")
       ->required()
       ->check(CLI::ExistingFile);
+  launch->add_option("args", options->roslaunch_args, "Arguments of a ROS .launch file, as roslaunch takes them")
+      ->type_name("NAME:=VALUE");
   launch->add_option("--backend", options->backend, "Simulation backend (bullet, mock, ...); overrides world.backend")
       ->type_name("NAME");
   launch->add_option("--duration", options->duration_s, "Simulated seconds to run, then exit with a summary")

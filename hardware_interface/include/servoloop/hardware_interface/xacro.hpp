@@ -36,6 +36,14 @@ std::string expandXacro(const std::string& text, const std::string& source_name,
 // missing or unreadable.
 std::string readRobotDescription(const std::filesystem::path& path, const XacroArgs& args = {});
 
+// Evaluates a Python expression as roslaunch's $(eval ...) does, with the
+// arithmetic, comparisons, `and`/`or`/`not`, conditionals and math of xacro's
+// ${...}: `names` are its variables, each a string (roslaunch's arguments are
+// text), and arg('name') stands for the variable name. Returns Python's str()
+// of the result ("True", "3.5", "left"). Throws ConfigError saying what is
+// wrong with the expression.
+std::string evaluatePythonExpression(const std::string& expression, const std::map<std::string, std::string>& names);
+
 // Parses "name:=value" (as rosrun xacro takes it); throws ConfigError naming
 // the text otherwise.
 std::pair<std::string, std::string> parseXacroArg(const std::string& text);

@@ -47,8 +47,10 @@ struct ControllerManagerSettings {
 // A rosparam-style YAML file and the namespace it is loaded into (as
 // roslaunch's <rosparam file=... ns=...>).
 struct ParameterFile {
-  std::filesystem::path file;  // absolute
+  std::filesystem::path file;  // absolute; empty: the YAML text below
   std::string ns = "/";        // absolute; "/" loads the file unchanged
+  std::string yaml;            // inline YAML (a ROS launch file's <param value> or <rosparam> text)
+  std::string source_name;     // where the inline YAML comes from, for errors ("x.launch:12")
 };
 
 // One robot to spawn.
@@ -94,7 +96,11 @@ struct LaunchFile {
 // Reads and checks a launch file. Throws ConfigError if it cannot be read, is
 // not YAML, has an unknown key, a value of the wrong type or range, or names a
 // URDF or parameter file that does not exist.
-LaunchFile loadLaunchFile(const std::filesystem::path& path);
+// A ROS launch file (.launch, roslaunch XML) is read by loadRoslaunchFile
+// (roslaunch_xml.hpp) with `roslaunch_args` as its name:=value arguments; a
+// YAML launch file takes none (ConfigError if some are given).
+LaunchFile loadLaunchFile(const std::filesystem::path& path,
+                          const std::map<std::string, std::string>& roslaunch_args = {});
 
 // The same for YAML text; relative paths resolve against base_directory and
 // errors name source_name.
