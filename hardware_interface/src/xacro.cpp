@@ -15,6 +15,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/text_file.hpp"
 #include "servoloop/hardware_interface/package_path.hpp"
 #include "xacro_expression.hpp"
 
@@ -33,7 +34,6 @@ using xacro::Value;
 // few macros calling each other twice over would otherwise fill the memory).
 constexpr int kMaxNesting = 100;
 constexpr std::size_t kMaxOutputNodes = 2'000'000;
-constexpr std::uintmax_t kMaxFileBytes = 64u << 20;
 
 // A block: a macro's *name / **name parameter (already expanded in the caller)
 // or a <xacro:property> with a body (expanded where it is inserted).
@@ -78,28 +78,7 @@ struct Scope {
   std::map<std::string, Scope*> namespaces;
 };
 
-std::string readFile(const fs::path& path, const std::string& what) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw ConfigError(path.string() + ": " + what + " not found");
-  if (fs::is_directory(path, ec)) throw ConfigError(path.string() + ": is a folder, not " + what);
-  const auto size = fs::file_size(path, ec);
-  if (!ec && size > kMaxFileBytes) {
-    throw ConfigError(path.string() + ": " + what + " is " + std::to_string(size >> 20) + " MiB; the limit is " +
-                      std::to_string(kMaxFileBytes >> 20) + " MiB");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path.string() + ": " + what + " cannot be read; check its permissions");
-  std::string text;
-  char buffer[65536];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMaxFileBytes) {
-      throw ConfigError(path.string() + ": " + what + " is larger than " + std::to_string(kMaxFileBytes >> 20) +
-                        " MiB; is it a regular file?");
-    }
-  }
-  return text;
-}
+std::string readFile(const fs::path& path, const std::string& what) { return readTextFile(path, what); }
 
 bool isXacroNamespace(const std::string& uri) { return uri.find("ros.org/wiki/xacro") != std::string::npos; }
 

@@ -139,7 +139,7 @@ std::optional<nlohmann::json> IpcClient::readMessage(Deadline deadline, std::str
       if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
       try {
         return nlohmann::json::parse(line);
-      } catch (const nlohmann::json::parse_error& error) {
+      } catch (const nlohmann::json::exception& error) {
         close();
         throw Error("the servoloop node for namespace '" + node_name_ + "' sent a malformed message (" +
                     error.what() + "); is " + socket_path_.native() + " really a servoloop node?");

@@ -44,6 +44,31 @@ std::string jsonErrorText(const nlohmann::json::exception& error) {
   return text;
 }
 
+// How deep the arrays and objects of a JSON text nest (brackets inside
+// strings do not count); a cheap scan that needs no parse.
+int jsonNestingDepth(std::string_view text) {
+  int depth = 0;
+  int deepest = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 }  // namespace
 
 IpcServer::IpcServer(std::filesystem::path socket_path, Handler handler)
@@ -330,10 +355,17 @@ void IpcServer::rejectOversized(IpcConnection& connection) {
 void IpcServer::handleLine(IpcConnection& connection, std::string_view line) {
   if (line.find_first_not_of(" \t\r") == std::string_view::npos) return;  // blank keep-alive lines
 
+  const int depth = jsonNestingDepth(line);
+  if (depth > kIpcMaxRequestDepth) {
+    requests_rejected_.fetch_add(1);
+    connection.send(makeIpcErrorReply(nullptr, "request nests arrays/objects " + std::to_string(depth) +
+                                                   " deep; the limit is " + std::to_string(kIpcMaxRequestDepth)));
+    return;
+  }
   nlohmann::json request;
   try {
     request = nlohmann::json::parse(line);
-  } catch (const nlohmann::json::parse_error& error) {
+  } catch (const nlohmann::json::exception& error) {  // syntax, and numbers no double can hold (1e400)
     requests_rejected_.fetch_add(1);
     connection.send(makeIpcErrorReply(nullptr, "request is not valid JSON: " + jsonErrorText(error)));
     return;

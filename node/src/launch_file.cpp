@@ -11,6 +11,8 @@
 #include <spdlog/fmt/fmt.h>
 #include <yaml-cpp/yaml.h>
 
+#include "servoloop/core/text_file.hpp"
+#include "servoloop/core/time.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
@@ -134,7 +136,14 @@ class Parser {
     requireMap(node, "world", "{backend: bullet, time_step: 0.001}");
     checkKeys(node, "world", {"backend", "time_step", "gravity", "ground_plane", "real_time_factor"});
     if (node["backend"]) world.backend = string(node["backend"], "world.backend");
-    if (node["time_step"]) world.time_step_s = positiveNumber(node["time_step"], "world.time_step", "s");
+    if (node["time_step"]) {
+      world.time_step_s = number(node["time_step"], "world.time_step");
+      if (!(world.time_step_s >= kMinTimeStepS && world.time_step_s <= kMaxTimeStepS)) {
+        fail(node["time_step"], "world.time_step",
+             fmt::format("expected a time step from {} to {} s, got {}", kMinTimeStepS, kMaxTimeStepS,
+                         describe(node["time_step"])));
+      }
+    }
     if (const YAML::Node gravity = node["gravity"]) {
       if (!gravity.IsSequence() || gravity.size() != 3) {
         fail(gravity, "world.gravity", "expected 3 numbers [x, y, z] in m/s², got " + describe(gravity));
@@ -320,6 +329,7 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   }
   LaunchFile launch;
   if (root.IsNull() || !root.IsDefined()) return launch;
+  params::checkYamlSize(root, source_name);
   parser.requireMap(root, "", "world: {backend: bullet} and robots: [...]");
   parser.checkKeys(root, "", {"world", "controller_manager", "robots", "publish", "record", "plot"});
   launch.world = parser.world(root["world"]);
@@ -338,15 +348,13 @@ LaunchFile loadLaunchFile(const fs::path& path, const std::map<std::string, std:
                                   "takes none (a .xacro robot takes xacro_args: in the file)",
                                   path.string(), roslaunch_args.begin()->first, roslaunch_args.begin()->second));
   }
-  std::ifstream in(path);
-  if (!in) {
-    throw ConfigError(fmt::format("launch file '{}' cannot be read ({}); check the path",
-                                  path.string(), fs::exists(path) ? "permission denied" : "no such file"));
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    throw ConfigError(fmt::format("launch file '{}' cannot be read (no such file); check the path", path.string()));
   }
-  std::stringstream text;
-  text << in.rdbuf();
+  const std::string text = readTextFile(path, "launch file");
   const fs::path absolute = fs::absolute(path).lexically_normal();
-  LaunchFile launch = parseLaunchFile(text.str(), path.string(), absolute.parent_path());
+  LaunchFile launch = parseLaunchFile(text, path.string(), absolute.parent_path());
   launch.source = absolute;
   return launch;
 }

@@ -18,6 +18,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/core/text_file.hpp"
 #include "servoloop/hardware_interface/package_path.hpp"
 #include "servoloop/hardware_interface/xacro.hpp"
 #include "servoloop/node/robot_namespace.hpp"
@@ -137,8 +138,9 @@ class Reader {
     if (!fs::is_regular_file(scope.file, ec)) {
       throw ConfigError("launch file '" + scope.file.string() + "' cannot be read (no such file); check the path");
     }
+    const std::string text = readTextFile(scope.file, "launch file");
     auto document = std::make_unique<tinyxml2::XMLDocument>();
-    if (document->LoadFile(scope.file.c_str()) != tinyxml2::XML_SUCCESS) {
+    if (document->Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
       throw ConfigError(fmt::format("{}:{}: not well-formed roslaunch XML: {}", scope.file.string(),
                                     document->ErrorLineNum(), document->ErrorStr()));
     }

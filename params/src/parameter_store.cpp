@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "servoloop/core/number_text.hpp"
+#include "servoloop/core/text_file.hpp"
 
 namespace servoloop::params {
 
@@ -243,19 +244,34 @@ std::string resolveName(std::string_view ns, std::string_view name) {
   return result.empty() ? "/" : result;
 }
 
+void checkYamlSize(const YAML::Node& document, std::string_view source_name) {
+  std::size_t count = 0;
+  std::vector<YAML::Node> pending{document};
+  while (!pending.empty()) {
+    const YAML::Node node = pending.back();
+    pending.pop_back();
+    if (++count > kMaxYamlNodes) {
+      throw ConfigError(std::string(source_name) + ": the YAML holds more than " + std::to_string(kMaxYamlNodes) +
+                        " values once its aliases (*name) are expanded; no robot's parameters come near that, so "
+                        "it is refused (an alias bomb?)");
+    }
+    if (node.IsSequence()) {
+      for (const auto& item : node) pending.push_back(item);
+    } else if (node.IsMap()) {
+      for (const auto& item : node) {
+        pending.push_back(item.first);
+        pending.push_back(item.second);
+      }
+    }
+  }
+}
+
 ParameterStore::ParameterStore() : root_(YAML::NodeType::Map) {}
 
 // --- loading -----------------------------------------------------------------
 
 void ParameterStore::loadFile(const std::string& path, std::string_view ns) {
-  std::ifstream file(path);
-  if (!file) {
-    throw ConfigError("cannot read parameter file '" + path +
-                      "': it does not exist or is not readable; check the path");
-  }
-  std::stringstream content;
-  content << file.rdbuf();
-  loadString(content.str(), path, ns);
+  loadString(readTextFile(path, "parameter file"), path, ns);
 }
 
 void ParameterStore::loadString(std::string_view yaml, std::string_view source_name, std::string_view ns) {
@@ -268,6 +284,7 @@ void ParameterStore::loadString(std::string_view yaml, std::string_view source_n
                       "; fix the syntax there (indentation, a ':' after each key, closed brackets and quotes)");
   }
   if (!document.IsDefined() || document.IsNull()) return;  // an empty file sets nothing
+  checkYamlSize(document, source);
   if (!document.IsMap()) {
     throw ConfigError(source + ": the top level is a " + std::string(paramTypeName(paramTypeOf(document))) +
                       ", expected a map of names to values (e.g. 'my_robot:' followed by indented keys)");
@@ -534,6 +551,7 @@ void ParameterStore::set(std::string_view name, std::string_view yaml_value) {
     throw Error("parameter '" + resolveName("/", name) + "': value '" + std::string(yaml_value) +
                 "' is not valid YAML (" + e.msg + "); quote it or fix the brackets");
   }
+  checkYamlSize(value, "parameter '" + resolveName("/", name) + "'");
   setNode(name, value);
 }
 

@@ -7,6 +7,7 @@
 #include <tinyxml2.h>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/time.hpp"
 #include "servoloop/core/logging.hpp"
 
 namespace servoloop::sim_common {
@@ -165,8 +166,8 @@ SimSettings parseSimSettings(const YAML::Node& robot_ns, const urdf::ModelInterf
   if (const YAML::Node value = sim["time_step"]; value.IsDefined()) {
     const std::string path = keyPath(sim_path, "time_step");
     settings.time_step_s = readNumber(value, path);
-    if (!(settings.time_step_s > 0.0)) {
-      throw ConfigError(path + ": expected a time step > 0 s, got " + describe(value));
+    if (!(settings.time_step_s >= kMinTimeStepS && settings.time_step_s <= kMaxTimeStepS)) {
+      throw ConfigError(path + ": expected a time step from 1e-06 to 1 s, got " + describe(value));
     }
   }
   if (const YAML::Node value = sim["gravity"]; value.IsDefined()) {

@@ -253,4 +253,39 @@ TEST_F(CliLaunch, SeedRosLaunchFileRunsAsItsYamlCounterpart) {
       << args.err;
 }
 
+// Numbers a command line cannot mean, and files that are no files, are one
+// line each naming the option or path and what it accepts; nothing hangs.
+TEST_F(CliLaunch, OutOfRangeNumbersAndDevicesAreOneLineErrors) {
+  struct Case {
+    std::string args;
+    std::string error;
+  };
+  const std::vector<Case> cases = {
+      {"launch '" + kSeedLaunch + "' --duration inf", "--duration: inf is outside 0 to 1e+09 (simulated seconds)"},
+      {"launch '" + kSeedLaunch + "' --duration 1e300", "--duration: 1e300 is outside 0 to 1e+09"},
+      {"launch '" + kSeedLaunch + "' --duration nan", "--duration: nan is outside"},
+      {"launch '" + kSeedLaunch + "' --rtf -1", "--rtf: -1 is outside 0 to 1e+06"},
+      {"launch '" + kSeedLaunch + "' --duration ten", "--duration: 'ten' is not a number"},
+      {"spawner --timeout nan joint_state_controller", "--timeout: nan is outside 0 to 1e+09"},
+      {"topic pub -r inf /x std_msgs/Float64 1", "--rate: inf is outside 1e-06 to 1e+06 (messages per second)"},
+      {"check-urdf /dev/zero", "/dev/zero: is not a regular file (a device, FIFO or socket)"},
+      {"launch /dev/zero --duration 1", "/dev/zero: is not a regular file"},
+      {"plot wide.csv -o wide.png", "the plot would draw 5000 lines; one plot draws at most 64"},
+  };
+  {
+    std::ofstream wide(dir_ / "wide.csv");
+    wide << "time";
+    for (int c = 0; c < 5000; ++c) wide << ",c" << c;
+    wide << "\n0";
+    for (int c = 0; c < 5000; ++c) wide << ",1.0";
+    wide << "\n";
+  }
+  for (const Case& c : cases) {
+    const CliResult result = run(c.args);
+    EXPECT_NE(result.status, 0) << c.args;
+    EXPECT_EQ(lines(result.err), 1) << c.args << ": " << result.err;
+    EXPECT_NE(result.err.find(c.error), std::string::npos) << c.args << ": " << result.err;
+  }
+}
+
 }  // namespace

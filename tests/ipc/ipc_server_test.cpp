@@ -80,6 +80,34 @@ TEST_F(IpcServerTest, GarbageLineGetsAnErrorAndTheConnectionStays) {
   EXPECT_EQ(handler_calls_.load(), 1);
 }
 
+// A number no double holds, and nesting deep enough to exhaust a recursive
+// reader, are errors like any other bad line; the server answers on.
+TEST_F(IpcServerTest, HugeNumbersAndDeepNestingGetAnError) {
+  RawClient raw(server_->socketPath());
+  ASSERT_TRUE(raw.sendBytes("{\"id\": 1e400, \"op\": \"echo\"}\n"));
+  nlohmann::json reply = parseLine(raw.readLine());
+  EXPECT_EQ(reply["ok"], false);
+  EXPECT_NE(reply["error"].get<std::string>().find("request is not valid JSON: number overflow parsing '1e400'"),
+            std::string::npos)
+      << reply["error"];
+
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  ASSERT_TRUE(raw.sendBytes(deep + "\n"));
+  reply = parseLine(raw.readLine());
+  EXPECT_EQ(reply["ok"], false);
+  EXPECT_NE(reply["error"].get<std::string>().find("nests arrays/objects 100000 deep; the limit is 64"),
+            std::string::npos)
+      << reply["error"];
+
+  // Brackets inside strings are text, not nesting.
+  const std::string text(200, '[');
+  ASSERT_TRUE(raw.sendBytes("{\"id\": 7, \"op\": \"echo\", \"value\": \"" + text + "\"}\n"));
+  reply = parseLine(raw.readLine());
+  EXPECT_EQ(reply["ok"], true) << reply;
+  EXPECT_EQ(reply["value"], text);
+  EXPECT_EQ(server_->stats().requests_rejected, 2u);
+}
+
 TEST_F(IpcServerTest, NonObjectOrMissingOpGetsAnError) {
   RawClient raw(server_->socketPath());
   struct Case {

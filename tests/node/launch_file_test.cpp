@@ -145,13 +145,22 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"UnknownTopKey", "robot: []", {":1:1:", "unknown key 'robot'", "robots", "check the spelling"}},
         ErrorCase{"UnknownWorldKey", "world:\n  timestep: 0.001", {":2:3:", "world.timestep", "time_step"}},
         ErrorCase{"WorldNotMap", "world: bullet", {"world", "expected a map"}},
-        ErrorCase{"TimeStepZero", "world: {time_step: 0}", {"world.time_step", "expected a value > 0 s"}},
+        ErrorCase{"TimeStepZero", "world: {time_step: 0}", {"world.time_step", "expected a time step from 1e-06 to 1 s"}},
+        ErrorCase{"TimeStepTiny", "world: {time_step: 1e-12}", {"world.time_step", "from 1e-06 to 1 s", "'1e-12'"}},
+        ErrorCase{"TimeStepHuge", "world: {time_step: 1e300}", {"world.time_step", "from 1e-06 to 1 s", "'1e300'"}},
+        ErrorCase{"UpdateRateNan", "controller_manager: {update_rate: .nan}", {"controller_manager.update_rate", "finite"}},
         ErrorCase{"TimeStepText", "world: {time_step: fast}", {"world.time_step", "expected a number", "'fast'"}},
         ErrorCase{"GravityShort", "world: {gravity: [0, -9.81]}", {"world.gravity", "3 numbers"}},
         ErrorCase{"GravityText", "world: {gravity: [0, 0, down]}", {"world.gravity[2]", "expected a number"}},
         ErrorCase{"GroundPlaneNotBool", "world: {ground_plane: 2}", {"world.ground_plane", "true or false"}},
         ErrorCase{"BackendEmpty", "world: {backend: ''}", {"world.backend", "non-empty string"}},
         ErrorCase{"RtfNegative", "world: {real_time_factor: -1}", {"world.real_time_factor", ">= 0"}},
+        ErrorCase{"AliasBomb",
+                  "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
+                  "c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\nd: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c, *c]\n"
+                  "e: &e [*d, *d, *d, *d, *d, *d, *d, *d, *d, *d]\nf: &f [*e, *e, *e, *e, *e, *e, *e, *e, *e, *e]\n"
+                  "publish: [{topic: /x, value: [*f, *f]}]",
+                  {"more than 1000000 values once its aliases"}},
         ErrorCase{"UpdateRateZero", "controller_manager: {update_rate: 0}", {"controller_manager.update_rate", "> 0 Hz"}},
         ErrorCase{"UnknownManagerKey", "controller_manager: {rate: 100}", {"controller_manager.rate", "update_rate"}},
         ErrorCase{"RobotsNotList", "robots: {urdf: a.urdf}", {"robots", "expected a list"}},

@@ -12,6 +12,7 @@
 
 #include "servoloop/params/parameter_store.hpp"
 
+#include "servoloop/core/text_file.hpp"
 #include "temp_dir.hpp"
 
 namespace servoloop::params {
@@ -160,8 +161,33 @@ TEST(ParameterStore, MalformedYamlNamesFileAndLine) {
   std::filesystem::remove(path);
 
   const std::string missing = messageOf<ConfigError>([&] { params.loadFile("/no/such/dir/params.yaml"); });
-  EXPECT_THAT(missing, HasSubstr("'/no/such/dir/params.yaml'"));
+  EXPECT_THAT(missing, HasSubstr("/no/such/dir/params.yaml: parameter file not found"));
   EXPECT_THAT(missing, HasSubstr("check the path"));
+
+  // A device is refused before a byte is read (/dev/zero would never end).
+  const std::string device = messageOf<ConfigError>([&] { params.loadFile("/dev/zero"); });
+  EXPECT_THAT(device, HasSubstr("/dev/zero: is not a regular file (a device, FIFO or socket)"));
+  const std::string folder = messageOf<ConfigError>([&] { params.loadFile("/tmp"); });
+  EXPECT_THAT(folder, HasSubstr("/tmp: is a folder, not a parameter file"));
+  // Nine lines whose aliases stand for 10^9 values.
+  std::string bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n";
+  for (char level = 'b'; level <= 'i'; ++level) {
+    bomb += std::string(1, level) + ": &" + level + " [";
+    for (int k = 0; k < 10; ++k) bomb += std::string(k ? ", *" : "*") + static_cast<char>(level - 1);
+    bomb += "]\n";
+  }
+  const std::string bomb_file = writeTempFile("bomb.yaml", bomb);
+  const std::string bombed = messageOf<ConfigError>([&] { params.loadFile(bomb_file); });
+  EXPECT_THAT(bombed, HasSubstr(bomb_file + ": the YAML holds more than 1000000 values once its aliases"));
+  EXPECT_FALSE(params.has("/a")) << "nothing of the refused file is loaded";
+
+  // A file over the limit is refused by its size (a sparse file: nothing is written).
+  const servoloop::testing::TempDir big_dir("servoloop-parameter-store-big");
+  const std::string big = big_dir.file("huge.yaml");
+  servoloop::testing::writeFile(big, "a: 1\n");
+  std::filesystem::resize_file(big, kMaxTextFileBytes + (std::uintmax_t{1} << 20));
+  const std::string huge = messageOf<ConfigError>([&] { params.loadFile(big); });
+  EXPECT_THAT(huge, HasSubstr(big + ": parameter file of 65 MiB; the limit is 64 MiB"));
 
   const std::string top_list = messageOf<ConfigError>([&] { params.loadString("- 1\n- 2\n", "list.yaml"); });
   EXPECT_THAT(top_list, HasSubstr("list.yaml: the top level is a list, expected a map"));

@@ -69,7 +69,9 @@ sim:
 TEST_F(SimSettingsTest, BadValuesNameTheirKey) {
   EXPECT_THAT(errorOf("sim: {time_step: abc}"),
               HasSubstr("/robot/sim/time_step: expected a number, got 'abc'"));
-  EXPECT_THAT(errorOf("sim: {time_step: -0.001}"), HasSubstr("/robot/sim/time_step: expected a time step > 0"));
+  EXPECT_THAT(errorOf("sim: {time_step: -0.001}"),
+              HasSubstr("/robot/sim/time_step: expected a time step from 1e-06 to 1 s, got '-0.001'"));
+  EXPECT_THAT(errorOf("sim: {time_step: 1e-12}"), HasSubstr("/robot/sim/time_step: expected a time step from 1e-06"));
   EXPECT_THAT(errorOf("sim: {gravity: [0, 1]}"),
               HasSubstr("/robot/sim/gravity: expected a list of 3 numbers"));
   EXPECT_THAT(errorOf("sim: {gravity: [0, x, 1]}"), HasSubstr("/robot/sim/gravity[1]: expected a number"));

@@ -21,6 +21,7 @@
 #include "node_connection.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/text_file.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
@@ -160,13 +161,7 @@ ordered_json hardwareJson(const tr::RobotTransmissions& robot) {
   return {{"joints", joints}, {"actuators", actuators}};
 }
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot read the file; check the path and permissions");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string readFile(const std::string& path) { return readTextFile(path, "URDF file"); }
 
 std::string number(const ordered_json& value) { return formatDouble(value.get<double>()); }
 

@@ -1,6 +1,8 @@
 #include "command_registry.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -32,6 +34,29 @@ CLI::App& commandGroup(CLI::App& parent, const std::string& name, const std::str
   CLI::App* group = parent.add_subcommand(name, description);
   group->require_subcommand(1);
   return *group;
+}
+
+CLI::Validator numberWithin(double low, double high, const std::string& unit) {
+  const auto shortest = [](double v) {
+    std::ostringstream text;
+    text << v;
+    return text.str();
+  };
+  const std::string range = shortest(low) + " to " + shortest(high) + " (" + unit + ")";
+  return CLI::Validator(
+      [low, high, range](std::string& input) -> std::string {
+        double value = 0.0;
+        std::size_t used = 0;
+        try {
+          value = std::stod(input, &used);
+        } catch (const std::exception&) {
+          return "'" + input + "' is not a number; give " + range;
+        }
+        if (used != input.size()) return "'" + input + "' is not a number; give " + range;
+        if (!std::isfinite(value) || value < low || value > high) return input + " is outside " + range;
+        return "";
+      },
+      "NUMBER in " + range);
 }
 
 }  // namespace servoloop::cli

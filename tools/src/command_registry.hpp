@@ -30,6 +30,15 @@ void addAllCommands(CLI::App& root);
 // another file). Groups require one of their subcommands.
 CLI::App& commandGroup(CLI::App& parent, const std::string& name, const std::string& description);
 
+// A check for a number option: finite (no nan or inf) and within [low, high],
+// with a message that prints the bounds as written ("--duration: 1e300 is
+// outside 0 to 1e+09 (seconds)"), not as CLI11 prints DBL_MAX.
+CLI::Validator numberWithin(double low, double high, const std::string& unit);
+
+// The longest simulated run a command accepts, in seconds (about 31 years):
+// its steps stay exact integers in a double at the smallest time step.
+inline constexpr double kMaxDurationS = 1e9;
+
 // Thrown by a command to exit with `status` without printing anything more.
 struct CliExit {
   int status;

@@ -271,7 +271,7 @@ void addCompareCommand(CLI::App& root) {
       ->type_name("A,B");
   compare->add_option("--duration", options->duration_s, "Simulated seconds each run lasts (default 10)")
       ->type_name("SECONDS")
-      ->check(CLI::PositiveNumber);
+      ->check(numberWithin(1e-6, kMaxDurationS, "simulated seconds"));
   compare->add_option("--pub", options->publications,
                       "Publish a std_msgs/Float64 (or a [a, b] array) at simulated TIME s (default 0) in both runs; "
                       "repeatable")
@@ -286,7 +286,7 @@ void addCompareCommand(CLI::App& root) {
   compare->add_option("--tolerance", options->tolerance,
                       "Exit non-zero when the largest position difference exceeds this (rad or m)")
       ->type_name("X")
-      ->check(CLI::NonNegativeNumber);
+      ->check(numberWithin(0.0, 1e9, "rad or m"));
   compare->add_option("--plugin-dir", options->plugin_dirs,
                       "Search this directory for plugins first (repeatable); SERVOLOOP_PLUGIN_PATH and the "
                       "installation's plugin folder follow")

@@ -141,7 +141,8 @@ void addSwitchTimingOptions(CLI::App& command, ControlOptions& options) {
   command
       .add_option("--timeout", options.timeout_s,
                   "Seconds the node may wait for the switch to be carried out (0 = no limit)")
-      ->type_name("SECONDS");
+      ->type_name("SECONDS")
+      ->check(numberWithin(0.0, kMaxDurationS, "seconds; 0 = no limit"));
 }
 
 void addControlClientCommands(CLI::App& root) {

@@ -189,11 +189,11 @@ void addLaunchCommand(CLI::App& root) {
       ->type_name("NAME");
   launch->add_option("--duration", options->duration_s, "Simulated seconds to run, then exit with a summary")
       ->type_name("SECONDS")
-      ->check(CLI::NonNegativeNumber);
+      ->check(numberWithin(0.0, kMaxDurationS, "simulated seconds"));
   launch->add_option("--rtf", options->real_time_factor,
                      "Real-time factor; 0 = as fast as possible (default 0 with --duration, 1 without)")
       ->type_name("FACTOR")
-      ->check(CLI::NonNegativeNumber);
+      ->check(numberWithin(0.0, 1e6, "simulated seconds per wall second; 0 = as fast as possible"));
   launch->add_option("--pub", options->publications,
                      "Publish a std_msgs/Float64 (or a [a, b] array) at simulated TIME s (default 0); repeatable")
       ->type_name("TOPIC:=VALUE[@TIME]");

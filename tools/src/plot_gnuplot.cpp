@@ -15,6 +15,9 @@
 
 namespace servoloop::cli {
 
+// Lines one plot draws at most (a 64-joint robot's positions fit).
+constexpr std::size_t kMaxPlotSeries = 64;
+
 std::string gnuplotQuoted(const std::string& text) {
   std::string out = "'";
   for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
@@ -133,6 +136,11 @@ std::string makeGnuplotScript(const PlotRequest& request) {
         series.push_back({&table, i + 1, series_title, table.isFloat64(), ""});
       }
     }
+    if (series.size() > kMaxPlotSeries) {
+      throw Error("the plot would draw " + std::to_string(series.size()) + " lines; one plot draws at most " +
+                  std::to_string(kMaxPlotSeries) + " (a legend of more says nothing): choose some with "
+                  "--columns NAME,...");
+    }
     if (series.empty()) {
       std::string known;
       for (const CsvTable& table : tables) {
@@ -171,6 +179,10 @@ std::string makeGnuplotScript(const PlotRequest& request) {
   script << "set multiplot layout 3,1 title " << gnuplotPlainTitle(title) << "\n";
   for (const Panel& panel : panels) {
     std::vector<Series> series;
+    if (joints.size() > kMaxPlotSeries) {
+      throw Error("the joint states hold " + std::to_string(joints.size()) + " joints; one plot draws at most " +
+                  std::to_string(kMaxPlotSeries) + " lines per panel: choose some with --columns NAME.position,...");
+    }
     for (const std::string& joint : joints) {
       const std::string column = joint + "." + panel.field;
       series.push_back({joint_states, joint_states->columnNumber(column), column, false, ""});

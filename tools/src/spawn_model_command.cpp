@@ -72,7 +72,9 @@ void addSpawnModelCommand(CLI::App& root) {
   const char* help[6] = {"Spawn x (m)", "Spawn y (m)", "Spawn z (m)", "Spawn roll (rad)", "Spawn pitch (rad)",
                          "Spawn yaw (rad)"};
   for (int i = 0; i < 6; ++i) {
-    spawn->add_option(names[i], options->pose[i], help[i])->type_name("NUM");
+    spawn->add_option(names[i], options->pose[i], help[i])
+        ->type_name("NUM")
+        ->check(numberWithin(i < 3 ? -1e6 : -1e3, i < 3 ? 1e6 : 1e3, i < 3 ? "m" : "rad"));
   }
   spawn->add_flag("--fixed-base", options->fixed_base,
                   "Weld the robot's root link to the world at the spawn pose (pybullet's useFixedBase)");

@@ -175,12 +175,14 @@ void addSpawnerCommand(CLI::App& root) {
       ->add_option("--timeout", options->timeout_s,
                    "Seconds to wait for the node to appear (0 = forever)")
       ->capture_default_str()
-      ->type_name("SECONDS");
+      ->type_name("SECONDS")
+      ->check(numberWithin(0.0, kMaxDurationS, "seconds; 0 waits forever"));
   spawner
       ->add_option("--shutdown-timeout", options->shutdown_timeout_s,
                    "Seconds each stop/unload request may take on shutdown (0 = forever)")
       ->capture_default_str()
-      ->type_name("SECONDS");
+      ->type_name("SECONDS")
+      ->check(numberWithin(0.0, kMaxDurationS, "seconds; 0 waits forever"));
   spawner
       ->add_option("controllers", options->arguments,
                    "Controller names; an existing .yaml file is loaded into the parameters "

@@ -351,7 +351,8 @@ void addTopicCommands(CLI::App& root) {
                     "YAML or JSON for other types")
         ->required();
     pub->add_option("-r,--rate", options->rate_hz, "Publish at this rate (Hz) until interrupted")
-        ->type_name("HZ");
+        ->type_name("HZ")
+        ->check(numberWithin(1e-6, 1e6, "messages per second"));
     pub->add_option("-n,--count", options->count, "Publish this many messages, then exit")
         ->type_name("COUNT");
     pub->callback([options] { runPub(*options); });

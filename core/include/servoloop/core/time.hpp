@@ -6,6 +6,12 @@
 
 namespace servoloop {
 
+// The physics time steps servoloop accepts, in seconds: below a microsecond a
+// run makes no progress anyone can wait for; above a second it simulates
+// nothing a controller could act on.
+inline constexpr double kMinTimeStepS = 1e-6;
+inline constexpr double kMaxTimeStepS = 1.0;
+
 struct Duration {
   double seconds = 0.0;
 

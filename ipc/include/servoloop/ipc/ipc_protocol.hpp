@@ -23,8 +23,9 @@
 //   {"stream": "<name>", ...payload}
 //
 // Connection rules the node enforces:
-//   - a line that is not JSON, not an object, or lacks a string "op" gets an
-//     error reply; the connection stays open;
+//   - a line that is not JSON (a number no double holds, such as 1e400,
+//     included), nests deeper than kIpcMaxRequestDepth, is not an object, or
+//     lacks a string "op" gets an error reply; the connection stays open;
 //   - a line over kIpcMaxRequestLineBytes (or that much data without a
 //     newline) gets an error reply, then the node closes the connection;
 //   - a partial line followed by end-of-file is discarded without a reply;
@@ -40,6 +41,9 @@ namespace servoloop::ipc {
 
 // Longest request line the node accepts, in bytes, not counting the '\n'.
 inline constexpr std::size_t kIpcMaxRequestLineBytes = std::size_t{1} << 20;  // 1 MiB
+// A request whose arrays and objects nest deeper than this is refused before
+// it is parsed (no servoloop message nests more than a few levels).
+inline constexpr int kIpcMaxRequestDepth = 64;
 
 // Most bytes the node keeps queued for one connection that is not reading.
 inline constexpr std::size_t kIpcMaxPendingOutputBytes = std::size_t{8} << 20;  // 8 MiB

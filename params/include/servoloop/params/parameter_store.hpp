@@ -55,6 +55,15 @@ double paramDoubleValue(const YAML::Node& scalar);
 // supported and throw servoloop::Error.
 std::string resolveName(std::string_view ns, std::string_view name);
 
+// The most nodes a YAML document may hold with its aliases expanded: anchors
+// and aliases let a few lines stand for billions of nodes, and every reader
+// that walks the document (dump, JSON, a controller's list) would expand them.
+inline constexpr std::size_t kMaxYamlNodes = 1'000'000;
+
+// Throws ConfigError naming `source_name` when `document`, aliases expanded,
+// holds more than kMaxYamlNodes nodes. Counting stops at the limit.
+void checkYamlSize(const YAML::Node& document, std::string_view source_name);
+
 class ParameterStore {
  public:
   ParameterStore();
