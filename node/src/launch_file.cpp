@@ -329,7 +329,7 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   }
   LaunchFile launch;
   if (root.IsNull() || !root.IsDefined()) return launch;
-  params::checkYamlSize(root, source_name);
+  params::checkYamlDocument(root, source_name);
   parser.requireMap(root, "", "world: {backend: bullet} and robots: [...]");
   parser.checkKeys(root, "", {"world", "controller_manager", "robots", "publish", "record", "plot"});
   launch.world = parser.world(root["world"]);

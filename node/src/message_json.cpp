@@ -413,7 +413,7 @@ json parseMessageText(std::string_view text, std::string_view source_name) {
     throw Error(std::string(source_name) + ": cannot read '" + std::string(text) + "'" + where + ": " + e.msg +
                 "; write YAML such as \"data: 1.0\" or JSON such as {\"data\": 1.0}");
   }
-  params::checkYamlSize(node, source_name);
+  params::checkYamlDocument(node, source_name);
   if (!node.IsDefined() || node.IsNull()) return json::object();  // all fields default
   return yamlToJson(node);
 }

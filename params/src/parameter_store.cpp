@@ -244,7 +244,7 @@ std::string resolveName(std::string_view ns, std::string_view name) {
   return result.empty() ? "/" : result;
 }
 
-void checkYamlSize(const YAML::Node& document, std::string_view source_name) {
+void checkYamlDocument(const YAML::Node& document, std::string_view source_name) {
   std::size_t count = 0;
   std::vector<YAML::Node> pending{document};
   while (!pending.empty()) {
@@ -258,7 +258,17 @@ void checkYamlSize(const YAML::Node& document, std::string_view source_name) {
     if (node.IsSequence()) {
       for (const auto& item : node) pending.push_back(item);
     } else if (node.IsMap()) {
+      std::map<std::string, YAML::Mark> seen;
       for (const auto& item : node) {
+        if (item.first.IsScalar()) {
+          const auto [first, inserted] = seen.emplace(item.first.Scalar(), item.first.Mark());
+          if (!inserted) {
+            throw ConfigError(markText(std::string(source_name), item.first.Mark()) + ": key '" +
+                              item.first.Scalar() + "' appears twice in one map (first at line " +
+                              std::to_string(first->second.line + 1) +
+                              "); ROS would use the last, yaml-cpp the first: keep one");
+          }
+        }
         pending.push_back(item.first);
         pending.push_back(item.second);
       }
@@ -284,7 +294,7 @@ void ParameterStore::loadString(std::string_view yaml, std::string_view source_n
                       "; fix the syntax there (indentation, a ':' after each key, closed brackets and quotes)");
   }
   if (!document.IsDefined() || document.IsNull()) return;  // an empty file sets nothing
-  checkYamlSize(document, source);
+  checkYamlDocument(document, source);
   if (!document.IsMap()) {
     throw ConfigError(source + ": the top level is a " + std::string(paramTypeName(paramTypeOf(document))) +
                       ", expected a map of names to values (e.g. 'my_robot:' followed by indented keys)");
@@ -551,7 +561,7 @@ void ParameterStore::set(std::string_view name, std::string_view yaml_value) {
     throw Error("parameter '" + resolveName("/", name) + "': value '" + std::string(yaml_value) +
                 "' is not valid YAML (" + e.msg + "); quote it or fix the brackets");
   }
-  checkYamlSize(value, "parameter '" + resolveName("/", name) + "'");
+  checkYamlDocument(value, "parameter '" + resolveName("/", name) + "'");
   setNode(name, value);
 }
 

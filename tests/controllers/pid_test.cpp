@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "alloc_counter.hpp"
+#include "log_capture.hpp"
 #include "servoloop/controllers/pid.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/params/parameters_yaml.hpp"
@@ -211,6 +212,19 @@ TEST(PidParams, OneSidedClampsOverrideAndForceTheirSign) {
 
 TEST(PidParams, Antiwindup) {
   EXPECT_TRUE(fromYaml("{p: 1, antiwindup: true}").getGains().antiwindup);
+}
+
+// ros_control ignores a misspelt key and accepts a negative gain without a
+// word; here each is one warning naming the key, and the gains still load.
+TEST(PidParams, UnknownKeysAndNegativeGainsAreOneWarningEach) {
+  servoloop::test::LogCapture log;
+  const Pid pid = fromYaml("{p: -2.0, i: 0.5, dd: 3.0, publish_state: true}");
+  EXPECT_EQ(pid.getGains().p_gain, -2.0);
+  EXPECT_EQ(pid.getGains().d_gain, 0.0) << "the misspelt d gain stays 0";
+  EXPECT_EQ(log.count("robot/ctrl/pid: unknown key 'dd' is ignored"), 1u) << log.text();
+  EXPECT_EQ(log.count("robot/ctrl/pid/p: the gain -2 is negative"), 1u) << log.text();
+  EXPECT_EQ(log.count("publish_state"), 0u) << "a key ros_control reads is not unknown: " << log.text();
+  EXPECT_EQ(log.count("/i: the gain"), 0u) << log.text();
 }
 
 TEST(PidParams, InitResetsState) {

@@ -155,6 +155,8 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"GroundPlaneNotBool", "world: {ground_plane: 2}", {"world.ground_plane", "true or false"}},
         ErrorCase{"BackendEmpty", "world: {backend: ''}", {"world.backend", "non-empty string"}},
         ErrorCase{"RtfNegative", "world: {real_time_factor: -1}", {"world.real_time_factor", ">= 0"}},
+        ErrorCase{"DuplicateKey", "world: {backend: mock}\nrobots: []\nworld: {backend: bullet}",
+                  {":3:1:", "key 'world' appears twice in one map (first at line 1)"}},
         ErrorCase{"AliasBomb",
                   "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
                   "c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\nd: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c, *c]\n"

@@ -181,6 +181,13 @@ TEST(ParameterStore, MalformedYamlNamesFileAndLine) {
   EXPECT_THAT(bombed, HasSubstr(bomb_file + ": the YAML holds more than 1000000 values once its aliases"));
   EXPECT_FALSE(params.has("/a")) << "nothing of the refused file is loaded";
 
+  // A key twice in one map: ROS would take the last, yaml-cpp the first.
+  const std::string twice =
+      messageOf<ConfigError>([&] { params.loadString("ctrl:\n  pid: {p: 10, d: 1, p: 20}\n", "dup.yaml"); });
+  EXPECT_THAT(twice, HasSubstr("dup.yaml:2:"));
+  EXPECT_THAT(twice, HasSubstr("key 'p' appears twice in one map (first at line 2)"));
+  EXPECT_FALSE(params.has("/ctrl"));
+
   // A file over the limit is refused by its size (a sparse file: nothing is written).
   const servoloop::testing::TempDir big_dir("servoloop-parameter-store-big");
   const std::string big = big_dir.file("huge.yaml");

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <thread>
 #include <type_traits>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::controllers {
 namespace {
@@ -73,6 +75,27 @@ void Pid::initFromParams(const params::Parameters& pid_params, const std::string
   if (readKey(node, where, "i_clamp_min", gains.i_min)) gains.i_min = -std::abs(gains.i_min);
   if (readKey(node, where, "i_clamp_max", gains.i_max)) gains.i_max = std::abs(gains.i_max);
   readKey(node, where, "antiwindup", gains.antiwindup);
+
+  // What ros_control would ignore without a word is one warning each here: a
+  // misspelt key (the gain it meant stays 0) and a gain that pushes away from
+  // the set point.
+  static constexpr const char* kKnown[] = {"p", "i", "d", "i_clamp", "i_clamp_min", "i_clamp_max", "antiwindup",
+                                           "publish_state"};
+  for (const std::string& key : node.keys()) {
+    if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown)) {
+      logger().warn("{}: unknown key '{}' is ignored (the PID reads p, i, d, i_clamp, i_clamp_min, i_clamp_max, "
+                    "antiwindup); check its spelling",
+                    where, key);
+    }
+  }
+  const std::pair<const char*, double> signed_gains[] = {{"p", gains.p_gain}, {"i", gains.i_gain}, {"d", gains.d_gain}};
+  for (const auto& [key, gain] : signed_gains) {
+    if (gain < 0.0) {
+      logger().warn("{}/{}: the gain {} is negative, so the controller pushes away from its set point; ros_control "
+                    "allows it, but a stable loop needs gains >= 0 for a joint of positive inertia",
+                    where, key, gain);
+    }
+  }
 
   initPid(gains.p_gain, gains.i_gain, gains.d_gain, gains.i_max, gains.i_min, gains.antiwindup);
 }

@@ -61,8 +61,10 @@ std::string resolveName(std::string_view ns, std::string_view name);
 inline constexpr std::size_t kMaxYamlNodes = 1'000'000;
 
 // Throws ConfigError naming `source_name` when `document`, aliases expanded,
-// holds more than kMaxYamlNodes nodes. Counting stops at the limit.
-void checkYamlSize(const YAML::Node& document, std::string_view source_name);
+// holds more than kMaxYamlNodes nodes (counting stops at the limit), or when a
+// map holds the same key twice (ROS's YAML reader keeps the last, yaml-cpp
+// the first: either silently gives a value the user did not mean).
+void checkYamlDocument(const YAML::Node& document, std::string_view source_name);
 
 class ParameterStore {
  public:
