@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -75,24 +76,64 @@ std::string describeElement(const tinyxml2::XMLElement* element) {
   return path;
 }
 
-// Every numeric attribute under <link> and <joint> must hold finite numbers.
+// How many numbers an attribute holds (1 unless listed) and the least value
+// that means something physical (none unless listed).
+struct NumberRule {
+  std::size_t count = 1;
+  std::optional<double> at_least;
+  bool positive = false;  // > 0 rather than >= at_least
+  const char* meaning = "";
+};
+
+NumberRule numberRule(const std::string& element, const std::string& attribute) {
+  if ((element == "origin" || element == "axis") && attribute == "xyz") return {3, std::nullopt, false, "x y z"};
+  if (element == "origin" && attribute == "rpy") return {3, std::nullopt, false, "roll pitch yaw"};
+  if (element == "mesh" && attribute == "scale") return {3, std::nullopt, false, "x y z factors"};
+  if (element == "box" && attribute == "size") return {3, std::nullopt, true, "three sizes > 0 (m)"};
+  if (element == "cylinder" || element == "sphere" || element == "capsule") {
+    return {1, std::nullopt, true, "a size > 0 (m)"};
+  }
+  if (element == "limit" && (attribute == "effort" || attribute == "velocity")) {
+    return {1, 0.0, false, "a limit >= 0 (a magnitude; URDF has no negative limits)"};
+  }
+  if (element == "dynamics") return {1, 0.0, false, "a coefficient >= 0 (a negative one would add energy)"};
+  return {};
+}
+
+// Every numeric attribute under <link> and <joint> must hold finite numbers,
+// as many as it needs, in the range that means something physical.
 void checkNumbers(const tinyxml2::XMLElement* element, const std::string& source_name) {
   const std::set<std::string>* numeric = numericAttributes(element->Name());
   for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); numeric != nullptr && a != nullptr;
        a = a->Next()) {
     if (numeric->count(a->Name()) == 0) continue;
+    const NumberRule rule = numberRule(element->Name(), a->Name());
+    const auto wrong = [&](const std::string& why) {
+      fail(source_name, describeElement(element) + " attribute " + a->Name() + "=\"" + a->Value() + "\": " + why);
+    };
     std::istringstream tokens(a->Value());
     std::string token;
+    std::size_t count = 0;
     while (tokens >> token) {
+      ++count;
       errno = 0;
       char* end = nullptr;
       const double value = std::strtod(token.c_str(), &end);
       const bool parsed = end != nullptr && *end == '\0' && end != token.c_str();
-      if (!parsed || !std::isfinite(value)) {
-        fail(source_name, describeElement(element) + " attribute " + a->Name() + "=\"" + a->Value() +
-                              "\": '" + token + "' is not a finite number; write a finite decimal value");
+      if (!parsed || !std::isfinite(value)) wrong("'" + token + "' is not a finite number; write a finite decimal value");
+      if ((rule.positive && !(value > 0.0)) || (rule.at_least && value < *rule.at_least)) {
+        wrong("'" + token + "' is out of range; expected " + rule.meaning);
       }
     }
+    if (count != rule.count) {
+      wrong(std::to_string(count) + " number" + (count == 1 ? "" : "s") + " where " + std::to_string(rule.count) +
+            (rule.count == 1 ? " is" : " are") + " expected" + (rule.count == 3 ? std::string(" (") + rule.meaning + ")" : ""));
+    }
+  }
+  if (std::string(element->Name()) == "limit" && element->Attribute("lower") != nullptr &&
+      element->Attribute("upper") != nullptr && element->DoubleAttribute("lower") > element->DoubleAttribute("upper")) {
+    fail(source_name, describeElement(element) + ": lower=\"" + element->Attribute("lower") + "\" is above upper=\"" +
+                          element->Attribute("upper") + "\"; swap them (ros_control refuses such limits)");
   }
   for (const tinyxml2::XMLElement* c = element->FirstChildElement(); c != nullptr;
        c = c->NextSiblingElement()) {
@@ -153,6 +194,24 @@ void checkStructure(const tinyxml2::XMLElement* robot, const std::string& source
                             "' and '" + name + "' (a kinematic cycle); a URDF must be a tree: remove one joint");
     }
     children_of.emplace(parent_link, child_link);
+  }
+  // A mimic joint follows a joint of this robot.
+  std::set<std::string> joint_names;
+  for (auto* j = robot->FirstChildElement("joint"); j != nullptr; j = j->NextSiblingElement("joint")) {
+    joint_names.insert(j->Attribute("name"));
+  }
+  for (auto* j = robot->FirstChildElement("joint"); j != nullptr; j = j->NextSiblingElement("joint")) {
+    const auto* mimic = j->FirstChildElement("mimic");
+    if (mimic == nullptr) continue;
+    const char* followed = mimic->Attribute("joint");
+    const std::string name = j->Attribute("name");
+    if (followed == nullptr) fail(source_name, "joint '" + name + "' <mimic> needs joint=\"...\": the joint it follows");
+    if (joint_names.count(followed) == 0 || name == followed) {
+      fail(source_name, "joint '" + name + "' <mimic joint=\"" + followed + "\">: " +
+                            (name == followed ? std::string("a joint cannot follow itself")
+                                              : "no joint '" + std::string(followed) + "' in this robot") +
+                            "; name the joint it follows");
+    }
   }
 
   std::vector<std::string> roots;

@@ -255,6 +255,44 @@ TEST(RobotModel, InfiniteInertiaIsRejected) {
   EXPECT_CONTAINS(message, "bad.urdf: link 'arm' <inertial><inertia> attribute iyy=\"inf\"");
 }
 
+// What urdfdom takes without a word but no physics means: each one error
+// naming the element, the value and what is expected.
+TEST(RobotModel, ValuesWithoutPhysicalMeaningAreRejected) {
+  struct Case {
+    std::string from;
+    std::string to;
+    std::string error;
+  };
+  const std::vector<Case> cases = {
+      {R"(lower="-1" upper="1")", R"(lower="1" upper="-1")",
+       "joint 'j1' <limit>: lower=\"1\" is above upper=\"-1\"; swap them"},
+      {R"(effort="5")", R"(effort="-5")", "joint 'j1' <limit> attribute effort=\"-5\": '-5' is out of range; expected a limit >= 0"},
+      {R"(velocity="1")", R"(velocity="-0.5")", "joint 'j1' <limit> attribute velocity=\"-0.5\": '-0.5' is out of range"},
+      {R"(<axis xyz="0 1 0"/>)", R"(<axis xyz="0 1"/>)", "joint 'j1' <axis> attribute xyz=\"0 1\": 2 numbers where 3 are expected"},
+      {R"(rpy="0 0 0")", R"(rpy="0 0 0 0")", "joint 'j1' <origin> attribute rpy=\"0 0 0 0\": 4 numbers where 3 are expected (roll pitch yaw)"},
+      {"</joint>", R"(<dynamics damping="-0.1"/></joint>)",
+       "joint 'j1' <dynamics> attribute damping=\"-0.1\": '-0.1' is out of range; expected a coefficient >= 0"},
+      {"</joint>", R"(<mimic joint="elbow"/></joint>)", "joint 'j1' <mimic joint=\"elbow\">: no joint 'elbow' in this robot"},
+      {"</joint>", R"(<mimic joint="j1"/></joint>)", "joint 'j1' <mimic joint=\"j1\">: a joint cannot follow itself"},
+  };
+  for (const Case& c : cases) {
+    std::string joint = kGoodJoint;
+    joint.replace(joint.find(c.from), c.from.size(), c.to);
+    EXPECT_CONTAINS(errorOf(robot(joint, armLink(kGoodInertial))), "bad.urdf: " + c.error);
+  }
+  const std::vector<std::pair<std::string, std::string>> geometries = {
+      {R"(<box size="0.1 0.2"/>)", "<box> attribute size=\"0.1 0.2\": 2 numbers where 3 are expected (three sizes > 0 (m))"},
+      {R"(<box size="0.1 -0.2 0.3"/>)", "<box> attribute size=\"0.1 -0.2 0.3\": '-0.2' is out of range"},
+      {R"(<cylinder radius="0" length="1"/>)", "<cylinder> attribute radius=\"0\": '0' is out of range; expected a size > 0"},
+      {R"(<sphere radius="-1"/>)", "<sphere> attribute radius=\"-1\": '-1' is out of range"},
+  };
+  for (const auto& [geometry, error] : geometries) {
+    const std::string link = R"(<link name="arm">)" + kGoodInertial + "<collision><geometry>" + geometry +
+                             "</geometry></collision></link>";
+    EXPECT_CONTAINS(errorOf(robot(kGoodJoint, link)), "bad.urdf: link 'arm' <collision><geometry>" + error);
+  }
+}
+
 TEST(RobotModel, NanDampingIsRejected) {
   std::string joint = kGoodJoint;
   joint.replace(joint.find("</joint>"), 8, R"(<dynamics damping="NaN"/></joint>)");
