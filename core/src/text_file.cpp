@@ -1,5 +1,6 @@
 #include "servoloop/core/text_file.hpp"
 
+#include <cstdint>
 #include <fstream>
 
 #include "servoloop/core/errors.hpp"
@@ -32,6 +33,41 @@ std::string readTextFile(const std::filesystem::path& path, const std::string& w
     if (text.size() > max_bytes) throw ConfigError(path.string() + ": " + what + " over the limit of " + limit_text());
   }
   return text;
+}
+
+std::optional<std::size_t> invalidUtf8Offset(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    std::size_t length = 0;
+    std::uint32_t code = 0;
+    if (byte < 0x80) {
+      ++i;
+      continue;
+    } else if ((byte & 0xE0) == 0xC0) {
+      length = 2;
+      code = byte & 0x1F;
+    } else if ((byte & 0xF0) == 0xE0) {
+      length = 3;
+      code = byte & 0x0F;
+    } else if ((byte & 0xF8) == 0xF0) {
+      length = 4;
+      code = byte & 0x07;
+    } else {
+      return i;
+    }
+    if (i + length > text.size()) return i;
+    for (std::size_t k = 1; k < length; ++k) {
+      const auto next = static_cast<unsigned char>(text[i + k]);
+      if ((next & 0xC0) != 0x80) return i;
+      code = (code << 6) | (next & 0x3F);
+    }
+    // Overlong forms, UTF-16 surrogates and values past Unicode are not UTF-8.
+    static constexpr std::uint32_t kLeast[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (code < kLeast[length] || (code >= 0xD800 && code <= 0xDFFF) || code > 0x10FFFF) return i;
+    i += length;
+  }
+  return std::nullopt;
 }
 
 }  // namespace servoloop

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/core/text_file.hpp"
 #include "servoloop/hardware_interface/package_path.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
 #include "servoloop/hardware_interface/xacro.hpp"
@@ -247,6 +249,16 @@ void checkStructure(const tinyxml2::XMLElement* robot, const std::string& source
 }
 
 void checkXml(const std::string& xml, const std::string& source_name) {
+  if (const auto offset = invalidUtf8Offset(xml)) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(xml[*offset]));
+    fail(source_name, "byte " + std::to_string(*offset) + " (" + hex +
+                          ") is not UTF-8, the encoding URDF is read in; save the file as UTF-8");
+  }
+  if (xml.find("<!ENTITY") != std::string::npos) {
+    fail(source_name, "declares XML entities (<!DOCTYPE ... <!ENTITY ...>), which urdfdom and ROS's URDF parser "
+                      "do not expand; write the values out (or use xacro properties)");
+  }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
     fail(source_name, std::string("not valid XML (line ") + std::to_string(doc.ErrorLineNum()) + "): " +

@@ -271,6 +271,8 @@ TEST_F(CliLaunch, OutOfRangeNumbersAndDevicesAreOneLineErrors) {
       {"check-urdf /dev/zero", "/dev/zero: is not a regular file (a device, FIFO or socket)"},
       {"launch /dev/zero --duration 1", "/dev/zero: is not a regular file"},
       {"plot wide.csv -o wide.png", "the plot would draw 5000 lines; one plot draws at most 64"},
+      {"fly", "servoloop: error: unknown command 'fly'; the commands are: launch, "},
+      {"control fly", "servoloop control: error: unknown command 'fly'; the commands are: list-types, "},
   };
   {
     std::ofstream wide(dir_ / "wide.csv");

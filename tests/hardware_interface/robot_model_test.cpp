@@ -293,6 +293,13 @@ TEST(RobotModel, ValuesWithoutPhysicalMeaningAreRejected) {
   }
 }
 
+TEST(RobotModel, TextThatIsNotUtf8OrDeclaresEntitiesIsNamed) {
+  EXPECT_CONTAINS(errorOf("<robot name=\"r\xFF\"><link name=\"a\"/></robot>"),
+                  "bad.urdf: byte 14 (0xFF) is not UTF-8, the encoding URDF is read in; save the file as UTF-8");
+  EXPECT_CONTAINS(errorOf("<?xml version=\"1.0\"?>\n<!DOCTYPE r [<!ENTITY x \"y\">]>\n<robot name=\"&x;\"><link name=\"a\"/></robot>"),
+                  "bad.urdf: declares XML entities");
+}
+
 TEST(RobotModel, NanDampingIsRejected) {
   std::string joint = kGoodJoint;
   joint.replace(joint.find("</joint>"), 8, R"(<dynamics damping="NaN"/></joint>)");

@@ -154,6 +154,26 @@ TEST(TransmissionParser, SkipsAnUnknownTypeWithOneWarning) {
   EXPECT_NE(log.text().find("skipped"), std::string::npos) << log.text();
 }
 
+// ros_control ignores an actuator's <hardwareInterface> in the modern form;
+// one it does not know at all is a warning naming it, and loads.
+TEST(TransmissionParser, UnknownActuatorInterfaceIsOneWarning) {
+  servoloop::test::LogCapture log;
+  const auto infos = st::parseTransmissions(robotWith(R"(
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><hardwareInterface>EffortActuatorInterface</hardwareInterface>
+      <hardwareInterface>TorqueMotorInterface</hardwareInterface><mechanicalReduction>2</mechanicalReduction></actuator>
+  </transmission>)"),
+                                            "act.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  EXPECT_EQ(log.count("act.urdf: transmission 't1': actuator 'm1': <hardwareInterface> 'TorqueMotorInterface' is not "
+                      "an interface ros_control knows"),
+            1u)
+      << log.text();
+  EXPECT_EQ(log.count("'EffortActuatorInterface' is not"), 0u) << log.text();
+}
+
 // pr2_mechanism_model's form (PR2, ros_controllers' diffbot test robot):
 // type attribute, reduction on the transmission, no hardware interface.
 // Skipped with one warning; other transmissions are still read.

@@ -24,6 +24,30 @@ std::string commandPath(const CLI::App& root) {
   return path;
 }
 
+// A word where a (sub)command belongs that names none: CLI11 would only say
+// "A subcommand is required". Returns the one-line error, or "" when the
+// words name commands as far as they go.
+std::string unknownCommand(const CLI::App& root, int argc, char** argv) {
+  const CLI::App* current = &root;
+  std::string path = root.get_name();
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') return "";  // options: CLI11 judges them
+    const auto commands = current->get_subcommands([](const CLI::App*) { return true; });
+    if (commands.empty()) return "";  // a command's own arguments
+    const CLI::App* next = nullptr;
+    std::string names;
+    for (const CLI::App* command : commands) {
+      if (command->check_name(word)) next = command;
+      names += (names.empty() ? "" : ", ") + command->get_name();
+    }
+    if (next == nullptr) return path + ": error: unknown command '" + word + "'; the commands are: " + names;
+    current = next;
+    path += " " + next->get_name();
+  }
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -32,6 +56,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   servoloop::cli::addAllCommands(app);
 
+  if (const std::string unknown = unknownCommand(app, argc, argv); !unknown.empty()) {
+    std::cerr << unknown << "\n";
+    return static_cast<int>(CLI::ExitCodes::ExtrasError);  // as CLI11 ends for arguments it cannot place
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -26,6 +26,8 @@ constexpr std::string_view kTransmissionPrefix = "transmission_interface/";
 constexpr std::array<std::string_view, 4> kJointInterfaces = {
     "EffortJointInterface", "VelocityJointInterface", "PositionJointInterface",
     "JointStateInterface"};
+constexpr std::array<std::string_view, 4> kActuatorInterfaces = {
+    "EffortActuatorInterface", "VelocityActuatorInterface", "PositionActuatorInterface", "ActuatorStateInterface"};
 
 // What each transmission type needs from its <joint> and <actuator> elements.
 struct TypeRule {
@@ -253,7 +255,7 @@ void readJoints(const tinyxml2::XMLElement* transmission, const urdf::ModelInter
 }
 
 void readActuators(const tinyxml2::XMLElement* transmission, const std::string& label,
-                   UsedNames& used, TransmissionInfo& info, Problems& problems) {
+                   const std::string& source_name, UsedNames& used, TransmissionInfo& info, Problems& problems) {
   for (auto* element = transmission->FirstChildElement("actuator"); element != nullptr;
        element = element->NextSiblingElement("actuator")) {
     TransmissionActuatorInfo actuator;
@@ -267,6 +269,15 @@ void readActuators(const tinyxml2::XMLElement* transmission, const std::string& 
     const std::string owner = "actuator '" + actuator.name + "'";
 
     actuator.hardware_interfaces = readHardwareInterfaces(element, owner, false, problems);
+    for (const std::string& interface : actuator.hardware_interfaces) {
+      if (std::find(kJointInterfaces.begin(), kJointInterfaces.end(), interface) == kJointInterfaces.end() &&
+          std::find(kActuatorInterfaces.begin(), kActuatorInterfaces.end(), interface) == kActuatorInterfaces.end()) {
+        logger().warn("{}: transmission {}: {}: <hardwareInterface> '{}' is not an interface ros_control knows "
+                      "(an actuator's are EffortActuatorInterface, VelocityActuatorInterface, "
+                      "PositionActuatorInterface, or a joint interface in the pre-2015 form); it is ignored",
+                      source_name, label, owner, interface);
+      }
+    }
     actuator.role = elementText(element->FirstChildElement("role"));
     if (element->FirstChildElement("mechanicalReduction") == nullptr) {
       problems.add(owner +
@@ -451,7 +462,7 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
     }
 
     readJoints(element, *robot, label, source_name, used, info, problems);
-    readActuators(element, label, used, info, problems);
+    readActuators(element, label, source_name, used, info, problems);
     if (rule != nullptr) validateForType(info, *rule, problems);
     infos.push_back(std::move(info));
   }

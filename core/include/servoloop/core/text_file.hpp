@@ -6,7 +6,9 @@
 // Non-real-time.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace servoloop {
 
@@ -19,5 +21,9 @@ inline constexpr std::uintmax_t kMaxTextFileBytes = std::uintmax_t{64} << 20;  /
 // than `max_bytes`, or unreadable.
 std::string readTextFile(const std::filesystem::path& path, const std::string& what,
                          std::uintmax_t max_bytes = kMaxTextFileBytes);
+
+// The offset of the first byte of `text` that is not part of valid UTF-8, or
+// nullopt when all of it is (XML, YAML and JSON text must be UTF-8).
+std::optional<std::size_t> invalidUtf8Offset(std::string_view text);
 
 }  // namespace servoloop
