@@ -116,6 +116,7 @@ void checkNumbers(const tinyxml2::XMLElement* element, const std::string& source
     std::istringstream tokens(a->Value());
     std::string token;
     std::size_t count = 0;
+    bool zero_vector = true;
     while (tokens >> token) {
       ++count;
       errno = 0;
@@ -123,9 +124,19 @@ void checkNumbers(const tinyxml2::XMLElement* element, const std::string& source
       const double value = std::strtod(token.c_str(), &end);
       const bool parsed = end != nullptr && *end == '\0' && end != token.c_str();
       if (!parsed || !std::isfinite(value)) wrong("'" + token + "' is not a finite number; write a finite decimal value");
+      zero_vector = zero_vector && value == 0.0;
       if ((rule.positive && !(value > 0.0)) || (rule.at_least && value < *rule.at_least)) {
         wrong("'" + token + "' is out of range; expected " + rule.meaning);
       }
+    }
+    // (A fixed or floating joint has no axis to speak of: exporters often write 0 0 0 there.)
+    const tinyxml2::XMLElement* owner = element->Parent() ? element->Parent()->ToElement() : nullptr;
+    const char* joint_type = owner != nullptr ? owner->Attribute("type") : nullptr;
+    const bool moves_about_axis = joint_type != nullptr && (std::string(joint_type) == "revolute" ||
+                                                            std::string(joint_type) == "continuous" ||
+                                                            std::string(joint_type) == "prismatic");
+    if (std::string(element->Name()) == "axis" && count == 3 && zero_vector && moves_about_axis) {
+      wrong("a zero vector has no direction; give the joint's axis, e.g. xyz=\"0 0 1\"");
     }
     if (count != rule.count) {
       wrong(std::to_string(count) + " number" + (count == 1 ? "" : "s") + " where " + std::to_string(rule.count) +

@@ -37,8 +37,11 @@ mjModel* compileMjcf(const std::string& mjcf, const std::string& source_name) {
   mjModel* model = mj_loadXML(kModelFileName, vfs.get(), error, sizeof(error));
   mj_deleteVFS(vfs.get());
   if (model == nullptr) {
-    throw ConfigError(source_name + ": MuJoCo refused the model generated from the URDF: " + error +
-                      " (check the link's <inertial>: MuJoCo needs principal moments with A + B >= C)");
+    // A hint only where MuJoCo's own words point at the inertia.
+    const std::string text = error;
+    const bool inertia = text.find("inertia") != std::string::npos || text.find("mass") != std::string::npos;
+    throw ConfigError(source_name + ": MuJoCo refused the model generated from the URDF: " + text +
+                      (inertia ? " (check the link's <inertial>: MuJoCo needs principal moments with A + B >= C)" : ""));
   }
   return model;
 }

@@ -269,6 +269,7 @@ TEST(RobotModel, ValuesWithoutPhysicalMeaningAreRejected) {
       {R"(effort="5")", R"(effort="-5")", "joint 'j1' <limit> attribute effort=\"-5\": '-5' is out of range; expected a limit >= 0"},
       {R"(velocity="1")", R"(velocity="-0.5")", "joint 'j1' <limit> attribute velocity=\"-0.5\": '-0.5' is out of range"},
       {R"(<axis xyz="0 1 0"/>)", R"(<axis xyz="0 1"/>)", "joint 'j1' <axis> attribute xyz=\"0 1\": 2 numbers where 3 are expected"},
+      {R"(<axis xyz="0 1 0"/>)", R"(<axis xyz="0 0 0"/>)", "joint 'j1' <axis> attribute xyz=\"0 0 0\": a zero vector has no direction"},
       {R"(rpy="0 0 0")", R"(rpy="0 0 0 0")", "joint 'j1' <origin> attribute rpy=\"0 0 0 0\": 4 numbers where 3 are expected (roll pitch yaw)"},
       {"</joint>", R"(<dynamics damping="-0.1"/></joint>)",
        "joint 'j1' <dynamics> attribute damping=\"-0.1\": '-0.1' is out of range; expected a coefficient >= 0"},
@@ -280,6 +281,11 @@ TEST(RobotModel, ValuesWithoutPhysicalMeaningAreRejected) {
     joint.replace(joint.find(c.from), c.from.size(), c.to);
     EXPECT_CONTAINS(errorOf(robot(joint, armLink(kGoodInertial))), "bad.urdf: " + c.error);
   }
+  // A fixed joint's axis means nothing; exporters write 0 0 0 there.
+  std::string fixed = kGoodJoint;
+  fixed.replace(fixed.find("revolute"), 8, "fixed");
+  fixed.replace(fixed.find(R"(<axis xyz="0 1 0"/>)"), 19, R"(<axis xyz="0 0 0"/>)");
+  EXPECT_EQ(errorOf(robot(fixed, armLink(kGoodInertial))), "");
   const std::vector<std::pair<std::string, std::string>> geometries = {
       {R"(<box size="0.1 0.2"/>)", "<box> attribute size=\"0.1 0.2\": 2 numbers where 3 are expected (three sizes > 0 (m))"},
       {R"(<box size="0.1 -0.2 0.3"/>)", "<box> attribute size=\"0.1 -0.2 0.3\": '-0.2' is out of range"},
