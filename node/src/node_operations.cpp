@@ -20,6 +20,9 @@
 namespace servoloop::node {
 namespace {
 
+// Topics a robot's bus may hold; `topic pub` to a new name past this is refused.
+constexpr std::size_t kMaxTopicsPerRobot = 4096;
+
 using nlohmann::json;
 
 // A switch whose request says "timeout: 0" (wait forever) waits this long at
@@ -285,7 +288,15 @@ json NodeOperations::topicPub(RobotInstance& robot, const json& request) {
   const std::string topic = requireString(request, "topic");
   const std::string type = optionalString(request, "type", "");
   if (!request.contains("msg")) throw Error("'topic.pub' needs a field 'msg' (the message as JSON, e.g. {\"data\": 1.0})");
-  servoloop::node::publishJson(robot.topics(), topic, request["msg"], type);
+  // Each new topic keeps its slots for the node's lifetime: a client
+  // publishing to ever new names must not grow the node without end.
+  realtime::TopicBus& bus = robot.topics();
+  if (!bus.hasTopic(topic) && bus.list().size() >= kMaxTopicsPerRobot) {
+    throw Error("topic '" + topic + "' would be topic number " + std::to_string(kMaxTopicsPerRobot + 1) +
+                " of this robot; the limit is " + std::to_string(kMaxTopicsPerRobot) +
+                " (is a client publishing to generated names?)");
+  }
+  servoloop::node::publishJson(bus, topic, request["msg"], type);
   return nullptr;
 }
 

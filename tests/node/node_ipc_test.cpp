@@ -153,6 +153,28 @@ TEST_F(NodeIpc, SwitchStopsAndStartsAController) {
   EXPECT_EQ(call("control.list")["controllers"][1]["state"], "running");
 }
 
+// A client publishing to ever new names is stopped at the topic limit; topics
+// that exist still take messages.
+TEST_F(NodeIpc, TopicPubToNewNamesStopsAtTheLimit) {
+  const std::size_t existing = call("topic.list")["topics"].size();
+  std::size_t created = 0;
+  std::string error;
+  for (std::size_t i = 0; i < 5000 && error.empty(); ++i) {
+    json request = {{"op", "topic.pub"}, {"topic", "/spam/t" + std::to_string(i)}, {"type", "std_msgs/Float64"},
+                    {"msg", {{"data", 1.0}}}};
+    const json reply = client_.request(request);
+    if (reply.value("ok", false)) {
+      ++created;
+    } else {
+      error = reply.value("error", "");
+    }
+  }
+  EXPECT_EQ(existing + created, 4096u);
+  EXPECT_NE(error.find("would be topic number 4097 of this robot; the limit is 4096"), std::string::npos) << error;
+  call("topic.pub", {{"topic", "/spam/t0"}, {"msg", {{"data", 2.0}}}});
+  EXPECT_EQ(call("ping")["namespace"], kNamespace);
+}
+
 TEST_F(NodeIpc, BadRequestsGetErrorsAndTheNodeKeepsServing) {
   EXPECT_NE(errorOf("control.fly").find("unknown op 'control.fly'"), std::string::npos);
   EXPECT_NE(errorOf("control.load", {{"name", "joint9_controller"}}).find("joint9_controller"), std::string::npos);
