@@ -2,8 +2,11 @@
 
 #include <cxxabi.h>
 #include <dlfcn.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <system_error>
@@ -220,11 +223,38 @@ PluginLoader::Created PluginLoader::createErased(const std::string& type, const 
   return Created{object, PluginDeleter(entry->destroy, std::move(library))};
 }
 
+// Why another user could put code into this process through `path`, or ""
+// when none can: a file or folder every user may write to (a sticky folder
+// such as /tmp still lets anyone add files), or, for a process running as
+// root, one owned by an ordinary user. (Group-writable is left alone: with
+// per-user groups, as Debian gives, it is the user's own.)
+static std::string foreignWriteAccess(const fs::path& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) return "";
+  char mode[8];
+  std::snprintf(mode, sizeof mode, "%04o", static_cast<unsigned>(info.st_mode & 07777));
+  if ((info.st_mode & S_IWOTH) != 0) return std::string("it is writable by every user (mode ") + mode + ")";
+  if (::geteuid() == 0 && info.st_uid != 0) {
+    return "this process runs as root and it is owned by uid " + std::to_string(info.st_uid);
+  }
+  return "";
+}
+
 void PluginLoader::scanLocked() {
   std::vector<fs::path> seen;
   for (const auto& dir : search_directories_) {
     std::error_code error;
     if (!fs::is_directory(dir, error)) continue;
+    // A folder others can write to may gain a library at any time: its
+    // libraries are not loaded (one warning says why and how to fix it).
+    if (const std::string why = foreignWriteAccess(dir); !why.empty()) {
+      addDiagnosticLocked(dir, "plugin folder not searched: " + why +
+                                   ", so another user could place a library this process would run; make it "
+                                   "writable only by its owner (chmod o-w), owned by root when root runs servoloop");
+      logger().warn("plugin path: {} is not searched: {}; chmod o-w it (and chown root when root runs servoloop)",
+                    dir.string(), why);
+      continue;
+    }
     std::vector<fs::path> candidates;
     for (fs::directory_iterator it(dir, error), end; !error && it != end; it.increment(error)) {
       if (isPluginFileName(it->path()) && fs::is_regular_file(it->path(), error)) {
@@ -247,6 +277,14 @@ void PluginLoader::scanLocked() {
 }
 
 void PluginLoader::indexLibraryLocked(const fs::path& path) {
+  if (const std::string why = foreignWriteAccess(path); !why.empty()) {
+    addDiagnosticLocked(path, "not loaded: " + why +
+                                  ", so another user could change the code this process runs; make it writable "
+                                  "only by its owner (chmod o-w), owned by root when root runs servoloop");
+    logger().warn("plugin path: {} is not loaded: {}; chmod o-w it (and chown root when root runs servoloop)",
+                  path.string(), why);
+    return;
+  }
   const auto index = readPluginIndex(path);
   if (!index) {
     // Any other library may share a folder with plugins: not worth a warning.

@@ -214,6 +214,31 @@ TEST(PluginLoader, CreatingAsTheWrongKindOrBaseIsRefused) {
   EXPECT_THAT(message, HasSubstr("derives from servoloop::test_fixtures::FixtureController"));
 }
 
+// A library or folder every user can write to could bring another user's
+// code into this process: it is not loaded, with one diagnostic saying why.
+TEST(PluginLoader, WorldWritableLibrariesAndFoldersAreNotLoaded) {
+  servoloop::testing::TempDir dir("servoloop-plugin-perm");
+  const fs::path library = dir.path() / "libfixture_good.so";
+  fs::copy_file(caseLibrary("good"), library);
+  fs::permissions(library, fs::perms::others_write, fs::perm_options::add);
+  {
+    PluginLoader loader({dir.path()});
+    EXPECT_FALSE(loader.hasType("fixture/Alpha"));
+    const PluginDiagnostic diagnostic = diagnosticFor(loader, fs::canonical(library));
+    EXPECT_THAT(diagnostic.reason, HasSubstr("not loaded: it is writable by every user (mode 0"));
+    EXPECT_THAT(diagnostic.reason, HasSubstr("chmod o-w"));
+  }
+  fs::permissions(library, fs::perms::others_write, fs::perm_options::remove);
+  EXPECT_TRUE(PluginLoader({dir.path()}).hasType("fixture/Alpha"));
+
+  fs::permissions(dir.path(), fs::perms::others_write, fs::perm_options::add);
+  PluginLoader loader({dir.path()});
+  EXPECT_FALSE(loader.hasType("fixture/Alpha"));
+  const PluginDiagnostic diagnostic = diagnosticFor(loader, dir.path());
+  EXPECT_THAT(diagnostic.reason, HasSubstr("plugin folder not searched: it is writable by every user"));
+  fs::permissions(dir.path(), fs::perms::others_write, fs::perm_options::remove);
+}
+
 TEST(PluginLoader, LibraryWithoutAPluginIndexIsPassedOverQuietly) {
   // A valid shared library that is not a servoloop plugin: no warning, no type.
   PluginLoader loader({caseDir("not_a_plugin")});
