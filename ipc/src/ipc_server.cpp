@@ -34,41 +34,6 @@ constexpr std::size_t kReadChunkBytes = 64 * 1024;
 
 std::string errnoText() { return std::strerror(errno); }
 
-// The message a json::exception carries, without its "[json.exception.x.y] " tag.
-std::string jsonErrorText(const nlohmann::json::exception& error) {
-  std::string text = error.what();
-  if (!text.empty() && text.front() == '[') {
-    const auto end = text.find("] ");
-    if (end != std::string::npos) text.erase(0, end + 2);
-  }
-  return text;
-}
-
-// How deep the arrays and objects of a JSON text nest (brackets inside
-// strings do not count); a cheap scan that needs no parse.
-int jsonNestingDepth(std::string_view text) {
-  int depth = 0;
-  int deepest = 0;
-  bool in_string = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (c == '\\') {
-        ++i;
-      } else if (c == '"') {
-        in_string = false;
-      }
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      deepest = std::max(deepest, ++depth);
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-  return deepest;
-}
-
 }  // namespace
 
 IpcServer::IpcServer(std::filesystem::path socket_path, Handler handler)
@@ -355,46 +320,13 @@ void IpcServer::rejectOversized(IpcConnection& connection) {
 void IpcServer::handleLine(IpcConnection& connection, std::string_view line) {
   if (line.find_first_not_of(" \t\r") == std::string_view::npos) return;  // blank keep-alive lines
 
-  const int depth = jsonNestingDepth(line);
-  if (depth > kIpcMaxRequestDepth) {
+  IpcRequestCheck checked = parseIpcRequest(line);
+  if (!checked.ok) {
     requests_rejected_.fetch_add(1);
-    connection.send(makeIpcErrorReply(nullptr, "request nests arrays/objects " + std::to_string(depth) +
-                                                   " deep; the limit is " + std::to_string(kIpcMaxRequestDepth)));
+    connection.send(checked.error);
     return;
   }
-  nlohmann::json request;
-  try {
-    request = nlohmann::json::parse(line);
-  } catch (const nlohmann::json::exception& error) {  // syntax, and numbers no double can hold (1e400)
-    requests_rejected_.fetch_add(1);
-    connection.send(makeIpcErrorReply(nullptr, "request is not valid JSON: " + jsonErrorText(error)));
-    return;
-  }
-  if (!request.is_object()) {
-    requests_rejected_.fetch_add(1);
-    connection.send(makeIpcErrorReply(
-        nullptr, "request must be a JSON object like {\"id\": 1, \"op\": \"...\"}, got " +
-                     describeJsonType(request)));
-    return;
-  }
-  const nlohmann::json id = request.contains(kIpcIdKey) ? request[kIpcIdKey] : nlohmann::json();
-  if (!id.is_null() && !id.is_number_integer()) {
-    requests_rejected_.fetch_add(1);
-    connection.send(makeIpcErrorReply(id, "request \"id\" must be an integer, got " + describeJsonType(id)));
-    return;
-  }
-  const auto op = request.find(kIpcOpKey);
-  if (op == request.end()) {
-    requests_rejected_.fetch_add(1);
-    connection.send(makeIpcErrorReply(id, "request has no \"op\" field naming the operation"));
-    return;
-  }
-  if (!op->is_string()) {
-    requests_rejected_.fetch_add(1);
-    connection.send(makeIpcErrorReply(id, "request \"op\" must be a string, got " + describeJsonType(*op)));
-    return;
-  }
-
+  const nlohmann::json& request = checked.request;
   requests_handled_.fetch_add(1);
   nlohmann::json reply = replyFor(request, connection);
   if (reply.is_discarded()) return;  // the handler replies later itself

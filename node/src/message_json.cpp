@@ -16,6 +16,10 @@ namespace {
 
 using nlohmann::json;
 
+// JSON text for messages and errors; a string that is not UTF-8 (YAML lets
+// one through) shows its bad bytes as U+FFFD instead of throwing.
+std::string jsonText(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
+
 // Field names of each known type, in ROS order (text and CSV use this order).
 const std::map<std::string_view, std::vector<std::string_view>>& fieldTable() {
   static const std::map<std::string_view, std::vector<std::string_view>> table = {
@@ -34,10 +38,10 @@ std::string describe(const json& value) {
   switch (value.type()) {
     case json::value_t::null: return "null";
     case json::value_t::boolean: return value.get<bool>() ? "true" : "false";
-    case json::value_t::string: return "string " + value.dump();
+    case json::value_t::string: return "string " + jsonText(value);
     case json::value_t::array: return "a list";
     case json::value_t::object: return "an object";
-    default: return value.dump();
+    default: return jsonText(value);
   }
 }
 
@@ -185,10 +189,10 @@ std::string textOf(const json& value, bool quote_strings) {
     case json::value_t::boolean: return value.get<bool>() ? "True" : "False";
     case json::value_t::number_float: return formatDouble(value.get<double>());
     case json::value_t::number_integer:
-    case json::value_t::number_unsigned: return value.dump();
-    case json::value_t::string: return quote_strings ? value.dump() : value.get<std::string>();
+    case json::value_t::number_unsigned: return jsonText(value);
+    case json::value_t::string: return quote_strings ? jsonText(value) : value.get<std::string>();
     case json::value_t::array: return inlineList(value);
-    default: return value.dump();
+    default: return jsonText(value);
   }
 }
 
@@ -231,7 +235,7 @@ std::string csvCell(const json& value) {
       for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
       return quoted + "\"";
     }
-    default: return value.dump();
+    default: return jsonText(value);
   }
 }
 

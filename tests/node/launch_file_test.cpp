@@ -157,6 +157,10 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"RtfNegative", "world: {real_time_factor: -1}", {"world.real_time_factor", ">= 0"}},
         ErrorCase{"DuplicateKey", "world: {backend: mock}\nrobots: []\nworld: {backend: bullet}",
                   {":3:1:", "key 'world' appears twice in one map (first at line 1)"}},
+        // Found by fuzzing: a string that is not UTF-8 ended the launch with a raw
+        // library exception instead of the publication's error.
+        ErrorCase{"NotUtf8Value", "publish: [{topic: /a/command, value: \"\xAE\"}]",
+                  {"publish[0].value: std_msgs/Float64: expected an object with fields data, got string"}},
         ErrorCase{"AliasBomb",
                   "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
                   "c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\nd: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c, *c]\n"

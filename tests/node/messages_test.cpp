@@ -37,6 +37,15 @@ sensor_msgs::JointState threeJoints() {
   return msg;
 }
 
+// Found by fuzzing: text of a message holding a string that is not UTF-8
+// (YAML lets one through) threw from the JSON library.
+TEST(Messages, TextOfStringsThatAreNotUtf8DoesNotThrow) {
+  const nlohmann::json message = parseMessageText("[1, 2, \"3\xF9\"]", "test");
+  std::string text;
+  EXPECT_NO_THROW(text = messageToText("std_msgs/Float64MultiArray", {{"data", message}}));
+  EXPECT_NE(text.find("\xEF\xBF\xBD"), std::string::npos) << "the bad byte shows as U+FFFD: " << text;
+}
+
 TEST(Messages, TypeNames) {
   EXPECT_EQ(std_msgs::Float64::kTypeName, "std_msgs/Float64");
   EXPECT_EQ(std_msgs::Float64MultiArray::kTypeName, "std_msgs/Float64MultiArray");

@@ -76,4 +76,15 @@ std::string encodeIpcLine(const nlohmann::json& message);
 // The JSON type name as a user would say it ("an array", "a number", ...).
 std::string describeJsonType(const nlohmann::json& value);
 
+// A request line checked as the node checks it before any handler sees it:
+// ok, the request (an object with a string "op" and an integer or absent
+// "id"); otherwise `error` is the reply to send (with the request's id when
+// it could be read). Never throws, whatever the line holds.
+struct IpcRequestCheck {
+  bool ok = false;
+  nlohmann::json request;
+  nlohmann::json error;
+};
+IpcRequestCheck parseIpcRequest(std::string_view line);
+
 }  // namespace servoloop::ipc

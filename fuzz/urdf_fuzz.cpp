@@ -1,0 +1,12 @@
+// The URDF loader and the transmission parser on arbitrary text.
+#include "fuzz_common.hpp"
+#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/transmissions/transmission_parser.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string urdf = servoloop::fuzz::text(data, size);
+  return servoloop::fuzz::refusalsAllowed([&] {
+    servoloop::parseRobotModel(urdf, "fuzz.urdf");
+    servoloop::transmissions::parseTransmissions(urdf, "fuzz.urdf");
+  });
+}
