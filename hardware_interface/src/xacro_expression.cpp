@@ -350,6 +350,22 @@ class Parser {
   }
 
  private:
+  // Brackets, parentheses and unary operators nest at most this deep: the
+  // parser recurses once per level, and a deeper text would exhaust the stack.
+  static constexpr int kMaxNesting = 100;
+  struct Nesting {
+    explicit Nesting(Parser& parser) : parser_(parser) {
+      if (++parser_.nesting_ > kMaxNesting) {
+        fail("the expression nests more than " + std::to_string(kMaxNesting) +
+                     " levels of brackets, parentheses or unary operators");
+      }
+    }
+    ~Nesting() { --parser_.nesting_; }
+    Nesting(const Nesting&) = delete;
+    Nesting& operator=(const Nesting&) = delete;
+    Parser& parser_;
+  };
+
   const Token& peek() const { return tokens_[pos_]; }
   bool isOp(const char* op) const { return peek().kind == Token::Kind::Op && peek().text == op; }
   bool isWord(const char* word) const { return peek().kind == Token::Kind::Name && peek().text == word; }
@@ -362,6 +378,7 @@ class Parser {
   // In `x if c else y`, c is evaluated first and then only x or y (Python's
   // order): a live parse looks ahead (without evaluating) for the `if`.
   Value conditional(bool live) {
+    const Nesting nesting(*this);
     const std::size_t start = pos_;
     if (!live) {
       orExpr(false);
@@ -420,6 +437,7 @@ class Parser {
   Value notExpr(bool live) {
     if (isWord("not")) {
       ++pos_;
+      const Nesting nesting(*this);
       const Value v = notExpr(live);
       return live ? Value::ofBool(!truthy(v)) : Value{};
     }
@@ -479,6 +497,7 @@ class Parser {
     if (isOp("-") || isOp("+")) {
       const bool negate = isOp("-");
       ++pos_;
+      const Nesting nesting(*this);
       Value v = unary(live);
       if (!live) return v;
       if (!v.isNumber()) fail(std::string("unary ") + (negate ? "-" : "+") + " of a " + typeName(v) + " (" + repr(v) + ")");
@@ -606,6 +625,7 @@ class Parser {
 
   std::vector<Token> tokens_;
   std::size_t pos_ = 0;
+  int nesting_ = 0;
   Names& names_;
 };
 

@@ -287,6 +287,11 @@ TEST(Xacro, ErrorsNameTheFileLineAndWhatIsWrong) {
   EXPECT_CONTAINS(errorOf(R"~(<l x="${'a' * 'b'}"/>)~"), "unsupported operand types for *: str");
   EXPECT_CONTAINS(errorOf(R"~(<l x="$(find no_such_package_xyz)/a"/>)~"), "ROS package 'no_such_package_xyz' not found");
   EXPECT_CONTAINS(errorOf("<l>"), "xacro: not well-formed XML");
+  // Found by fuzzing: 600 nested brackets overflowed the parser's stack.
+  EXPECT_CONTAINS(errorOf("<l x=\"${" + std::string(600, '[') + "}\"/>"),
+                  "the expression nests more than 100 levels of brackets, parentheses or unary operators");
+  EXPECT_CONTAINS(errorOf("<l x=\"${" + std::string(600, '-') + "1}\"/>"), "nests more than 100 levels");
+  EXPECT_EQ(value(std::string(50, '(') + "1" + std::string(50, ')')), "1");
   // Exponential expansion is cut off instead of filling the memory.
   std::string bomb = R"~(<xacro:macro name="m0" params=""><a/></xacro:macro>)~";
   for (int i = 1; i <= 24; ++i) {
