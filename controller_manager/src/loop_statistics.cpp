@@ -85,20 +85,36 @@ void LoopStatistics::reset() noexcept {
   for (auto& bucket : histogram_) bucket.store(0, std::memory_order_relaxed);
 }
 
-double LoopStatistics::percentileSeconds(double q, std::uint64_t total, std::int64_t min_ns,
-                                         std::int64_t max_ns) const noexcept {
+namespace {
+
+using Counts = std::array<std::uint64_t, LoopStatistics::kBucketCount>;
+
+// The value below which a fraction q of `total` counted values lie (bucket
+// midpoint, clamped to [min_ns, max_ns]), from one copy of the histogram.
+double percentileOf(const Counts& counts, double q, std::uint64_t total, std::int64_t min_ns,
+                    std::int64_t max_ns) noexcept {
   if (total == 0) return 0.0;
   // The smallest bucket holding at least ceil(q * total) of the values.
   const auto rank = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(total))));
   std::uint64_t seen = 0;
-  for (std::size_t i = 0; i < kBucketCount; ++i) {
-    seen += histogram_[i].load(std::memory_order_relaxed);
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    seen += counts[i];
     if (seen >= rank) {
-      const double middle = 0.5 * static_cast<double>(bucketLower(i) + bucketUpper(i) - 1);
+      const double middle =
+          0.5 * static_cast<double>(LoopStatistics::bucketLower(i) + LoopStatistics::bucketUpper(i) - 1);
       return std::clamp(middle, static_cast<double>(min_ns), static_cast<double>(max_ns)) * kSecondsPerNs;
     }
   }
   return static_cast<double>(max_ns) * kSecondsPerNs;
+}
+
+}  // namespace
+
+double LoopStatistics::percentileSeconds(double q, std::uint64_t total, std::int64_t min_ns,
+                                         std::int64_t max_ns) const noexcept {
+  Counts counts;
+  for (std::size_t i = 0; i < kBucketCount; ++i) counts[i] = histogram_[i].load(std::memory_order_relaxed);
+  return percentileOf(counts, q, total, min_ns, max_ns);
 }
 
 LoopStatisticsSnapshot LoopStatistics::snapshot() const noexcept {
@@ -113,10 +129,15 @@ LoopStatisticsSnapshot LoopStatistics::snapshot() const noexcept {
   s.hardware_errors = hardware_errors_.load(std::memory_order_relaxed);
   if (s.cycles == 0) return s;
 
-  // The histogram's own total: the timed cycles, consistent with the
-  // percentiles even while the writer adds a cycle.
+  // One copy of the histogram, read once: its total and both percentiles come
+  // from the same counts even while the writer adds cycles (reading it twice
+  // could put the median above the 99th percentile).
+  Counts counts;
   std::uint64_t total = 0;
-  for (const auto& bucket : histogram_) total += bucket.load(std::memory_order_relaxed);
+  for (std::size_t i = 0; i < kBucketCount; ++i) {
+    counts[i] = histogram_[i].load(std::memory_order_relaxed);
+    total += counts[i];
+  }
   const std::int64_t min_ns = compute_min_ns_.load(std::memory_order_relaxed);
   const std::int64_t max_ns = compute_max_ns_.load(std::memory_order_relaxed);
   const std::int64_t sum_ns = compute_sum_ns_.load(std::memory_order_relaxed);
@@ -127,8 +148,8 @@ LoopStatisticsSnapshot LoopStatistics::snapshot() const noexcept {
   s.compute_min_s = static_cast<double>(min_ns) * kSecondsPerNs;
   s.compute_max_s = static_cast<double>(max_ns) * kSecondsPerNs;
   s.compute_mean_s = static_cast<double>(sum_ns) / static_cast<double>(total) * kSecondsPerNs;
-  s.compute_p50_s = percentileSeconds(0.50, total, min_ns, max_ns);
-  s.compute_p99_s = percentileSeconds(0.99, total, min_ns, max_ns);
+  s.compute_p50_s = percentileOf(counts, 0.50, total, min_ns, max_ns);
+  s.compute_p99_s = percentileOf(counts, 0.99, total, min_ns, max_ns);
   return s;
 }
 
