@@ -263,8 +263,9 @@ void RobotInstance::publishDue(std::uint64_t steps_taken) {
     bus_->setTime(Time(stepsToSeconds(steps_taken, loop_->physicsStep().seconds)));
     try {
       servoloop::node::publishJson(*bus_, publication.topic, publication.message, publication.type);
-      logger().debug("published {} on '{}' at t = {} s", publication.message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), publication.topic,
-                     publication.time_s);
+      logger().debug("published {} on '{}' at t = {} s",
+                     publication.message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                     publication.topic, publication.time_s);
     } catch (const std::exception& e) {
       logger().error("timed publication on '{}' at t = {} s failed: {}", publication.topic, publication.time_s,
                      e.what());

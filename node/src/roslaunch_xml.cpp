@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -134,8 +133,9 @@ class Reader {
   // ----- files and elements -----
 
   void readFile(FileScope& scope, int depth) {
+    // (What exists but is no regular file, readTextFile names as such.)
     std::error_code ec;
-    if (!fs::is_regular_file(scope.file, ec)) {
+    if (!fs::exists(scope.file, ec)) {
       throw ConfigError("launch file '" + scope.file.string() + "' cannot be read (no such file); check the path");
     }
     const std::string text = readTextFile(scope.file, "launch file");
@@ -295,8 +295,9 @@ class Reader {
   // `xacro FILE name:=value ...` (also `$(find xacro)/xacro`, `xacro.py`,
   // `rosrun xacro xacro`, with --inorder and other options) or `cat FILE`.
   Description commandDescription(const XMLElement* e, FileScope& scope, std::string raw) {
-    for (const char* prefix : {"$(find xacro)/"}) {
-      for (auto at = raw.find(prefix); at != std::string::npos; at = raw.find(prefix)) raw.erase(at, std::strlen(prefix));
+    const std::string find_xacro = "$(find xacro)/";
+    for (auto at = raw.find(find_xacro); at != std::string::npos; at = raw.find(find_xacro)) {
+      raw.erase(at, find_xacro.size());
     }
     const std::vector<std::string> words = splitWords(subst(raw, e, scope));
     Description description;
@@ -542,7 +543,7 @@ class Reader {
         robot.xacro_args = it->second.xacro_args;
       }
       std::error_code ec;
-      if (!fs::is_regular_file(robot.urdf, ec)) {
+      if (!fs::exists(robot.urdf, ec)) {
         throw ConfigError(spawn.place.text() + ": the robot description " + robot.urdf.string() +
                           " does not exist; fix the path");
       }

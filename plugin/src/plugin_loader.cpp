@@ -251,8 +251,6 @@ void PluginLoader::scanLocked() {
       addDiagnosticLocked(dir, "plugin folder not searched: " + why +
                                    ", so another user could place a library this process would run; make it "
                                    "writable only by its owner (chmod o-w), owned by root when root runs servoloop");
-      logger().warn("plugin path: {} is not searched: {}; chmod o-w it (and chown root when root runs servoloop)",
-                    dir.string(), why);
       continue;
     }
     std::vector<fs::path> candidates;
@@ -281,8 +279,6 @@ void PluginLoader::indexLibraryLocked(const fs::path& path) {
     addDiagnosticLocked(path, "not loaded: " + why +
                                   ", so another user could change the code this process runs; make it writable "
                                   "only by its owner (chmod o-w), owned by root when root runs servoloop");
-    logger().warn("plugin path: {} is not loaded: {}; chmod o-w it (and chown root when root runs servoloop)",
-                  path.string(), why);
     return;
   }
   const auto index = readPluginIndex(path);

@@ -21,7 +21,6 @@
 #include "node_connection.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/core/errors.hpp"
-#include "servoloop/core/text_file.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
@@ -161,8 +160,6 @@ ordered_json hardwareJson(const tr::RobotTransmissions& robot) {
   return {{"joints", joints}, {"actuators", actuators}};
 }
 
-std::string readFile(const std::string& path) { return readTextFile(path, "URDF file"); }
-
 std::string number(const ordered_json& value) { return formatDouble(value.get<double>()); }
 
 std::string joinStrings(const ordered_json& list, const char* separator = ", ") {
@@ -277,10 +274,9 @@ void printText(const ordered_json& report) {
 }
 
 std::string description(const CheckUrdfOptions& options) {
-  if (!isXacroPath(options.file)) return readFile(options.file);
   XacroArgs args;
   for (const auto& text : options.xacro_args) args.insert(parseXacroArg(text));
-  return expandXacroFile(options.file, args);
+  return readRobotDescription(options.file, args);
 }
 
 void runCheckUrdf(const CheckUrdfOptions& options) {
