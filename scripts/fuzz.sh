@@ -5,6 +5,7 @@
 # input that caused it is kept in the output folder.
 #   FUZZ_SECONDS   seconds per target (default 30)
 #   BUILD_DIR      build folder (default build-fuzz)
+#   FUZZ_TARGETS   the targets to run, separated by spaces (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -43,12 +44,14 @@ printf '{name: [j1, j2], position: [0.1, 0.2], velocity: [], effort: []}' > "$wo
 printf '[1, 2, 3]' > "$work/message_json_fuzz/corpus/array"
 
 status=0
-for target in urdf_fuzz xacro_fuzz params_yaml_fuzz launch_yaml_fuzz roslaunch_fuzz ipc_request_fuzz message_json_fuzz; do
+all_targets="urdf_fuzz xacro_fuzz params_yaml_fuzz launch_yaml_fuzz roslaunch_fuzz ipc_request_fuzz message_json_fuzz"
+for target in ${FUZZ_TARGETS:-$all_targets}; do
   log="$work/$target/log.txt"
   if (cd "$work/$target" && "$root/$build_dir/fuzz/$target" corpus -max_total_time="$seconds" -timeout=10 \
         -rss_limit_mb=2048 -max_len=65536 -artifact_prefix=artifacts/ -print_final_stats=1) > "$log" 2>&1; then
     runs=$(grep -m1 'stat::number_of_executed_units' "$log" | awk '{print $2}')
-    echo "== $target: ok, ${runs:-?} inputs in ${seconds} s"
+    corpus=$(find "$work/$target/corpus" -type f | wc -l)
+    echo "== $target: ok, ${runs:-?} inputs in ${seconds} s; corpus now $corpus inputs"
   else
     status=1
     echo "== $target: FAILED (see $log); the input:"
