@@ -21,6 +21,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/core/text_file.hpp"
+#include "servoloop/core/xml_error_text.hpp"
 #include "servoloop/hardware_interface/package_path.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
 #include "servoloop/hardware_interface/xacro.hpp"
@@ -272,8 +273,18 @@ void checkXml(const std::string& xml, const std::string& source_name) {
   }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    fail(source_name, std::string("not valid XML (line ") + std::to_string(doc.ErrorLineNum()) + "): " +
-                          doc.ErrorStr() + "; fix the XML syntax");
+    fail(source_name, "not valid XML (" + xmlErrorText(doc.ErrorName(), doc.ErrorLineNum(), doc.ErrorStr()) +
+                          "); fix the XML syntax");
+  }
+  // Text outside the root element (tinyxml2 lets it through; urdfdom then
+  // reports an "empty document").
+  for (const tinyxml2::XMLNode* n = doc.FirstChild(); n != nullptr; n = n->NextSibling()) {
+    if (const tinyxml2::XMLText* text = n->ToText()) {
+      std::string words = text->Value() ? text->Value() : "";
+      if (words.size() > 40) words = words.substr(0, 40) + "...";
+      fail(source_name, "not valid XML (line " + std::to_string(text->GetLineNum()) + "): text '" + words +
+                            "' outside the root element; is this a URDF file?");
+    }
   }
   const tinyxml2::XMLElement* robot = doc.RootElement();
   if (robot == nullptr || std::string(robot->Name()) != "robot") {

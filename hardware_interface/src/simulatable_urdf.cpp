@@ -1,12 +1,15 @@
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
 
+#include <cctype>
 #include <charconv>
+#include <cmath>
 #include <map>
 #include <set>
 #include <string_view>
 
 #include <tinyxml2.h>
 
+#include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 
 namespace servoloop {
@@ -19,16 +22,26 @@ struct JointEdge {
   bool fixed = false;
 };
 
-// <inertial><mass value=...> of a link; 0 without one or when it is not a number.
-double linkMass(const tinyxml2::XMLElement* link) {
+// <inertial><mass value=...> of a link; 0 without one. A mass that is not a
+// finite number >= 0 is an error here, before a negative or NaN mass could be
+// taken for "no mass" and the link silently left out.
+double linkMass(const tinyxml2::XMLElement* link, const std::string& source_name) {
   const tinyxml2::XMLElement* inertial = link->FirstChildElement("inertial");
   const tinyxml2::XMLElement* mass = inertial ? inertial->FirstChildElement("mass") : nullptr;
   const char* value = mass ? mass->Attribute("value") : nullptr;
   if (value == nullptr) return 0.0;
-  const std::string_view text(value);
+  std::string_view text(value);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
   double number = 0.0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
-  return error == std::errc() ? number : 0.0;
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(number) || number < 0.0) {
+    const char* name = link->Attribute("name");
+    throw ConfigError(source_name + ": link '" + (name ? name : "?") + "': <mass value=\"" + value +
+                      "\"> must be a finite number of kilograms >= 0 (0 or no <inertial> leaves a moving link out, "
+                      "as Gazebo does)");
+  }
+  return number;
 }
 
 std::string joinNames(const std::vector<std::string>& names) {
@@ -46,7 +59,7 @@ class Pruner {
   bool read() {
     for (auto* l = robot_->FirstChildElement("link"); l != nullptr; l = l->NextSiblingElement("link")) {
       const char* name = l->Attribute("name");
-      if (name == nullptr || !mass_.emplace(name, linkMass(l)).second) return false;
+      if (name == nullptr || !mass_.emplace(name, linkMass(l, source_name_)).second) return false;
       link_order_.emplace_back(name);
     }
     for (auto* j = robot_->FirstChildElement("joint"); j != nullptr; j = j->NextSiblingElement("joint")) {

@@ -15,7 +15,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/core/text_file.hpp"
+#include "servoloop/core/xml_error_text.hpp"
 #include "servoloop/hardware_interface/package_path.hpp"
 #include "xacro_expression.hpp"
 
@@ -118,7 +120,7 @@ std::string trim(const std::string& s) {
 
 class Expander : public xacro::Names {
  public:
-  explicit Expander(XacroArgs args) : args_(std::move(args)) {}
+  explicit Expander(XacroArgs args) : args_(std::move(args)), given_(args_) {}
 
   std::string run(const std::string& text, const std::string& source_name) {
     const XMLDocument& input = parse(text, source_name);
@@ -135,9 +137,23 @@ class Expander : public xacro::Names {
       copyAttributes(root, out_root, global);
       expandChildren(root, out_root, global);
     });
+    warnUnusedArguments(source_name);
     tinyxml2::XMLPrinter printer;
     output_.Print(&printer);
     return printer.CStr();
+  }
+
+  // An argument given on the command line that no file declares or reads is
+  // most likely misspelt: xacro ignores it, servoloop says so.
+  void warnUnusedArguments(const std::string& source_name) const {
+    std::string declared;
+    for (const auto& name : known_args_) declared += (declared.empty() ? "" : ", ") + name;
+    for (const auto& [name, value] : given_) {
+      if (known_args_.count(name) != 0) continue;
+      logger().warn("{}: xacro argument {}:={} is ignored: no <xacro:arg name=\"{}\"> and no $(arg {}) in the files "
+                    "(their arguments: {}); check its name",
+                    source_name, name, value, name, name, declared.empty() ? "none" : declared);
+    }
   }
 
   // xacro::Names
@@ -160,7 +176,7 @@ class Expander : public xacro::Names {
     auto document = std::make_unique<XMLDocument>();
     if (document->Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
       throw ConfigError(name + ":" + std::to_string(document->ErrorLineNum()) + ": xacro: not well-formed XML (" +
-                        document->ErrorStr() + ")");
+                        xmlErrorText(document->ErrorName(), document->ErrorLineNum(), document->ErrorStr()) + ")");
     }
     if (document->RootElement() == nullptr) throw ConfigError(name + ": xacro: the file has no root element");
     names_[document.get()] = name;
@@ -333,6 +349,7 @@ class Expander : public xacro::Names {
     const std::string command = trimmed.substr(0, space);
     const std::string rest = space == std::string::npos ? "" : trim(trimmed.substr(space + 1));
     if (command == "arg") {
+      known_args_.insert(rest);
       if (auto it = args_.find(rest); it != args_.end()) return it->second;
       throw ExpressionError("$(arg " + rest + ") is not set: pass " + rest + ":=value, or declare <xacro:arg name=\"" +
                             rest + "\" default=\"...\"/> before using it");
@@ -354,7 +371,7 @@ class Expander : public xacro::Names {
     }
     if (command == "dirname") return files_.back().dir.string();
     if (command == "eval") {
-      ArgNames arg_names(args_, *this);
+      ArgNames arg_names(args_, *this, known_args_);
       return xacro::str(xacro::evaluate(rest, arg_names));
     }
     throw ExpressionError("unknown substitution $(" + trimmed +
@@ -364,9 +381,10 @@ class Expander : public xacro::Names {
   // $(eval ...) sees the arguments as names.
   class ArgNames : public xacro::Names {
    public:
-    ArgNames(const XacroArgs& args, xacro::Names& files) : args_(args), files_(files) {}
+    ArgNames(const XacroArgs& args, xacro::Names& files, std::set<std::string>& used)
+        : args_(args), files_(files), used_(used) {}
     std::optional<Value> lookup(const std::string& name) override {
-      if (auto it = args_.find(name); it != args_.end()) return xacro::literal(it->second);
+      if (auto it = args_.find(name); it != args_.end()) return used_.insert(name), xacro::literal(it->second);
       return std::nullopt;
     }
     Value loadYaml(const std::string& file) override { return files_.loadYaml(file); }
@@ -374,6 +392,7 @@ class Expander : public xacro::Names {
    private:
     const XacroArgs& args_;
     xacro::Names& files_;
+    std::set<std::string>& used_;
   };
 
   // ----- the XML walk -----
@@ -434,6 +453,7 @@ class Expander : public xacro::Names {
         defineProperty(element, scope);
       } else if (what == "arg") {
         const std::string name = required(element, "name");
+        known_args_.insert(name);
         if (args_.count(name) == 0 && element->Attribute("default") != nullptr) {
           args_[name] = evalString(element->Attribute("default"), scope);
         }
@@ -713,6 +733,8 @@ class Expander : public xacro::Names {
   }
 
   XacroArgs args_;
+  const XacroArgs given_;             // the name:=value arguments of the command line
+  std::set<std::string> known_args_;  // declared by <xacro:arg> or read by $(arg)
   std::vector<std::unique_ptr<XMLDocument>> documents_;
   std::map<const XMLDocument*, std::string> names_;
   std::vector<std::unique_ptr<Scope>> scopes_;

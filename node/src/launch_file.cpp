@@ -310,6 +310,7 @@ TimedPublication makeTimedPublication(std::string topic, std::string type, const
   bool publishable = false;
   try {
     publishable = checkMessage(type, value);
+    requireFiniteCommand(type, value);
   } catch (const Error& e) {
     throw Error(prefix + e.what());
   }

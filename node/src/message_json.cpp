@@ -422,6 +422,21 @@ json parseMessageText(std::string_view text, std::string_view source_name) {
   return yamlToJson(node);
 }
 
+void requireFiniteCommand(std::string_view type_name, const json& msg) {
+  std::vector<double> values;
+  if (type_name == std_msgs::Float64::kTypeName) {
+    values.push_back(messageFromJson<std_msgs::Float64>(msg).data);
+  } else if (type_name == std_msgs::Float64MultiArray::kTypeName) {
+    values = messageFromJson<std_msgs::Float64MultiArray>(msg).data;
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::isfinite(values[i])) continue;
+    const std::string where = type_name == std_msgs::Float64::kTypeName ? "" : "[" + std::to_string(i) + "]";
+    throw Error(std::string(type_name) + ": data" + where + " is " + formatDouble(values[i]) +
+                "; a command must be a finite number");
+  }
+}
+
 // --- Type-erased helpers --------------------------------------------------------------
 
 bool isKnownMessageType(std::string_view type_name) { return fieldTable().contains(type_name); }
@@ -508,6 +523,7 @@ void publishJson(realtime::TopicBus& bus, std::string_view topic, const json& ms
     }
   }
   try {
+    requireFiniteCommand(type, msg);
     withMessageFromJson(type, msg, [&](const realtime::MessageView& view) { bus.publishView(name, view); });
   } catch (const Error& e) {
     const std::string what = e.what();

@@ -43,6 +43,15 @@ Node::Node(LaunchFile launch, NodeOptions options) : launch_(std::move(launch)),
       throw ConfigError(fmt::format("{}: publication on '{}': the world has no robot to publish to; add one under robots:",
                                     launch_.source.string(), publication.topic));
     }
+    // A topic the controllers already created with another type would refuse
+    // the message at its time; say so now, before the run.
+    realtime::TopicBus& bus = robot->topics();
+    const std::string existing = bus.hasTopic(publication.topic) ? bus.typeOf(publication.topic) : std::string();
+    if (!existing.empty() && existing != publication.type) {
+      throw ConfigError(fmt::format("{}: publication on '{}': the topic carries {}, not {}; publish a {} value or pick "
+                                    "another topic",
+                                    launch_.source.string(), publication.topic, existing, publication.type, existing));
+    }
     robot->addTimedPublication(publication);
   }
   for (const RecordSpec& record : launch_.record) {

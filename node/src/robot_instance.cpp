@@ -163,10 +163,14 @@ RobotInstance::~RobotInstance() {
 }
 
 void RobotInstance::loadControllers(const RobotSpec& spec, const params::ParameterStore& store) {
+  // Where the parameters are is said once: when one controller's type is
+  // elsewhere, the others' usually are too.
+  bool hinted = false;
   const auto load = [&](const std::string& name) {
     if (manager_->loadController(name)) return true;
     launch_failures_.push_back("controller '" + name + "' did not load");
-    hintWhereParametersAre(name, store);
+    if (!hinted) hintWhereParametersAre(name, store);
+    hinted = true;
     return false;
   };
   for (const std::string& name : spec.controllers) {

@@ -6,6 +6,7 @@
 
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/xml_error_text.hpp"
 
 namespace servoloop::node {
 namespace {
@@ -25,7 +26,9 @@ std::string trimmed(const char* text) {
 std::string urdfRobotNamespace(const std::string& urdf_xml, const std::string& source_name) {
   tinyxml2::XMLDocument document;
   if (document.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw ConfigError(source_name + ": not valid XML (" + (document.ErrorStr() ? document.ErrorStr() : "") +
+    throw ConfigError(source_name + ": not valid XML (" +
+                      xmlErrorText(document.ErrorName(), document.ErrorLineNum(),
+                                   document.ErrorStr() ? document.ErrorStr() : "") +
                       "); check the robot description");
   }
   const tinyxml2::XMLElement* robot = document.FirstChildElement("robot");

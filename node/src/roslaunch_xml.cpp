@@ -18,6 +18,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/core/text_file.hpp"
+#include "servoloop/core/xml_error_text.hpp"
 #include "servoloop/hardware_interface/package_path.hpp"
 #include "servoloop/hardware_interface/xacro.hpp"
 #include "servoloop/node/robot_namespace.hpp"
@@ -142,7 +143,8 @@ class Reader {
     auto document = std::make_unique<tinyxml2::XMLDocument>();
     if (document->Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
       throw ConfigError(fmt::format("{}:{}: not well-formed roslaunch XML: {}", scope.file.string(),
-                                    document->ErrorLineNum(), document->ErrorStr()));
+                                    document->ErrorLineNum(),
+                                    xmlErrorText(document->ErrorName(), document->ErrorLineNum(), document->ErrorStr())));
     }
     const XMLElement* root = document->RootElement();
     if (root == nullptr || std::string(root->Name()) != "launch") {

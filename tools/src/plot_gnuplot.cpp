@@ -146,7 +146,9 @@ std::string makeGnuplotScript(const PlotRequest& request) {
       for (const CsvTable& table : tables) {
         for (std::size_t i = 1; i < table.columns.size(); ++i) known += (known.empty() ? "" : ", ") + table.columns[i];
       }
-      throw Error("--columns: no file has such a column (columns: " + known + ")");
+      std::string asked;
+      for (const std::string& column : request.columns) asked += (asked.empty() ? "" : ",") + column;
+      throw Error("--columns " + asked + ": no file has such a column (columns: " + known + ")");
     }
     script << "set title " << gnuplotPlainTitle(title) << "\nset ylabel 'value'\n" << plotCommand(series);
     script << "unset output\n";

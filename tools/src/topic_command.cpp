@@ -112,6 +112,10 @@ std::string echoText(const StreamMessage& message) {
 
 void runPub(const TopicOptions& options) {
   const std::string topic = resolveName(options.ns, options.topic);
+  if (options.value.find_first_not_of(" \t\r\n") == std::string::npos) {
+    throw Error("VALUE is empty: give the " + options.type +
+                " message, e.g. 1.0 or \"{data: 1.0}\" (\"{}\" publishes one with every field at its default)");
+  }
   const auto msg = normalizeMessage(options.type, servoloop::node::parseMessageText(options.value, "VALUE"));
   if (options.rate_hz < 0.0) throw Error("-r/--rate must be > 0 (messages per second)");
   if (options.count < 0) throw Error("-n/--count must be >= 0");

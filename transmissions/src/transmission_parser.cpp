@@ -14,6 +14,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/core/xml_error_text.hpp"
 #include "servoloop/transmissions/differential_transmission.hpp"
 #include "servoloop/transmissions/four_bar_linkage_transmission.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
@@ -389,7 +390,8 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
                                                  const std::string& source_name) {
   tinyxml2::XMLDocument document;
   if (document.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw ConfigError(source_name + ": not well-formed XML (" + document.ErrorStr() +
+    throw ConfigError(source_name + ": not well-formed XML (" +
+                      xmlErrorText(document.ErrorName(), document.ErrorLineNum(), document.ErrorStr()) +
                       "); fix the XML before the transmissions can be read");
   }
   const tinyxml2::XMLElement* root = document.RootElement();

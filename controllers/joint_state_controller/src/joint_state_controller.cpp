@@ -38,7 +38,8 @@ bool JointStateController::init(hardware_interface::JointStateInterface* hw,
     publisher_.msg() = prototype_;
   }
   if (!(gate_.rate() > 0.0)) {
-    logger().info("controller '{}': publish_rate {} <= 0, joint states will not be published",
+    logger().warn("controller '{}': publish_rate {} <= 0, so joint states are never published; give a rate in Hz, "
+                  "e.g. publish_rate: 50",
                   context.name, gate_.rate());
   }
   return true;

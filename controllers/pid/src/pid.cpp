@@ -72,8 +72,19 @@ void Pid::initFromParams(const params::Parameters& pid_params, const std::string
   }
   // The one-sided keys win over i_clamp, and their signs are forced so that
   // i_min <= 0 <= i_max whatever was written.
-  if (readKey(node, where, "i_clamp_min", gains.i_min)) gains.i_min = -std::abs(gains.i_min);
-  if (readKey(node, where, "i_clamp_max", gains.i_max)) gains.i_max = std::abs(gains.i_max);
+  // A sign written the other way round is one warning, as the value used is
+  // not the value written.
+  const auto forceSign = [&](const char* key, double& value, double sign) {
+    if (!readKey(node, where, key, value)) return;
+    const double forced = sign * std::abs(value);
+    if (forced != value) {
+      logger().warn("{}/{}: {} is used as {} (ros_control forces i_clamp_min <= 0 <= i_clamp_max)", where, key, value,
+                    forced);
+    }
+    value = forced;
+  };
+  forceSign("i_clamp_min", gains.i_min, -1.0);
+  forceSign("i_clamp_max", gains.i_max, 1.0);
   readKey(node, where, "antiwindup", gains.antiwindup);
 
   // What ros_control would ignore without a word is one warning each here: a

@@ -55,6 +55,11 @@ nlohmann::json yamlToJson(const YAML::Node& node);
 // "[1, 2]", "1.0") or JSON. source_name prefixes syntax errors.
 nlohmann::json parseMessageText(std::string_view text, std::string_view source_name = "message");
 
+// Throws servoloop::Error when a command message (std_msgs/Float64 or
+// Float64MultiArray, given as JSON) holds NaN (null) or an infinite value: a
+// command from a user or client must be a finite number. Other types pass.
+void requireFiniteCommand(std::string_view type_name, const nlohmann::json& msg);
+
 // --- Type-erased helpers (for the IPC server and the recorder) --------------
 // Message types this module can convert; knownMessageTypes() is sorted.
 bool isKnownMessageType(std::string_view type_name);
