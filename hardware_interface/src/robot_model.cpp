@@ -314,7 +314,10 @@ class CapturingOutputHandler : public console_bridge::OutputHandler {
   std::vector<std::string> warnings;
 };
 
-urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std::string& source_name) {
+}  // namespace
+
+urdf::ModelInterfaceSharedPtr parseUrdfWithUrdfdom(const std::string& xml, const std::string& source_name,
+                                                   bool report_warnings) {
   // console_bridge's handler is process-global; serialise the swap.
   static std::mutex handler_mutex;
   CapturingOutputHandler handler;
@@ -329,13 +332,23 @@ urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std
     }
     console_bridge::restorePreviousOutputHandler();
   }
-  for (const auto& w : handler.warnings) logger().warn("{}: urdfdom: {}", source_name, w);
   if (!model) {
     fail(source_name, "urdfdom could not parse the URDF: " +
                           (handler.errors.empty() ? std::string("no reason given") : handler.errors));
   }
+  if (report_warnings) {
+    for (const auto& w : handler.warnings) logger().warn("{}: urdfdom: {}", source_name, w);
+    // Errors urdfdom recovers from (a <collision> it cannot read): ROS goes
+    // on without the element, and so does servoloop, saying so.
+    if (!handler.errors.empty()) {
+      logger().warn("{}: urdfdom: {}; the element is left out, as ROS does: fix it to keep it", source_name,
+                    handler.errors);
+    }
+  }
   return model;
 }
+
+namespace {
 
 // ---------------------------------------------------------------------------
 // Model-level checks.
@@ -468,7 +481,7 @@ void resolveMeshes(urdf::Link& link, const fs::path& base_dir, const std::string
 std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& xml,
                                                             const std::string& source_name) {
   checkXml(xml, source_name);
-  urdf::ModelInterfaceSharedPtr model = parseWithUrdfdom(xml, source_name);
+  urdf::ModelInterfaceSharedPtr model = parseUrdfWithUrdfdom(xml, source_name, true);
   const fs::path base_dir = fs::path(source_name).has_parent_path() ? fs::path(source_name).parent_path()
                                                                      : fs::current_path();
   for (auto& [name, link] : model->links_) {

@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <mutex>
+#include <set>
 #include <string>
 #include <system_error>
+
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::plugin {
 namespace fs = std::filesystem;
@@ -74,6 +78,18 @@ std::vector<fs::path> pluginSearchPath(const std::vector<fs::path>& explicit_dir
   std::vector<fs::path> dirs;
   for (const auto& dir : explicit_dirs) appendUnique(dirs, dir);
   for (const auto& dir : pluginPathFromEnvironment()) appendUnique(dirs, dir);
+  // A folder the user named that is not there is most likely a typo; the
+  // default folders may legitimately be missing.
+  static std::mutex warned_mutex;
+  static std::set<fs::path> warned;
+  for (const auto& dir : dirs) {
+    std::error_code error;
+    if (fs::is_directory(dir, error)) continue;
+    std::lock_guard lock(warned_mutex);
+    if (!warned.insert(dir).second) continue;
+    logger().warn("plugin folder '{}' (from --plugin-dir or {}) {}; check the path", dir.string(), kPluginPathEnvVar,
+                  fs::exists(dir, error) ? "is not a folder" : "does not exist");
+  }
   for (const auto& dir : defaultPluginDirectories()) appendUnique(dirs, dir);
   return dirs;
 }

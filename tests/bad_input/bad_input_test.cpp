@@ -56,6 +56,7 @@ struct Case {
   std::map<std::string, std::string> write;
   std::vector<Edit> edits;
   std::map<std::string, std::string> environment;
+  std::string setup;  // shell commands run in the case's folder first
   std::string run;   // arguments after `servoloop` (shell words), or
   std::string send;  // a raw request line for the live node (family ipc)
   bool warning = false;
@@ -111,6 +112,7 @@ std::vector<Case> loadCases() {
           add(edits);
       }
       if (const YAML::Node run = field("run")) c.run = run.as<std::string>();
+      if (node["setup"]) c.setup = node["setup"].as<std::string>();
       if (node["send"]) c.send = node["send"].as<std::string>();
       if (const YAML::Node repeat = node["repeat"]) {
         std::string text;
@@ -173,6 +175,10 @@ class BadInput : public ::testing::Test {
       ASSERT_NE(at, std::string::npos) << describe(c) << ": '" << edit.from << "' is not in " << edit.file;
       text.replace(at, edit.from.size(), edit.to);
       servoloop::testing::writeFile(file, text);
+    }
+    if (!c.setup.empty()) {
+      const auto result = servoloop::testing::runShell(c.setup, ProcessOptions{dir, dir, {}}, 30.0);
+      ASSERT_EQ(result.status, 0) << describe(c) << ": setup '" << c.setup << "' failed: " << result.err;
     }
   }
 

@@ -8,6 +8,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 
@@ -83,12 +84,7 @@ std::unique_ptr<RobotTransmissions> RobotTransmissions::fromUrdf(const std::stri
                                                                  const Options& options) {
   std::vector<TransmissionInfo> infos = parseTransmissions(urdf_xml, options.source_name);
   // parseTransmissions has already rejected a description urdfdom cannot read.
-  const urdf::ModelInterfaceSharedPtr robot = urdf::parseURDF(urdf_xml);
-  if (!robot) {
-    throw ConfigError(options.source_name +
-                      ": the URDF robot could not be read; fix the robot "
-                      "description");
-  }
+  const urdf::ModelInterfaceSharedPtr robot = parseUrdfWithUrdfdom(urdf_xml, options.source_name, false);
   return std::make_unique<RobotTransmissions>(*robot, infos, options);
 }
 

@@ -15,6 +15,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/core/xml_error_text.hpp"
+#include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/transmissions/differential_transmission.hpp"
 #include "servoloop/transmissions/four_bar_linkage_transmission.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
@@ -400,18 +401,7 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
                       ": the root element is not <robot>; a URDF robot description "
                       "starts with <robot name=\"...\">");
   }
-  urdf::ModelInterfaceSharedPtr robot;
-  try {
-    robot = urdf::parseURDF(urdf_xml);
-  } catch (const std::exception& e) {
-    throw ConfigError(source_name + ": the URDF robot could not be read (" + e.what() +
-                      "); fix the robot description");
-  }
-  if (!robot) {
-    throw ConfigError(source_name +
-                      ": the URDF robot could not be read (see the urdfdom messages above); "
-                      "fix the links and joints of the robot description");
-  }
+  const urdf::ModelInterfaceSharedPtr robot = parseUrdfWithUrdfdom(urdf_xml, source_name, false);
 
   Problems problems(source_name);
   UsedNames used;

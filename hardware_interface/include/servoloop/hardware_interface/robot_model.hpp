@@ -44,4 +44,11 @@ std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string
 std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& xml,
                                                             const std::string& source_name);
 
+// urdfdom's parse alone, its console output captured rather than printed:
+// throws ConfigError naming source_name when urdfdom returns no model; with
+// report_warnings, its warnings and the errors it recovered from (an element
+// it leaves out) are logged as warnings. The one way servoloop calls urdfdom.
+std::shared_ptr<urdf::ModelInterface> parseUrdfWithUrdfdom(const std::string& xml, const std::string& source_name,
+                                                          bool report_warnings);
+
 }  // namespace servoloop
