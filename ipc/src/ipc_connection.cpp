@@ -46,6 +46,15 @@ bool IpcConnection::send(const nlohmann::json& message) {
   return true;
 }
 
+bool IpcConnection::sendDeferredReply(const nlohmann::json& reply) {
+  const bool sent = send(reply);
+  std::lock_guard<std::mutex> lock(mutex_);
+  --deferred_replies_;
+  // A closing connection may have waited for this reply alone.
+  if (state_ == State::kClosing) wakeServiceThreadLocked();
+  return sent;
+}
+
 bool IpcConnection::flushLocked() {
   while (pendingOutputLocked() > 0) {
     // MSG_NOSIGNAL: a client that vanished must give EPIPE, never SIGPIPE.

@@ -27,6 +27,9 @@ using Clock = std::chrono::steady_clock;
 
 // How long a closing connection may keep unsent output before it is closed anyway.
 constexpr std::chrono::milliseconds kCloseGracePeriod{1000};
+// How long a closing connection waits for the replies its handlers deferred
+// (a controller switch waits for the control loop; see kMaxSwitchWait_s).
+constexpr std::chrono::milliseconds kDeferredReplyGracePeriod{60000};
 // After accept() runs out of file descriptors, the listening socket stays
 // readable; pause accepting instead of spinning.
 constexpr std::chrono::milliseconds kAcceptPauseOnExhaustion{100};
@@ -329,7 +332,11 @@ void IpcServer::handleLine(IpcConnection& connection, std::string_view line) {
   const nlohmann::json& request = checked.request;
   requests_handled_.fetch_add(1);
   nlohmann::json reply = replyFor(request, connection);
-  if (reply.is_discarded()) return;  // the handler replies later itself
+  if (reply.is_discarded()) {  // the handler replies later itself
+    std::lock_guard<std::mutex> lock(connection.mutex_);
+    ++connection.deferred_replies_;
+    return;
+  }
   connection.send(reply);
 }
 
@@ -379,9 +386,10 @@ Clock::time_point IpcServer::reapConnections() {
         case IpcConnection::DropReason::kNone:
           if (connection->state_ == IpcConnection::State::kClosing) {
             if (connection->close_deadline_ == Clock::time_point{}) {
-              connection->close_deadline_ = now + kCloseGracePeriod;
+              connection->close_deadline_ =
+                  now + (connection->deferred_replies_ > 0 ? kDeferredReplyGracePeriod : kCloseGracePeriod);
             }
-            close_it = connection->pendingOutputLocked() == 0 || now >= connection->close_deadline_;
+            close_it = connection->drainedLocked() || now >= connection->close_deadline_;
             if (!close_it) next_deadline = std::min(next_deadline, connection->close_deadline_);
           }
           break;

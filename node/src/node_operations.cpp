@@ -114,7 +114,7 @@ json NodeOperations::deferToWorker(const json& request, ipc::IpcConnection& conn
       } catch (const std::exception& e) {
         reply = ipc::makeIpcErrorReply(id, e.what());
       }
-      if (auto connection = weak.lock()) connection->send(reply);
+      if (auto connection = weak.lock()) connection->sendDeferredReply(reply);
     });
   }
   jobs_changed_.notify_one();

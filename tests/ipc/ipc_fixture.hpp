@@ -73,7 +73,7 @@ class IpcServerFixture : public ::testing::Test {
       const nlohmann::json id = request["id"];
       deferred_threads_.emplace_back([shared, id] {
         std::this_thread::sleep_for(std::chrono::milliseconds(30));
-        shared->send(makeIpcOkReply(id, {{"deferred", true}}));
+        shared->sendDeferredReply(makeIpcOkReply(id, {{"deferred", true}}));
       });
       return IpcServer::deferredReply();
     }

@@ -157,6 +157,20 @@ TEST_F(IpcServerTest, RequestsBeforeHalfCloseAreStillAnswered) {
   EXPECT_EQ(handler_calls_.load(), 1);
 }
 
+// The request ran, so its reply must arrive even though the client shut down
+// its sending side before the handler's worker answered (30 ms later), and
+// the connection then closes without waiting for the grace period.
+TEST_F(IpcServerTest, DeferredReplyAfterHalfCloseIsStillWritten) {
+  RawClient raw(server_->socketPath());
+  ASSERT_TRUE(raw.sendBytes("{\"id\": 11, \"op\": \"defer\"}\n"));
+  ::shutdown(raw.fd(), SHUT_WR);
+  const nlohmann::json reply = parseLine(raw.readLine());
+  EXPECT_EQ(reply["id"], 11);
+  EXPECT_EQ(reply["deferred"], true);
+  EXPECT_TRUE(raw.waitForClose());
+  EXPECT_TRUE(eventually([&] { return server_->connectionCount() == 0; }));
+}
+
 TEST_F(IpcServerTest, LineOfExactlyOneMebibyteIsAccepted) {
   nlohmann::json request{{"id", 1}, {"op", "echo"}, {"value", ""}};
   const std::size_t overhead = request.dump().size();

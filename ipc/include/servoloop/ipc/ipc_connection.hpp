@@ -38,6 +38,12 @@ class IpcConnection : public std::enable_shared_from_this<IpcConnection> {
   // reading, and the connection is dropped.
   bool send(const nlohmann::json& message);
 
+  // Any thread. send() for the reply to a request whose handler returned
+  // IpcServer::deferredReply(). A connection whose client has stopped sending
+  // (end of file, or a half-closed socket) stays until every deferred reply
+  // is written, so a request that ran is never left without its reply.
+  bool sendDeferredReply(const nlohmann::json& reply);
+
   // Any thread. Runs `callback` once when the connection closes, on the
   // server's service thread (or in IpcServer::stop()); runs it at once, in the
   // calling thread, if the connection is already closed. Callbacks must not
@@ -67,6 +73,8 @@ class IpcConnection : public std::enable_shared_from_this<IpcConnection> {
 
   // All *Locked members expect mutex_ held.
   std::size_t pendingOutputLocked() const { return output_.size() - output_offset_; }
+  // Nothing queued and no deferred reply still to come.
+  bool drainedLocked() const { return pendingOutputLocked() == 0 && deferred_replies_ == 0; }
   // Writes queued output until the socket would block; false on a fatal
   // socket error (the connection is then marked failed).
   bool flushLocked();
@@ -84,6 +92,9 @@ class IpcConnection : public std::enable_shared_from_this<IpcConnection> {
   const int wake_fd_;  // owned by the server; valid while state_ != kClosed
   State state_ = State::kOpen;
   DropReason drop_reason_ = DropReason::kNone;
+  // Deferred requests not yet answered. Signed: a worker's reply may be sent
+  // before the server has counted its request.
+  long deferred_replies_ = 0;
   std::string output_;            // bytes queued for the socket
   std::size_t output_offset_ = 0; // first byte of output_ not yet written
   std::vector<CloseCallback> close_callbacks_;

@@ -60,7 +60,7 @@ class IpcServer {
   //   - any other value v: {"id", "ok": true, "result": v};
   //   - IpcServer::deferredReply(): nothing now; the handler (or a thread it
   //     hands the work to) later sends makeIpcOkReply/makeIpcErrorReply with
-  //     the request's id through connection.send().
+  //     the request's id through connection.sendDeferredReply().
   // An exception becomes {"id", "ok": false, "error": what()} and the server
   // carries on.
   using Handler =
