@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -121,8 +122,15 @@ Value numeric(const char* op, const Value& a, const Value& b) {
     return Value::ofList(std::move(items));
   }
   if (o == "*" && a.kind == Value::Kind::String && integral(b)) {
+    // A repeated string as long as a description could sensibly hold.
+    constexpr long long kMaxRepeatedBytes = 1 << 20;
+    const long long times = std::max(asInt(b), 0LL);
+    if (times > 0 && static_cast<long long>(a.text.size()) > kMaxRepeatedBytes / times) {
+      fail("'" + a.text.substr(0, 20) + "' * " + std::to_string(times) + " would make a string over " +
+           std::to_string(kMaxRepeatedBytes) + " bytes");
+    }
     std::string out;
-    for (long long k = 0; k < asInt(b); ++k) out += a.text;
+    for (long long k = 0; k < times; ++k) out += a.text;
     return Value::ofString(out);
   }
   if (!a.isNumber() || !b.isNumber()) {
@@ -130,24 +138,30 @@ Value numeric(const char* op, const Value& a, const Value& b) {
          repr(b) + ")");
   }
   if (integral(a) && integral(b) && o != "/") {
+    // Python's integers have no bound; a result beyond 64 bits is taken as a
+    // float here (below), as no robot description needs one exactly.
     const long long x = asInt(a);
     const long long y = asInt(b);
-    if (o == "+") return Value::ofInt(x + y);
-    if (o == "-") return Value::ofInt(x - y);
-    if (o == "*") return Value::ofInt(x * y);
-    if (o == "//" || o == "%") {
-      if (y == 0) fail("integer division or modulo by zero");
+    long long r = 0;
+    if (o == "+" && !__builtin_add_overflow(x, y, &r)) return Value::ofInt(r);
+    if (o == "-" && !__builtin_sub_overflow(x, y, &r)) return Value::ofInt(r);
+    if (o == "*" && !__builtin_mul_overflow(x, y, &r)) return Value::ofInt(r);
+    if ((o == "//" || o == "%") && y == 0) fail("integer division or modulo by zero");
+    if ((o == "//" || o == "%") && !(y == -1 && x == std::numeric_limits<long long>::min())) {
       long long q = x / y;
       if ((x % y != 0) && ((x < 0) != (y < 0))) --q;
       return o == "//" ? Value::ofInt(q) : Value::ofInt(x - q * y);
     }
-    if (o == "**") {
-      if (y >= 0) {
-        long long r = 1;
-        for (long long k = 0; k < y; ++k) r *= x;
-        return Value::ofInt(r);
+    if (o == "**" && y >= 0) {
+      // By squaring, so a large exponent costs its bits, not its value.
+      long long result = 1;
+      long long base = x;
+      bool overflow = false;
+      for (long long e = y; e > 0 && !overflow; e >>= 1) {
+        if ((e & 1) != 0) overflow = __builtin_mul_overflow(result, base, &result);
+        if (e > 1 && !overflow) overflow = __builtin_mul_overflow(base, base, &base);
       }
-      return Value::ofFloat(std::pow(static_cast<double>(x), static_cast<double>(y)));
+      if (!overflow) return Value::ofInt(result);
     }
   }
   const double x = asDouble(a);
@@ -502,7 +516,8 @@ class Parser {
       if (!live) return v;
       if (!v.isNumber()) fail(std::string("unary ") + (negate ? "-" : "+") + " of a " + typeName(v) + " (" + repr(v) + ")");
       if (!negate) return integral(v) ? Value::ofInt(asInt(v)) : v;
-      return integral(v) ? Value::ofInt(-asInt(v)) : Value::ofFloat(-v.real);
+      if (integral(v) && asInt(v) != std::numeric_limits<long long>::min()) return Value::ofInt(-asInt(v));
+      return Value::ofFloat(-asDouble(v));
     }
     return power(live);
   }

@@ -82,6 +82,28 @@ TEST(Xacro, PropertiesAndArithmeticFollowPython) {
   EXPECT_EQ(value("undefined_name if False else 3"), "3");  // the skipped side is not evaluated
 }
 
+// Python's integers are unbounded; past 64 bits servoloop gives the float
+// of the same value rather than overflowing (the fuzzer found 3 ** 124 as
+// undefined behaviour), and a power costs the bits of its exponent.
+TEST(Xacro, IntegersBeyondSixtyFourBitsBecomeFloatsOfTheSameValue) {
+  EXPECT_EQ(value("2 ** 62"), "4611686018427387904");
+  EXPECT_EQ(value("-(2 ** 62) * 2"), "-9223372036854775808");
+  EXPECT_NEAR(std::stod(value("3 ** 124")) / std::pow(3.0, 124.0), 1.0, 1e-12);
+  EXPECT_NEAR(std::stod(value("9223372036854775807 + 1")), 9223372036854775808.0, 1.0);
+  EXPECT_NEAR(std::stod(value("(-9223372036854775807 - 1) - 1")), -9223372036854775809.0, 2048.0);
+  EXPECT_NEAR(std::stod(value("4052555153018976267 * 3")), 12157665459056928801.0, 4096.0);
+  EXPECT_NEAR(std::stod(value("(-9223372036854775807 - 1) // -1")), 9223372036854775808.0, 1.0);
+  EXPECT_NEAR(std::stod(value("-(-9223372036854775807 - 1)")), 9223372036854775808.0, 1.0);
+  EXPECT_EQ(value("2 ** 1000000000000"), "inf");
+  EXPECT_EQ(value("1 ** 1000000000000000000"), "1");
+}
+
+TEST(Xacro, AStringRepeatedPastOneMebibyteIsAnError) {
+  EXPECT_EQ(value("'ab' * 3"), "ababab");
+  const std::string error = errorOf(R"~(<v x="${'ab' * 10**7}"/>)~");
+  EXPECT_CONTAINS(error, "1048576 bytes");
+}
+
 TEST(Xacro, MathFunctionsAndConstants) {
   EXPECT_DOUBLE_EQ(std::stod(value("pi")), M_PI);
   EXPECT_DOUBLE_EQ(std::stod(value("radians(90)")), M_PI / 2);
