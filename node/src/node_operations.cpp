@@ -201,8 +201,15 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
 }
 
 json NodeOperations::ping() {
-  return {{"namespace", socket_namespace_}, {"sim_time", robot_ ? robot_->simTime() : node_.simTime()},
-          {"robots", node_.robotNamespaces()}};
+  json reply = {{"namespace", socket_namespace_}, {"sim_time", robot_ ? robot_->simTime() : node_.simTime()},
+                {"robots", node_.robotNamespaces()}};
+  // A robot's socket also says how its loop keeps time (for monitoring and
+  // the soak test): cycles run and the cycles that overran their deadline.
+  if (robot_ != nullptr) {
+    const controller_manager::LoopStatisticsSnapshot loop = robot_->loop().statistics().snapshot();
+    reply["loop"] = {{"cycles", loop.cycles}, {"overruns", loop.overruns}};
+  }
+  return reply;
 }
 
 json NodeOperations::controlList(RobotInstance& robot) {

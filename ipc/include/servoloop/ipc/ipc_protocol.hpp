@@ -29,6 +29,8 @@
 //   - a line over kIpcMaxRequestLineBytes (or that much data without a
 //     newline) gets an error reply, then the node closes the connection;
 //   - a partial line followed by end-of-file is discarded without a reply;
+//     the complete requests before it are all answered (deferred replies
+//     included) before the connection closes;
 //   - a client that does not read what the node sends, until more than
 //     kIpcMaxPendingOutputBytes wait for it, is disconnected.
 #include <cstddef>
