@@ -61,7 +61,9 @@ TEST(ControllersAllocation, NoAllocationOnTheControlThreadAfterStartUp) {
   position_context.robot_model = testing::seedRobotModel();
   initController(position, hw, position_context);
   initController(raw_pd, hw, makeContext("pd", "{joint: joint2}", &bus));
-  initController(group, hw, makeContext("group", "{joints: [joint3, joint4]}", &bus));
+  // Commands come every 0.1 s and time out after 0.05 s: a timeout (and its
+  // publication) in every interval.
+  initController(group, hw, makeContext("group", "{joints: [joint3, joint4], command_timeout: 0.05}", &bus));
 
   std::uint64_t joint_state_messages = 0;
   auto subscription = bus.subscribe<servoloop::sensor_msgs::JointState>(
@@ -111,6 +113,9 @@ TEST(ControllersAllocation, NoAllocationOnTheControlThreadAfterStartUp) {
   const int last = kCycles / kCommandEvery;
   EXPECT_DOUBLE_EQ(final_setpoint, 0.25 + 1.5 * static_cast<double>(last % 7) / 6.0);
   EXPECT_DOUBLE_EQ(hw.effort_command[2], final_setpoint);  // the group's last command
+  // One timeout before the first command (t = 0.05 s), then one 0.05 s after
+  // each command but the last (which came in the final cycle).
+  EXPECT_EQ(group.commandTimeouts(), static_cast<std::uint64_t>(kCycles / kCommandEvery));
   // 50 Hz over 100 s of control time: the first cycle, then every 20th.
   EXPECT_EQ(joint_states.publishedCount(), static_cast<std::uint64_t>(kCycles / 20));
   EXPECT_GT(joint_state_messages, 0u);

@@ -110,6 +110,93 @@ TEST_F(ForwardTest, GroupPositionHoldsAndGroupVelocityStartsAtZero) {
   EXPECT_DOUBLE_EQ(hw.velocity_command[2], 0.0);
 }
 
+// command_timeout: 10 ms after the last command (taken at t = 1 ms), the
+// effort goes to 0 in the cycle at t = 11 ms; a new command restarts it.
+TEST_F(ForwardTest, CommandTimeoutSetsTheEffortToZeroUntilTheNextCommand) {
+  effort_controllers::JointEffortController controller;
+  initController(controller, hw, makeContext("eff", "{joint: b, command_timeout: 0.01}", &bus));
+  std::vector<double> published_at;
+  auto subscription = bus.subscribe<Float64>("/robot/eff/command_timed_out",
+                                             [&](const Float64& msg) { published_at.push_back(msg.data); });
+  controller.startRequest(Time(0.0));
+  bus.publish("/robot/eff/command", Float64{2.0});
+  for (int k = 1; k <= 10; ++k) {
+    controller.update(Time(0.001 * k), Duration(0.001));
+    EXPECT_DOUBLE_EQ(hw.effort_command[1], 2.0) << "cycle " << k;
+  }
+  for (int k = 11; k <= 20; ++k) {
+    controller.update(Time(0.001 * k), Duration(0.001));
+    EXPECT_DOUBLE_EQ(hw.effort_command[1], 0.0) << "cycle " << k;
+  }
+  EXPECT_EQ(controller.commandTimeouts(), 1u);
+  bus.publish("/robot/eff/command", Float64{-1.5});
+  for (int k = 21; k <= 30; ++k) {
+    controller.update(Time(0.001 * k), Duration(0.001));
+    EXPECT_DOUBLE_EQ(hw.effort_command[1], -1.5) << "cycle " << k;
+  }
+  controller.update(Time(0.031), Duration(0.001));
+  EXPECT_DOUBLE_EQ(hw.effort_command[1], 0.0);
+  EXPECT_EQ(controller.commandTimeouts(), 2u);
+  bus.flush();
+  EXPECT_EQ(published_at, (std::vector<double>{0.001 * 11, 0.001 * 31}));
+}
+
+// A position command times out to where the joint is then, and stays there
+// while the joint moves on.
+TEST_F(ForwardTest, CommandTimeoutHoldsThePositionMeasuredThen) {
+  position_controllers::JointPositionController controller;
+  initController(controller, hw, makeContext("pos", "{joint: a, command_timeout: 0.005}", &bus));
+  hw.position[0] = 0.2;
+  controller.startRequest(Time(0.0));
+  bus.publish("/robot/pos/command", Float64{1.0});
+  controller.update(Time(0.001), Duration(0.001));
+  EXPECT_DOUBLE_EQ(hw.position_command[0], 1.0);
+  hw.position[0] = 0.6;
+  for (int k = 2; k <= 5; ++k) controller.update(Time(0.001 * k), Duration(0.001));
+  EXPECT_DOUBLE_EQ(hw.position_command[0], 1.0);
+  controller.update(Time(0.006), Duration(0.001));
+  EXPECT_DOUBLE_EQ(hw.position_command[0], 0.6);
+  hw.position[0] = 0.9;
+  controller.update(Time(0.007), Duration(0.001));
+  EXPECT_DOUBLE_EQ(hw.position_command[0], 0.6);
+}
+
+TEST_F(ForwardTest, GroupVelocityCommandTimesOutToZeroAndNeverWithoutATimeout) {
+  velocity_controllers::JointGroupVelocityController timed;
+  velocity_controllers::JointGroupVelocityController untimed;
+  initController(timed, hw, makeContext("timed", "{joints: [a, b], command_timeout: 0.002}", &bus));
+  initController(untimed, hw, makeContext("untimed", "{joints: [c]}", &bus));
+  timed.startRequest(Time(0.0));
+  untimed.startRequest(Time(0.0));
+  bus.publish("/robot/timed/command", Float64MultiArray{{0.5, -0.5}});
+  bus.publish("/robot/untimed/command", Float64MultiArray{{0.25}});
+  timed.update(Time(0.001), Duration(0.001));
+  EXPECT_EQ(timed.commands(), (std::vector<double>{0.5, -0.5}));
+  for (int k = 2; k <= 1000; ++k) {
+    timed.update(Time(0.001 * k), Duration(0.001));
+    untimed.update(Time(0.001 * k), Duration(0.001));
+  }
+  EXPECT_EQ(timed.commands(), (std::vector<double>{0.0, 0.0}));
+  EXPECT_DOUBLE_EQ(hw.velocity_command[0], 0.0);
+  EXPECT_EQ(timed.commandTimeouts(), 1u);
+  EXPECT_DOUBLE_EQ(hw.velocity_command[2], 0.25);
+  EXPECT_EQ(untimed.commandTimeouts(), 0u);
+}
+
+TEST_F(ForwardTest, CommandTimeoutMustBeSecondsOrZero) {
+  effort_controllers::JointEffortController controller;
+  std::vector<hardware_interface::InterfaceResources> claimed;
+  for (const char* params : {"{joint: a, command_timeout: -0.1}", "{joint: a, command_timeout: .nan}",
+                             "{joint: a, command_timeout: soon}", "{joint: a, command_timeout: .inf}"}) {
+    try {
+      controller.initRequest(&hw, makeContext("eff", params, &bus), claimed);
+      ADD_FAILURE() << params << " was accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("command_timeout"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST_F(ForwardTest, GroupNeedsAJointList) {
   effort_controllers::JointGroupEffortController controller;
   std::vector<hardware_interface::InterfaceResources> claimed;
