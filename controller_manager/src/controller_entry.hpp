@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "servoloop/controller_manager/controller_factory.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
@@ -23,12 +24,13 @@ struct FaultRecord {
   std::array<char, 256> what{};  // exception message, truncated; "" if none
   std::size_t command_index = ControllerBase::kAllCommandsFinite;
   double command_value = 0.0;
+  bool fallbacks_started = false;  // its fallback controllers were started
   std::atomic<bool> pending{false};
 
   // Real-time. Allocation-free; a second fault before the first was drained is
   // dropped (the first one is what stopped the controller).
   void publish(FaultKind fault_kind, const char* message, std::size_t index = ControllerBase::kAllCommandsFinite,
-               double value = 0.0) noexcept;
+               double value = 0.0, bool started_fallbacks = false) noexcept;
 };
 
 struct ControllerEntry {
@@ -37,6 +39,9 @@ struct ControllerEntry {
   ControllerPtr controller;
   hardware_interface::ControllerInfo info;  // name, type and claims, for the hardware
   UpdateRateChoice rate;
+  // Started when this controller faults in update(); loaded before it, each
+  // claiming only what it claims. Fixed at load (the real-time thread reads it).
+  std::vector<ControllerEntry*> fallbacks;
 
   // Real-time thread only.
   // The manager cycle of the next update(): the cycle in which starting() ran

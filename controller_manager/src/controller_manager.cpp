@@ -186,12 +186,50 @@ ServiceResult ControllerManager::loadController(const std::string& name) {
     return fail("load controller '" + name + "' (type '" + type + "'): init threw an unknown exception");
   }
 
+  // Fallback controllers: loaded already, and taking over nothing this one
+  // does not hold, so starting them when it faults can never conflict.
+  std::vector<detail::ControllerEntry*> fallbacks;
+  if (const_params["fallback_controllers"]) {
+    const std::string path = parameterPath(ns, name, "fallback_controllers");
+    std::vector<std::string> names;
+    try {
+      names = const_params["fallback_controllers"].as<std::vector<std::string>>();
+    } catch (const std::exception&) {
+      return fail("load controller '" + name + "': parameter '" + path +
+                  "' must be a list of controller names, e.g. [arm_hold_controller]");
+    }
+    for (const std::string& fallback_name : names) {
+      detail::ControllerEntry* fallback = findEntry(fallback_name);
+      if (fallback_name == name) {
+        return fail("load controller '" + name + "': '" + path + "' names the controller itself");
+      }
+      if (fallback == nullptr) {
+        return fail("load controller '" + name + "': its fallback controller '" + fallback_name +
+                    "' (from '" + path + "') is not loaded; load it first");
+      }
+      for (const auto& held : fallback->info.claimed_resources) {
+        for (const std::string& resource : held.resources) {
+          const bool also_ours = std::any_of(claimed.begin(), claimed.end(), [&](const auto& ours) {
+            return ours.hardware_interface == held.hardware_interface && ours.resources.count(resource) != 0;
+          });
+          if (!also_ours) {
+            return fail("load controller '" + name + "': its fallback controller '" + fallback_name + "' claims '" +
+                        resource + "' through " + held.hardware_interface + ", which '" + name +
+                        "' does not; a fallback may only take over what its controller holds");
+          }
+        }
+      }
+      if (std::find(fallbacks.begin(), fallbacks.end(), fallback) == fallbacks.end()) fallbacks.push_back(fallback);
+    }
+  }
+
   auto entry = std::make_unique<detail::ControllerEntry>();
   entry->name = name;
   entry->type = type;
   entry->controller = std::move(controller);
   entry->info = hardware_interface::ControllerInfo{name, type, claimed};
   entry->rate = rate;
+  entry->fallbacks = std::move(fallbacks);
 
   std::vector<detail::ControllerEntry*> list =
       realtime_lists_[realtime_current_list_.load()];
@@ -219,6 +257,12 @@ ServiceResult ControllerManager::unloadLocked(const std::string& name_ref) {
   if (entry->controller->isRunning()) {
     return fail("unload controller '" + name +
                 "': it is running; stop it first (switch with it in the stop list)");
+  }
+  for (const auto& other : entries_) {
+    if (std::find(other->fallbacks.begin(), other->fallbacks.end(), entry) != other->fallbacks.end()) {
+      return fail("unload controller '" + name + "': it is the fallback of '" + other->name + "'; unload '" +
+                  other->name + "' first");
+    }
   }
   if (switch_phase_.load() != SwitchPhase::idle) {
     return fail("unload controller '" + name +
@@ -352,6 +396,11 @@ std::vector<ControllerFault> ControllerManager::processFaultsLocked() {
                           "') was stopped and marked failed: " + reason +
                           "; its claimed commands were set to safe values (zero effort/velocity, "
                           "hold position)";
+    if (record.fallbacks_started) {
+      std::string names;
+      for (const auto* fallback : entry->fallbacks) names += (names.empty() ? "'" : ", '") + fallback->name + "'";
+      message += ", and its fallback controller(s) " + names + " started in the same cycle";
+    }
     logger().error("{}", message);
     entry->last_fault = message;
     faults.push_back(ControllerFault{entry->name, record.kind, std::move(message)});

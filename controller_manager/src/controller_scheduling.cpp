@@ -37,14 +37,15 @@ UpdateRateChoice chooseUpdateRate(double manager_rate_hz, double requested_rate_
 }
 
 namespace detail {
-void FaultRecord::publish(FaultKind fault_kind, const char* message, std::size_t index,
-                          double value) noexcept {
+void FaultRecord::publish(FaultKind fault_kind, const char* message, std::size_t index, double value,
+                          bool started_fallbacks) noexcept {
   if (pending.load(std::memory_order_acquire)) return;
   kind = fault_kind;
   what.fill('\0');
   if (message != nullptr) std::strncpy(what.data(), message, what.size() - 1);
   command_index = index;
   command_value = value;
+  fallbacks_started = started_fallbacks;
   pending.store(true, std::memory_order_release);
 }
 }  // namespace detail
@@ -53,6 +54,45 @@ void ControllerManager::contain(detail::ControllerEntry& entry, FaultKind kind,
                                 const char* what) noexcept {
   entry.controller->abortRequest();
   entry.fault.publish(kind, what);
+}
+
+bool ControllerManager::startNow(detail::ControllerEntry& entry, const Time& time) noexcept {
+  entry.next_update_cycle = cycle_ + entry.rate.divisor;
+  entry.last_update_time = time;
+  try {
+    entry.controller->startRequest(time);
+  } catch (const std::exception& e) {
+    contain(entry, FaultKind::starting_threw, e.what());
+    return false;
+  } catch (...) {
+    contain(entry, FaultKind::starting_threw, "an exception not derived from std::exception");
+    return false;
+  }
+  const std::size_t bad = entry.controller->firstNonFiniteCommand();
+  if (bad != ControllerBase::kAllCommandsFinite) {
+    const double value = *entry.controller->claimedCommands()[bad].command;
+    entry.controller->abortRequest();
+    entry.fault.publish(FaultKind::non_finite_command, "", bad, value);
+    return false;
+  }
+  return true;
+}
+
+void ControllerManager::containInUpdate(detail::ControllerEntry& entry, FaultKind kind, const char* what,
+                                        const Time& time, std::size_t command_index, double value) noexcept {
+  entry.controller->abortRequest();
+  bool started = false;
+  if (!entry.fallbacks.empty()) {
+    // Odd while fallbacks start, even again after: a switch is prepared only
+    // at an even count, and one prepared before this is not carried out.
+    fallback_starts_.fetch_add(1, std::memory_order_acq_rel);
+    for (detail::ControllerEntry* fallback : entry.fallbacks) {
+      if (fallback->controller->isRunning()) continue;
+      started = startNow(*fallback, time) || started;
+    }
+    fallback_starts_.fetch_add(1, std::memory_order_acq_rel);
+  }
+  entry.fault.publish(kind, what, command_index, value, started);
 }
 
 int ControllerManager::enterRealtimeList() noexcept {
@@ -95,6 +135,10 @@ void ControllerManager::update(const Time& time, const Duration& /*period*/) noe
 }
 
 void ControllerManager::executeSwitch(const Time& time) noexcept {
+  if (fallback_starts_.load(std::memory_order_acquire) != switch_plan_.fallback_epoch) {
+    switch_plan_.aborted = true;  // a fallback took over since the plan was made
+    return;
+  }
   // Stop list first.
   for (detail::ControllerEntry* entry : switch_plan_.stop) {
     try {
@@ -116,29 +160,7 @@ void ControllerManager::executeSwitch(const Time& time) noexcept {
   }
   // Then the start list. Their first update comes in the next cycle.
   for (std::size_t i = 0; i < switch_plan_.start.size(); ++i) {
-    detail::ControllerEntry& entry = *switch_plan_.start[i];
-    entry.next_update_cycle = cycle_ + entry.rate.divisor;
-    entry.last_update_time = time;
-    bool failed = false;
-    try {
-      entry.controller->startRequest(time);
-    } catch (const std::exception& e) {
-      contain(entry, FaultKind::starting_threw, e.what());
-      failed = true;
-    } catch (...) {
-      contain(entry, FaultKind::starting_threw, "an exception not derived from std::exception");
-      failed = true;
-    }
-    if (!failed) {
-      const std::size_t bad = entry.controller->firstNonFiniteCommand();
-      if (bad != ControllerBase::kAllCommandsFinite) {
-        const double value = *entry.controller->claimedCommands()[bad].command;
-        entry.controller->abortRequest();
-        entry.fault.publish(FaultKind::non_finite_command, "", bad, value);
-        failed = true;
-      }
-    }
-    switch_plan_.start_failed[i] = failed ? 1 : 0;
+    switch_plan_.start_failed[i] = startNow(*switch_plan_.start[i], time) ? 0 : 1;
   }
 }
 
@@ -156,10 +178,10 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
   try {
     result = controller.updateRequest(time, period);
   } catch (const std::exception& e) {
-    contain(entry, FaultKind::update_threw, e.what());
+    containInUpdate(entry, FaultKind::update_threw, e.what(), time);
     return;
   } catch (...) {
-    contain(entry, FaultKind::update_threw, "an exception not derived from std::exception");
+    containInUpdate(entry, FaultKind::update_threw, "an exception not derived from std::exception", time);
     return;
   }
 
@@ -167,14 +189,12 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
     case ReturnType::ok: {
       const std::size_t bad = controller.firstNonFiniteCommand();
       if (bad != ControllerBase::kAllCommandsFinite) {
-        const double value = *controller.claimedCommands()[bad].command;
-        controller.abortRequest();
-        entry.fault.publish(FaultKind::non_finite_command, "", bad, value);
+        containInUpdate(entry, FaultKind::non_finite_command, "", time, bad, *controller.claimedCommands()[bad].command);
       }
       return;
     }
     case ReturnType::error:
-      contain(entry, FaultKind::update_returned_error, "");
+      containInUpdate(entry, FaultKind::update_returned_error, "", time);
       return;
     case ReturnType::deactivate:
       try {

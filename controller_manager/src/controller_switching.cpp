@@ -87,6 +87,13 @@ ServiceResult ControllerManager::prepareSwitchLocked(const SwitchRequest& reques
   if (switch_phase_.load() != SwitchPhase::idle) {
     return fail("switch controllers: an earlier switch is still waiting for the real-time thread");
   }
+  // The states read below are those after any fallback start the real-time
+  // thread is in the middle of (an odd count; it takes one cycle at most).
+  std::uint64_t fallback_epoch = fallback_starts_.load(std::memory_order_acquire);
+  while (fallback_epoch % 2 != 0) {
+    std::this_thread::yield();
+    fallback_epoch = fallback_starts_.load(std::memory_order_acquire);
+  }
   for (const auto& name : request.start_controllers) {
     if (contains(request.stop_controllers, name)) {
       return fail("switch controllers: controller '" + name +
@@ -167,6 +174,8 @@ ServiceResult ControllerManager::prepareSwitchLocked(const SwitchRequest& reques
   switch_plan_.start_infos = std::move(start_infos);
   switch_plan_.stop_infos = std::move(stop_infos);
   switch_plan_.start_failed.assign(switch_plan_.start.size(), 0);
+  switch_plan_.fallback_epoch = fallback_epoch;
+  switch_plan_.aborted = false;
   switch_phase_.store(SwitchPhase::pending, std::memory_order_release);
   return ServiceResult::success();
 }
@@ -187,7 +196,15 @@ ServiceResult ControllerManager::waitForSwitchLocked(double timeout_s) {
     std::this_thread::sleep_for(std::chrono::microseconds(100));
   }
 
-  processFaultsLocked();
+  const std::vector<ControllerFault> faults = processFaultsLocked();
+  if (switch_plan_.aborted) {
+    switch_phase_.store(SwitchPhase::idle);
+    std::string which;
+    for (const ControllerFault& fault : faults) which += (which.empty() ? "" : ", ") + fault.controller;
+    return fail("switch controllers: a controller faulted (" + (which.empty() ? std::string("see above") : which) +
+                ") and its fallback controllers started while the switch was being prepared, so nothing was "
+                "switched; check `control list` and retry");
+  }
   std::string failed_to_start;
   for (std::size_t i = 0; i < switch_plan_.start.size(); ++i) {
     if (switch_plan_.start_failed[i] == 0) continue;

@@ -173,10 +173,12 @@ void RobotInstance::loadControllers(const RobotSpec& spec, const params::Paramet
     hinted = true;
     return false;
   };
+  // Stopped ones first: they include the fallbacks a started one may name
+  // (a fallback must be loaded before its controller).
+  for (const std::string& name : spec.stopped_controllers) load(name);
   for (const std::string& name : spec.controllers) {
     if (load(name)) launch_controllers_.push_back(name);
   }
-  for (const std::string& name : spec.stopped_controllers) load(name);
 }
 
 // A controller whose type is not under the robot's namespace often sits

@@ -147,7 +147,10 @@ class ControllerManager {
   // then updates every running controller that is due this cycle with the
   // control time since its previous update. Faults are contained: the
   // controller is stopped with safe outputs and marked failed; the others go
-  // on. `period` is the manager's cycle period (each controller gets its own).
+  // on. A controller that faults in update() (throws, returns an error or
+  // writes a non-finite command) and names `fallback_controllers` has them
+  // started in the same cycle. `period` is the manager's cycle period (each
+  // controller gets its own).
   void update(const Time& time, const Duration& period) noexcept;
 
  private:
@@ -162,6 +165,10 @@ class ControllerManager {
     std::vector<hardware_interface::ControllerInfo> stop_infos;
     // Set by the real-time thread: start[i] failed in starting().
     std::vector<std::uint8_t> start_failed;
+    // fallback_starts_ when the plan was made: a fallback started since may
+    // hold resources the plan gives away, so the plan is not carried out.
+    std::uint64_t fallback_epoch = 0;
+    bool aborted = false;  // set by the real-time thread
   };
 
   // Non-real-time helpers; the caller holds services_mutex_.
@@ -180,6 +187,13 @@ class ControllerManager {
   void executeSwitch(const Time& time) noexcept;
   void updateController(detail::ControllerEntry& entry, const Time& time) noexcept;
   void contain(detail::ControllerEntry& entry, FaultKind kind, const char* what) noexcept;
+  // contain(), then start the controller's fallback controllers (if any) in
+  // the same cycle.
+  void containInUpdate(detail::ControllerEntry& entry, FaultKind kind, const char* what, const Time& time,
+                       std::size_t command_index = ControllerBase::kAllCommandsFinite, double value = 0.0) noexcept;
+  // starting() of one controller outside a switch plan; false if it failed
+  // (then contained).
+  bool startNow(detail::ControllerEntry& entry, const Time& time) noexcept;
 
   hardware_interface::RobotHW* robot_hw_;
   std::shared_ptr<ControllerFactory> factory_;  // declared before entries_: outlives them
@@ -204,6 +218,8 @@ class ControllerManager {
 
   std::unique_ptr<detail::FaultRecord> hardware_fault_;
   std::uint64_t cycle_ = 0;  // real-time thread only
+  // Fallback starts so far (real-time thread writes; switches compare).
+  std::atomic<std::uint64_t> fallback_starts_{0};
 };
 
 }  // namespace servoloop::controller_manager
