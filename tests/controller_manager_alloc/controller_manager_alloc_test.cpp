@@ -82,6 +82,8 @@ class AllocationTest : public ::testing::Test {
     params_ = YAML::Load(R"(
 pd1: {type: test/PdController, joint: joint1, gain: 2.0}
 pd2: {type: test/PdController, joint: joint2, gain: 3.0, update_rate: 100}
+hold1: {type: test/PdController, joint: joint1, gain: 5.0}
+guarded1: {type: test/PdController, joint: joint1, gain: 2.0, fallback_controllers: [hold1]}
 )");
     manager_ = std::make_unique<ControllerManager>(&hw_, factory, ControllerManager::lookupIn(params_),
                                                    ControllerContext{}, 1000.0);
@@ -150,6 +152,30 @@ TEST_F(AllocationTest, CarryingOutASwitchAndContainingAFaultAllocateNothing) {
   EXPECT_EQ(pd("pd2")->stops, 1);
   EXPECT_EQ(pd("pd1")->state(), ControllerState::failed);
   EXPECT_DOUBLE_EQ(hw_.command[0], 0.0);
+  EXPECT_EQ(manager_->processFaults().size(), 1u);
+}
+
+// A fault whose fallback controller is started in the same cycle, then a
+// hundred cycles of the fallback running: nothing allocated.
+TEST_F(AllocationTest, StartingAFallbackControllerAllocatesNothing) {
+  ASSERT_TRUE(manager_->loadController("hold1"));
+  ASSERT_TRUE(manager_->loadController("guarded1"));
+  ASSERT_TRUE(manager_->requestSwitch(SwitchRequest{{"guarded1"}, {}, SwitchStrictness::STRICT, false, 0}));
+  for (int i = 0; i < 20; ++i) cycle();
+  pd("guarded1")->poison = true;
+
+  std::size_t allocations = 0;
+  {
+    testing::AllocationCounter counter;
+    for (int i = 0; i < 100; ++i) cycle();
+    allocations = counter.allocations();
+  }
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_EQ(pd("guarded1")->state(), ControllerState::failed);
+  EXPECT_EQ(pd("hold1")->state(), ControllerState::running);
+  EXPECT_EQ(pd("hold1")->starts, 1);
+  EXPECT_EQ(pd("hold1")->updates, 99);  // every cycle after the one it started in
+  EXPECT_DOUBLE_EQ(hw_.command[0], -5.0 * hw_.position[0] - 0.001);
   EXPECT_EQ(manager_->processFaults().size(), 1u);
 }
 
