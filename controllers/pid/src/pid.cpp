@@ -118,16 +118,19 @@ void Pid::setGains(double p, double i, double d, double i_max, double i_min, boo
 void Pid::setGains(const Gains& gains) {
   std::lock_guard<std::mutex> lock(gains_write_mutex_);
   // Odd sequence: a write is in progress; readers that saw it, or saw the
-  // number change, discard what they read.
+  // number change, discard what they read. The fields are stored with
+  // release and loaded with acquire (rather than fenced, which
+  // ThreadSanitizer does not model): a reader that loads a new value also
+  // sees the odd sequence before it, so its second look at the sequence
+  // finds it changed.
   const std::uint64_t sequence = gains_sequence_.load(std::memory_order_relaxed);
   gains_sequence_.store(sequence + 1, std::memory_order_relaxed);
-  std::atomic_thread_fence(std::memory_order_release);
-  shared_p_gain_.store(gains.p_gain, std::memory_order_relaxed);
-  shared_i_gain_.store(gains.i_gain, std::memory_order_relaxed);
-  shared_d_gain_.store(gains.d_gain, std::memory_order_relaxed);
-  shared_i_max_.store(gains.i_max, std::memory_order_relaxed);
-  shared_i_min_.store(gains.i_min, std::memory_order_relaxed);
-  shared_antiwindup_.store(gains.antiwindup, std::memory_order_relaxed);
+  shared_p_gain_.store(gains.p_gain, std::memory_order_release);
+  shared_i_gain_.store(gains.i_gain, std::memory_order_release);
+  shared_d_gain_.store(gains.d_gain, std::memory_order_release);
+  shared_i_max_.store(gains.i_max, std::memory_order_release);
+  shared_i_min_.store(gains.i_min, std::memory_order_release);
+  shared_antiwindup_.store(gains.antiwindup, std::memory_order_release);
   gains_sequence_.store(sequence + 2, std::memory_order_release);
 }
 
@@ -135,13 +138,12 @@ bool Pid::tryReadGains(Gains& gains) const noexcept {
   const std::uint64_t before = gains_sequence_.load(std::memory_order_acquire);
   if (before & 1U) return false;
   Gains read;
-  read.p_gain = shared_p_gain_.load(std::memory_order_relaxed);
-  read.i_gain = shared_i_gain_.load(std::memory_order_relaxed);
-  read.d_gain = shared_d_gain_.load(std::memory_order_relaxed);
-  read.i_max = shared_i_max_.load(std::memory_order_relaxed);
-  read.i_min = shared_i_min_.load(std::memory_order_relaxed);
-  read.antiwindup = shared_antiwindup_.load(std::memory_order_relaxed);
-  std::atomic_thread_fence(std::memory_order_acquire);
+  read.p_gain = shared_p_gain_.load(std::memory_order_acquire);
+  read.i_gain = shared_i_gain_.load(std::memory_order_acquire);
+  read.d_gain = shared_d_gain_.load(std::memory_order_acquire);
+  read.i_max = shared_i_max_.load(std::memory_order_acquire);
+  read.i_min = shared_i_min_.load(std::memory_order_acquire);
+  read.antiwindup = shared_antiwindup_.load(std::memory_order_acquire);
   if (gains_sequence_.load(std::memory_order_relaxed) != before) return false;
   gains = read;
   return true;
