@@ -496,6 +496,15 @@ json toJson(const realtime::MessageView& msg) {
   throw Error("message type '" + std::string(msg.type) + "' has no JSON form");
 }
 
+void requireTopicType(const realtime::TopicBus& bus, const std::string& topic, std::string_view type_name) {
+  if (!bus.hasTopic(topic)) return;
+  const std::string existing = bus.typeOf(topic);
+  if (!existing.empty() && existing != type_name) {
+    throw Error("topic '" + topic + "' carries " + existing + ", not " + std::string(type_name) + "; use " + existing +
+                " on it or pick another topic name");
+  }
+}
+
 realtime::Subscription subscribeJson(realtime::TopicBus& bus, std::string_view topic, JsonCallback callback) {
   return bus.subscribeAny(topic, [callback = std::move(callback)](Time stamp, const realtime::MessageView& msg) {
     callback(stamp, toJson(msg));
@@ -515,12 +524,8 @@ void publishJson(realtime::TopicBus& bus, std::string_view topic, const json& ms
       throw Error("topic '" + name +
                   "' has no type yet (only untyped subscribers know it); give the message type to publish on it");
     }
-  } else if (bus.hasTopic(name)) {
-    const std::string existing = bus.typeOf(name);
-    if (!existing.empty() && existing != type) {
-      throw Error("topic '" + name + "' carries " + existing + ", not " + type + "; use " + existing +
-                  " on it or pick another topic name");
-    }
+  } else {
+    requireTopicType(bus, name, type);
   }
   try {
     requireFiniteCommand(type, msg);

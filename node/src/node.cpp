@@ -7,6 +7,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "servoloop/ipc/ipc_socket_path.hpp"
+#include "servoloop/node/message_json.hpp"
 #include "servoloop/node/node_operations.hpp"
 #include "servoloop/plugin/plugin_path.hpp"
 #include "servoloop/core/errors.hpp"
@@ -45,12 +46,10 @@ Node::Node(LaunchFile launch, NodeOptions options) : launch_(std::move(launch)),
     }
     // A topic the controllers already created with another type would refuse
     // the message at its time; say so now, before the run.
-    realtime::TopicBus& bus = robot->topics();
-    const std::string existing = bus.hasTopic(publication.topic) ? bus.typeOf(publication.topic) : std::string();
-    if (!existing.empty() && existing != publication.type) {
-      throw ConfigError(fmt::format("{}: publication on '{}': the topic carries {}, not {}; publish a {} value or pick "
-                                    "another topic",
-                                    launch_.source.string(), publication.topic, existing, publication.type, existing));
+    try {
+      requireTopicType(robot->topics(), publication.topic, publication.type);
+    } catch (const Error& e) {
+      throw ConfigError(fmt::format("{}: publication: {}", launch_.source.string(), e.what()));
     }
     robot->addTimedPublication(publication);
   }

@@ -95,6 +95,10 @@ using JsonCallback = std::function<void(Time stamp, const nlohmann::json& msg)>;
 void publishJson(realtime::TopicBus& bus, std::string_view topic, const nlohmann::json& msg,
                  std::string_view type_name = {});
 
+// Throws servoloop::Error naming the topic when it exists with a type other
+// than type_name (publishJson's check, for callers that check ahead).
+void requireTopicType(const realtime::TopicBus& bus, const std::string& topic, std::string_view type_name);
+
 // Flattened CSV for recording, first column "time" (seconds):
 //   std_msgs/Float64            time,data
 //   std_msgs/Float64MultiArray  time,data[0],data[1],...
