@@ -5,7 +5,7 @@
 
 namespace servoloop {
 
-std::string xmlErrorText(std::string_view error_name, int line, std::string_view detail) {
+std::string xmlErrorWords(std::string_view error_name, std::string_view detail) {
   // The element tinyxml2 names, when it names one ("...: XMLElement name=geometry").
   std::string element;
   if (const auto at = detail.rfind("name="); at != std::string_view::npos) {
@@ -25,16 +25,13 @@ std::string xmlErrorText(std::string_view error_name, int line, std::string_view
       {"XML_ERROR_PARSING", "it cannot be read as XML"},
       {"XML_ELEMENT_DEPTH_EXCEEDED", "elements nest deeper than the XML reader allows (500 levels)"},
   }};
-  std::string words;
   if (error_name == "XML_ERROR_MISMATCHED_ELEMENT") {
-    words = tag + " is closed by an end tag of another name (or an end tag is missing)";
-  } else {
-    for (const auto& [name, text] : kWords) {
-      if (name == error_name) words = std::string(text);
-    }
-    if (words.empty()) words = std::string(error_name) + (detail.empty() ? "" : " (" + std::string(detail) + ")");
+    return tag + " is closed by an end tag of another name (or an end tag is missing)";
   }
-  return "line " + std::to_string(line) + ": " + words;
+  for (const auto& [name, text] : kWords) {
+    if (name == error_name) return std::string(text);
+  }
+  return std::string(error_name) + (detail.empty() ? "" : " (" + std::string(detail) + ")");
 }
 
 }  // namespace servoloop

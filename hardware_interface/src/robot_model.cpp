@@ -273,8 +273,8 @@ void checkXml(const std::string& xml, const std::string& source_name) {
   }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    fail(source_name, "not valid XML (" + xmlErrorText(doc.ErrorName(), doc.ErrorLineNum(), doc.ErrorStr()) +
-                          "); fix the XML syntax");
+    fail(source_name, "not valid XML (line " + std::to_string(doc.ErrorLineNum()) +
+                          "): " + xmlErrorWords(doc.ErrorName(), doc.ErrorStr()) + "; fix the XML syntax");
   }
   // Text outside the root element (tinyxml2 lets it through; urdfdom then
   // reports an "empty document").

@@ -176,7 +176,7 @@ class Expander : public xacro::Names {
     auto document = std::make_unique<XMLDocument>();
     if (document->Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
       throw ConfigError(name + ":" + std::to_string(document->ErrorLineNum()) + ": xacro: not well-formed XML (" +
-                        xmlErrorText(document->ErrorName(), document->ErrorLineNum(), document->ErrorStr()) + ")");
+                        xmlErrorWords(document->ErrorName(), document->ErrorStr()) + ")");
     }
     if (document->RootElement() == nullptr) throw ConfigError(name + ": xacro: the file has no root element");
     names_[document.get()] = name;

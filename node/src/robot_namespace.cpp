@@ -26,10 +26,9 @@ std::string trimmed(const char* text) {
 std::string urdfRobotNamespace(const std::string& urdf_xml, const std::string& source_name) {
   tinyxml2::XMLDocument document;
   if (document.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw ConfigError(source_name + ": not valid XML (" +
-                      xmlErrorText(document.ErrorName(), document.ErrorLineNum(),
-                                   document.ErrorStr() ? document.ErrorStr() : "") +
-                      "); check the robot description");
+    throw ConfigError(source_name + ": not valid XML (line " + std::to_string(document.ErrorLineNum()) +
+                      "): " + xmlErrorWords(document.ErrorName(), document.ErrorStr() ? document.ErrorStr() : "") +
+                      "; check the robot description");
   }
   const tinyxml2::XMLElement* robot = document.FirstChildElement("robot");
   if (robot == nullptr) return "";

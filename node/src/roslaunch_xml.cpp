@@ -143,8 +143,7 @@ class Reader {
     auto document = std::make_unique<tinyxml2::XMLDocument>();
     if (document->Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
       throw ConfigError(fmt::format("{}:{}: not well-formed roslaunch XML: {}", scope.file.string(),
-                                    document->ErrorLineNum(),
-                                    xmlErrorText(document->ErrorName(), document->ErrorLineNum(), document->ErrorStr())));
+                                    document->ErrorLineNum(), xmlErrorWords(document->ErrorName(), document->ErrorStr())));
     }
     const XMLElement* root = document->RootElement();
     if (root == nullptr || std::string(root->Name()) != "launch") {

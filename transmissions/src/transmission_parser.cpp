@@ -391,9 +391,9 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
                                                  const std::string& source_name) {
   tinyxml2::XMLDocument document;
   if (document.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw ConfigError(source_name + ": not well-formed XML (" +
-                      xmlErrorText(document.ErrorName(), document.ErrorLineNum(), document.ErrorStr()) +
-                      "); fix the XML before the transmissions can be read");
+    throw ConfigError(source_name + ": not well-formed XML (line " + std::to_string(document.ErrorLineNum()) +
+                      "): " + xmlErrorWords(document.ErrorName(), document.ErrorStr()) +
+                      "; fix the XML before the transmissions can be read");
   }
   const tinyxml2::XMLElement* root = document.RootElement();
   if (root == nullptr || std::string_view(root->Name()) != "robot") {
