@@ -35,7 +35,7 @@ bool CommandTimeout::expired(const Time& time) noexcept {
   // keeps a timeout of k steps from landing one step late.)
   if (timeout_s_ <= 0.0 || timed_out_ || time.seconds - last_command_.seconds < timeout_s_ - 1e-9) return false;
   timed_out_ = true;
-  timeouts_->fetch_add(1, std::memory_order_relaxed);
+  timeouts_.fetch_add(1, std::memory_order_relaxed);
   if (publisher_.valid()) publisher_.publish(servoloop::std_msgs::Float64{time.seconds});
   return true;
 }

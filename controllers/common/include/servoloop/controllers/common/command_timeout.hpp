@@ -10,7 +10,6 @@
 // Parameter: command_timeout (s, finite, >= 0; default 0: never times out).
 #include <atomic>
 #include <cstdint>
-#include <memory>
 #include <string>
 
 #include "servoloop/controller_manager/controller_context.hpp"
@@ -43,13 +42,13 @@ class CommandTimeout {
   bool expired(const Time& time) noexcept;
 
   double seconds() const noexcept { return timeout_s_; }
-  std::uint64_t count() const noexcept { return timeouts_->load(std::memory_order_relaxed); }
+  std::uint64_t count() const noexcept { return timeouts_.load(std::memory_order_relaxed); }
 
  private:
   double timeout_s_ = 0.0;
   Time last_command_{};
   bool timed_out_ = false;
-  std::shared_ptr<std::atomic<std::uint64_t>> timeouts_ = std::make_shared<std::atomic<std::uint64_t>>(0);
+  std::atomic<std::uint64_t> timeouts_{0};
   servoloop::realtime::RealtimePublisher<servoloop::std_msgs::Float64> publisher_;
   servoloop::realtime::Subscription reporter_;  // logs the first timeout, off the real-time thread
 };
