@@ -13,9 +13,6 @@
 // request line on its socket, or a client command; after each the node must
 // still answer. The per-family counts are printed at the end.
 #include <gtest/gtest.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -28,8 +25,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "child_process.hpp"
+#include "ipc_test_support.hpp"
 #include "servoloop/ipc/ipc_socket_path.hpp"
-#include "servoloop/ipc/ipc_unix_socket.hpp"
 #include "temp_dir.hpp"
 #include "wait_until.hpp"
 
@@ -218,31 +215,9 @@ class BadInput : public ::testing::Test {
 
 std::vector<Case>* BadInput::cases_ = nullptr;
 
-// One raw line to a node's socket and its one reply line.
+// One raw line to a node's socket and its one reply line ("" when none).
 std::string exchange(const fs::path& socket_path, const std::string& line) {
-  servoloop::ipc::IpcFd fd;
-  if (servoloop::ipc::tryConnectUnixSocket(socket_path, fd) != servoloop::ipc::IpcConnectResult::kConnected)
-    return "<no connection>";
-  std::string out = line + "\n";
-  size_t sent = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (sent < out.size() && std::chrono::steady_clock::now() < deadline) {
-    pollfd p{fd.get(), POLLOUT, 0};
-    ::poll(&p, 1, 100);
-    const ssize_t n = ::send(fd.get(), out.data() + sent, out.size() - sent, MSG_NOSIGNAL);
-    if (n > 0) sent += static_cast<size_t>(n);
-    else if (n < 0 && errno != EAGAIN && errno != EINTR) break;
-  }
-  std::string reply;
-  char buffer[4096];
-  while (reply.find('\n') == std::string::npos && std::chrono::steady_clock::now() < deadline) {
-    pollfd p{fd.get(), POLLIN, 0};
-    if (::poll(&p, 1, 100) <= 0) continue;
-    const ssize_t n = ::recv(fd.get(), buffer, sizeof buffer, 0);
-    if (n == 0) break;
-    if (n > 0) reply.append(buffer, static_cast<size_t>(n));
-  }
-  return reply.substr(0, reply.find('\n'));
+  return servoloop::ipc::testing::requestLine(socket_path, line, 20.0).value_or("");
 }
 
 TEST_F(BadInput, TheUnchangedBaseFilesPass) {

@@ -45,15 +45,12 @@ const char* const kPositionController = "joint1_position_controller";
 // One request on a fresh connection and its reply; nullopt when the node does
 // not answer within timeout_s.
 std::optional<json> request(const json& message, double timeout_s = 10.0) {
-  try {
-    RawClient client(servoloop::ipc::socketPathFor(kNamespace));
-    if (!client.sendBytes(message.dump() + "\n", timeout_s)) return std::nullopt;
-    const auto line = client.readLine(timeout_s);
-    if (!line) return std::nullopt;
-    return json::parse(*line);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
+  const auto line = servoloop::ipc::testing::requestLine(servoloop::ipc::socketPathFor(kNamespace), message.dump(),
+                                                         timeout_s);
+  if (!line) return std::nullopt;
+  const json reply = json::parse(*line, nullptr, false);
+  if (reply.is_discarded()) return std::nullopt;
+  return reply;
 }
 
 std::optional<double> simTime() {

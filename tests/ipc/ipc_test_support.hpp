@@ -147,6 +147,19 @@ class RawClient {
   bool closed_ = false;
 };
 
+// One line on a fresh connection and the line that answers it; nullopt when
+// connecting, sending or the reply fails within timeout_s each.
+inline std::optional<std::string> requestLine(const std::filesystem::path& socket_path, std::string_view line,
+                                              double timeout_s = 10.0) {
+  try {
+    RawClient client(socket_path);
+    if (!client.sendBytes(std::string(line) + "\n", timeout_s)) return std::nullopt;
+    return client.readLine(timeout_s);
+  } catch (const std::runtime_error&) {
+    return std::nullopt;  // no node listening
+  }
+}
+
 // Polls `condition` every 5 ms for up to `timeout_s`; returns its last value.
 template <typename Condition>
 bool eventually(Condition condition, double timeout_s = 5.0) {
