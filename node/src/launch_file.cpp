@@ -282,16 +282,6 @@ class Parser {
   fs::path base_;
 };
 
-bool checkMessage(const std::string& type, const nlohmann::json& value) {
-  if (type == kFloat64) return (void)messageFromJson<std_msgs::Float64>(value), true;
-  if (type == kFloat64MultiArray) return (void)messageFromJson<std_msgs::Float64MultiArray>(value), true;
-  if (type == sensor_msgs::JointState::kTypeName) return (void)messageFromJson<sensor_msgs::JointState>(value), true;
-  if (type == control_msgs::JointControllerState::kTypeName) {
-    return (void)messageFromJson<control_msgs::JointControllerState>(value), true;
-  }
-  return false;
-}
-
 std::string knownTypesList() {
   std::string list;
   for (const std::string& type : knownMessageTypes()) list += (list.empty() ? "" : ", ") + type;
@@ -307,15 +297,11 @@ TimedPublication makeTimedPublication(std::string topic, std::string type, const
   if (!isKnownMessageType(type)) {
     throw Error(fmt::format("{}unknown message type '{}' (known types: {})", prefix, type, knownTypesList()));
   }
-  bool publishable = false;
   try {
-    publishable = checkMessage(type, value);
+    (void)normalizeMessage(type, value);
     requireFiniteCommand(type, value);
   } catch (const Error& e) {
     throw Error(prefix + e.what());
-  }
-  if (!publishable) {
-    throw Error(fmt::format("{}message type '{}' cannot be published from a launch file", prefix, type));
   }
   return TimedPublication{std::move(topic), std::move(type), value, time_s};
 }

@@ -30,8 +30,17 @@ const std::map<std::string_view, std::vector<std::string_view>>& fieldTable() {
        {"stamp", "set_point", "process_value", "process_value_dot", "error", "time_step", "command", "p", "i",
         "d", "i_clamp", "antiwindup"}},
       {nav_msgs::Odometry::kTypeName, {"stamp", "frame_id", "child_frame_id", "pose", "twist"}},
+      {trajectory_msgs::JointTrajectory::kTypeName, {"stamp", "joint_names", "points"}},
+      {control_msgs::JointTrajectoryControllerState::kTypeName, {"stamp", "joint_names", "desired", "actual", "error"}},
   };
   return table;
+}
+
+// The fields of a trajectory_msgs/JointTrajectoryPoint, in ROS order.
+const std::vector<std::string_view>& pointFields() {
+  static const std::vector<std::string_view> fields = {"positions", "velocities", "accelerations", "effort",
+                                                       "time_from_start"};
+  return fields;
 }
 
 std::string describe(const json& value) {
@@ -55,9 +64,19 @@ std::string joinFields(const std::vector<std::string_view>& fields) {
 // name the type and the field.
 class FieldReader {
  public:
-  FieldReader(std::string_view type_name, const json& object) : type_(type_name), object_(object) {
-    const auto& fields = fieldTable().at(type_name);
+  FieldReader(std::string_view type_name, const json& object)
+      : FieldReader(type_name, object, fieldTable().at(type_name), "") {}
+
+  // A nested message (e.g. one trajectory point) with its own fields; where
+  // names it in errors ("points[2]").
+  FieldReader(std::string_view type_name, const json& object, const std::vector<std::string_view>& fields,
+              const std::string& where)
+      : type_(type_name), prefix_(where.empty() ? "" : where + "."), object_(object) {
     if (!object.is_object()) {
+      if (!where.empty()) {
+        throw Error(type_ + ": field '" + where + "': expected an object with fields " + joinFields(fields) +
+                    ", got " + describe(object));
+      }
       fail("", "an object with fields " + joinFields(fields), object);
     }
     for (const auto& [key, value] : object.items()) {
@@ -65,7 +84,7 @@ class FieldReader {
       // ROS's Float64MultiArray has a layout field that ros_control never reads.
       const bool ignored = key == "layout" && type_name == std_msgs::Float64MultiArray::kTypeName;
       if (!known && !ignored) {
-        throw Error(type_ + ": unknown field '" + key + "'; the fields are: " + joinFields(fields));
+        throw Error(type_ + ": unknown field '" + prefix_ + key + "'; the fields are: " + joinFields(fields));
       }
     }
   }
@@ -145,7 +164,7 @@ class FieldReader {
   const json* field(const char* name) const { return find(name); }
 
   [[noreturn]] void fail(const std::string& field, const std::string& expected, const json& got) const {
-    const std::string where = field.empty() ? "" : " field '" + field + "':";
+    const std::string where = field.empty() ? "" : " field '" + prefix_ + field + "':";
     throw Error(type_ + ":" + where + " expected " + expected + ", got " + describe(got));
   }
 
@@ -163,6 +182,7 @@ class FieldReader {
   }
 
   std::string type_;
+  std::string prefix_;  // "points[2]." inside a nested message
   const json& object_;
 };
 
@@ -313,6 +333,42 @@ json toJson(const nav_msgs::Odometry& msg) {
                 {"angular", {{"x", msg.angular.x}, {"y", msg.angular.y}, {"z", msg.angular.z}}}}}};
 }
 
+namespace {
+
+json toJson(const trajectory_msgs::JointTrajectoryPoint& point) {
+  return json{{"positions", numberList(point.positions)},
+              {"velocities", numberList(point.velocities)},
+              {"accelerations", numberList(point.accelerations)},
+              {"effort", numberList(point.effort)},
+              {"time_from_start", point.time_from_start}};
+}
+
+void pointFromJson(std::string_view type_name, const json& value, const std::string& where,
+                   trajectory_msgs::JointTrajectoryPoint& out) {
+  FieldReader reader(type_name, value, pointFields(), where);
+  reader.numbers("positions", out.positions);
+  reader.numbers("velocities", out.velocities);
+  reader.numbers("accelerations", out.accelerations);
+  reader.numbers("effort", out.effort);
+  reader.number("time_from_start", out.time_from_start);
+}
+
+}  // namespace
+
+json toJson(const trajectory_msgs::JointTrajectory& msg) {
+  json points = json::array();
+  for (const auto& point : msg.points) points.push_back(toJson(point));
+  return json{{"stamp", msg.stamp}, {"joint_names", msg.joint_names}, {"points", points}};
+}
+
+json toJson(const control_msgs::JointTrajectoryControllerState& msg) {
+  return json{{"stamp", msg.stamp},
+              {"joint_names", msg.joint_names},
+              {"desired", toJson(msg.desired)},
+              {"actual", toJson(msg.actual)},
+              {"error", toJson(msg.error)}};
+}
+
 void fromJson(const json& value, std_msgs::Float64& out) {
   if (value.is_number()) {  // `topic pub /cmd std_msgs/Float64 1.0`
     out.data = value.get<double>();
@@ -384,6 +440,30 @@ void fromJson(const json& value, nav_msgs::Odometry& out) {
                       {"x", "y", "z"}, {&out.angular.x, &out.angular.y, &out.angular.z});
 }
 
+void fromJson(const json& value, trajectory_msgs::JointTrajectory& out) {
+  constexpr std::string_view type = trajectory_msgs::JointTrajectory::kTypeName;
+  FieldReader reader(type, value);
+  reader.number("stamp", out.stamp);
+  reader.strings("joint_names", out.joint_names);
+  if (const json* points = reader.field("points")) {
+    if (!points->is_array()) reader.fail("points", "a list of points", *points);
+    out.points.assign(points->size(), {});
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      pointFromJson(type, (*points)[i], "points[" + std::to_string(i) + "]", out.points[i]);
+    }
+  }
+}
+
+void fromJson(const json& value, control_msgs::JointTrajectoryControllerState& out) {
+  constexpr std::string_view type = control_msgs::JointTrajectoryControllerState::kTypeName;
+  FieldReader reader(type, value);
+  reader.number("stamp", out.stamp);
+  reader.strings("joint_names", out.joint_names);
+  if (const json* desired = reader.field("desired")) pointFromJson(type, *desired, "desired", out.desired);
+  if (const json* actual = reader.field("actual")) pointFromJson(type, *actual, "actual", out.actual);
+  if (const json* error = reader.field("error")) pointFromJson(type, *error, "error", out.error);
+}
+
 // --- YAML / text input ----------------------------------------------------------------
 
 json yamlToJson(const YAML::Node& node) {
@@ -435,6 +515,28 @@ void requireFiniteCommand(std::string_view type_name, const json& msg) {
     throw Error(std::string(type_name) + ": data" + where + " is " + formatDouble(values[i]) +
                 "; a command must be a finite number");
   }
+  if (type_name == trajectory_msgs::JointTrajectory::kTypeName) {
+    const auto trajectory = messageFromJson<trajectory_msgs::JointTrajectory>(msg);
+    const auto require = [&](double value, const std::string& field) {
+      if (!std::isfinite(value)) {
+        throw Error(std::string(type_name) + ": " + field + " is " + formatDouble(value) +
+                    "; a trajectory must hold finite numbers");
+      }
+    };
+    require(trajectory.stamp, "stamp");
+    for (std::size_t i = 0; i < trajectory.points.size(); ++i) {
+      const auto& point = trajectory.points[i];
+      const std::string where = "points[" + std::to_string(i) + "].";
+      const auto require_all = [&](const std::vector<double>& list, const char* field) {
+        for (std::size_t j = 0; j < list.size(); ++j) require(list[j], where + field + "[" + std::to_string(j) + "]");
+      };
+      require_all(point.positions, "positions");
+      require_all(point.velocities, "velocities");
+      require_all(point.accelerations, "accelerations");
+      require_all(point.effort, "effort");
+      require(point.time_from_start, where + "time_from_start");
+    }
+  }
 }
 
 // --- Type-erased helpers --------------------------------------------------------------
@@ -472,6 +574,10 @@ void withMessageFromJson(std::string_view type_name, const json& value, Fn&& fn)
     return decode(control_msgs::JointControllerState{});
   }
   if (type_name == nav_msgs::Odometry::kTypeName) return decode(nav_msgs::Odometry{});
+  if (type_name == trajectory_msgs::JointTrajectory::kTypeName) return decode(trajectory_msgs::JointTrajectory{});
+  if (type_name == control_msgs::JointTrajectoryControllerState::kTypeName) {
+    return decode(control_msgs::JointTrajectoryControllerState{});
+  }
   std::string known;
   for (const std::string& type : knownMessageTypes()) known += (known.empty() ? "" : ", ") + type;
   throw Error("unknown message type '" + std::string(type_name) + "'; known types: " + known);
@@ -493,6 +599,8 @@ json toJson(const realtime::MessageView& msg) {
   if (const auto* m = msg.as<sensor_msgs::JointState>()) return toJson(*m);
   if (const auto* m = msg.as<control_msgs::JointControllerState>()) return toJson(*m);
   if (const auto* m = msg.as<nav_msgs::Odometry>()) return toJson(*m);
+  if (const auto* m = msg.as<trajectory_msgs::JointTrajectory>()) return toJson(*m);
+  if (const auto* m = msg.as<control_msgs::JointTrajectoryControllerState>()) return toJson(*m);
   throw Error("message type '" + std::string(msg.type) + "' has no JSON form");
 }
 
@@ -503,6 +611,12 @@ void requireTopicType(const realtime::TopicBus& bus, const std::string& topic, s
     throw Error("topic '" + topic + "' carries " + existing + ", not " + std::string(type_name) + "; use " + existing +
                 " on it or pick another topic name");
   }
+}
+
+json normalizeMessage(std::string_view type_name, const json& msg) {
+  json normalized;
+  withMessageFromJson(type_name, msg, [&](const realtime::MessageView& view) { normalized = toJson(view); });
+  return normalized;
 }
 
 realtime::Subscription subscribeJson(realtime::TopicBus& bus, std::string_view topic, JsonCallback callback) {

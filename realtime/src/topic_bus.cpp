@@ -34,7 +34,8 @@ std::string knownTypesText() {
   std::string text;
   for (std::string_view type : {std_msgs::Float64::kTypeName, std_msgs::Float64MultiArray::kTypeName,
                                 sensor_msgs::JointState::kTypeName, control_msgs::JointControllerState::kTypeName,
-                                nav_msgs::Odometry::kTypeName}) {
+                                nav_msgs::Odometry::kTypeName, trajectory_msgs::JointTrajectory::kTypeName,
+                                control_msgs::JointTrajectoryControllerState::kTypeName}) {
     text += (text.empty() ? "" : ", ") + std::string(type);
   }
   return text;
@@ -69,6 +70,12 @@ TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view
     return typedTopicLocked<control_msgs::JointControllerState>(name);
   }
   if (type_name == nav_msgs::Odometry::kTypeName) return typedTopicLocked<nav_msgs::Odometry>(name);
+  if (type_name == trajectory_msgs::JointTrajectory::kTypeName) {
+    return typedTopicLocked<trajectory_msgs::JointTrajectory>(name);
+  }
+  if (type_name == control_msgs::JointTrajectoryControllerState::kTypeName) {
+    return typedTopicLocked<control_msgs::JointTrajectoryControllerState>(name);
+  }
   // A type only a plugin knows can still be used once that plugin typed the topic.
   auto it = topics.find(name);
   if (it != topics.end() && it->second->type() == type_name) return *it->second;
@@ -236,5 +243,7 @@ SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64MultiArray, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::JointState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(trajectory_msgs::JointTrajectory, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointTrajectoryControllerState, )
 
 }  // namespace servoloop::realtime

@@ -19,11 +19,21 @@ TrajectoryPoint point(std::vector<double> positions, double time_from_start, std
   return {std::move(positions), std::move(velocities), std::move(accelerations), time_from_start};
 }
 
+// fromPoints() then activate() at now, as a controller does (start time 0: now).
+JointTrajectory build(double now, double start_time, const std::vector<JointSample>& current,
+                      const std::vector<TrajectoryPoint>& points, const std::vector<bool>& continuous = {}) {
+  JointTrajectory trajectory =
+      JointTrajectory::fromPoints(start_time > 0.0 ? start_time : now, points, current.size(), continuous);
+  EXPECT_TRUE(trajectory.activate(now, current));
+  return trajectory;
+}
+
 TEST(JointTrajectory, LinearThroughPositionsFromTheCurrentState) {
   // Now = 1 s, start now: points at 1.5 s and 2.5 s.
-  const auto trajectory = JointTrajectory::build(1.0, 0.0, {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+  const auto trajectory = build(1.0, 0.0, {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
                                                  {point({1.0, 1.0}, 0.5), point({3.0, 0.0}, 1.5)});
-  ASSERT_EQ(trajectory.segmentCount(), 2u);
+  ASSERT_EQ(trajectory.pointCount(), 2u);
+  EXPECT_EQ(trajectory.droppedPoints(), 0u);
   EXPECT_DOUBLE_EQ(trajectory.endTime(), 2.5);
   std::vector<JointSample> out(2);
   trajectory.sample(1.25, out);  // half way to the first point
@@ -45,30 +55,39 @@ TEST(JointTrajectory, LinearThroughPositionsFromTheCurrentState) {
 
 TEST(JointTrajectory, PointsNotAfterNowAreDropped) {
   // Started at 1 s, now 2 s: the point at 1.5 s is history.
-  const auto trajectory = JointTrajectory::build(2.0, 1.0, {{0.0, 0.0, 0.0}},
+  const auto trajectory = build(2.0, 1.0, {{0.0, 0.0, 0.0}},
                                                  {point({5.0}, 0.5), point({1.0}, 1.5), point({2.0}, 2.5)});
   EXPECT_EQ(trajectory.droppedPoints(), 1u);
-  ASSERT_EQ(trajectory.segmentCount(), 2u);
   std::vector<JointSample> out(1);
   trajectory.sample(2.25, out);  // from the current state at 2 s to 1.0 at 2.5 s
   EXPECT_NEAR(out[0].position, 0.5, 1e-12);
 
-  const auto past = JointTrajectory::build(10.0, 1.0, {{0.0, 0.0, 0.0}}, {point({5.0}, 0.5), point({1.0}, 9.0)});
-  EXPECT_TRUE(past.empty());
-  EXPECT_EQ(past.droppedPoints(), 2u);
+  // Every point in the past: activation refuses it and changes nothing.
+  auto past = JointTrajectory::fromPoints(1.0, {point({5.0}, 0.5), point({1.0}, 9.0)}, 1);
+  EXPECT_FALSE(past.activate(10.0, {{0.0, 0.0, 0.0}}));
+}
+
+TEST(JointTrajectory, JointsNotInAPartialTrajectoryHoldWhereTheyAre) {
+  auto trajectory = JointTrajectory::fromPoints(0.0, {point({2.0, 99.0}, 1.0)}, 2, {}, {false, true});
+  ASSERT_TRUE(trajectory.activate(0.0, {{0.0, 0.0, 0.0}, {0.4, 0.3, 0.0}}));
+  std::vector<JointSample> out(2);
+  trajectory.sample(0.5, out);
+  EXPECT_NEAR(out[0].position, 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(out[1].position, 0.4);
+  EXPECT_EQ(out[1].velocity, 0.0);
 }
 
 // A new trajectory built from the old one's state at the moment of
 // replacement continues it without a jump in position, velocity or (for a
 // quintic) acceleration.
 TEST(JointTrajectory, ReplacementMidSegmentIsContinuous) {
-  const auto first = JointTrajectory::build(0.0, 0.0, {{0.0, 0.0, 0.0}},
+  const auto first = build(0.0, 0.0, {{0.0, 0.0, 0.0}},
                                             {point({1.0}, 1.0, {0.5}, {0.0}), point({0.0}, 2.0, {0.0}, {0.0})});
   std::vector<JointSample> at_switch(1);
   first.sample(0.7, at_switch);
   ASSERT_GT(std::abs(at_switch[0].velocity), 0.1);  // really mid-motion
 
-  const auto second = JointTrajectory::build(0.7, 0.0, at_switch, {point({-1.0}, 0.8, {0.0}, {0.0})});
+  const auto second = build(0.7, 0.0, at_switch, {point({-1.0}, 0.8, {0.0}, {0.0})});
   std::vector<JointSample> just_after(1);
   second.sample(0.7, just_after);
   EXPECT_NEAR(just_after[0].position, at_switch[0].position, 1e-12);
@@ -81,7 +100,7 @@ TEST(JointTrajectory, ReplacementMidSegmentIsContinuous) {
 TEST(JointTrajectory, ContinuousJointsGoTheShortWayRound) {
   const double two_pi = 2.0 * std::numbers::pi;
   // From 3.0 rad to -3.0 rad: 0.28 rad forward across ±π, not 6 rad back.
-  const auto trajectory = JointTrajectory::build(0.0, 0.0, {{3.0, 0.0, 0.0}, {3.0, 0.0, 0.0}},
+  const auto trajectory = build(0.0, 0.0, {{3.0, 0.0, 0.0}, {3.0, 0.0, 0.0}},
                                                  {point({-3.0, -3.0}, 1.0), point({-2.5, -2.5}, 2.0)}, {true, false});
   std::vector<JointSample> out(2);
   trajectory.sample(0.5, out);
@@ -94,7 +113,7 @@ TEST(JointTrajectory, ContinuousJointsGoTheShortWayRound) {
 
 TEST(JointTrajectory, QuinticFromRestToRestIsTheMinimumJerkProfile) {
   const auto trajectory =
-      JointTrajectory::build(3.0, 0.0, {{1.0, 0.0, 0.0}}, {point({3.0}, 2.0, {0.0}, {0.0})});
+      build(3.0, 0.0, {{1.0, 0.0, 0.0}}, {point({3.0}, 2.0, {0.0}, {0.0})});
   std::vector<JointSample> out(1);
   trajectory.sample(4.0, out);  // half way in time: half way in position, peak speed 1.875 * 2 / 2
   EXPECT_NEAR(out[0].position, 2.0, 1e-12);
@@ -106,7 +125,7 @@ TEST(JointTrajectory, MalformedPointsAreErrorsNamingThePoint) {
   const std::vector<JointSample> current(2);
   const auto error = [&](const std::vector<TrajectoryPoint>& points) -> std::string {
     try {
-      JointTrajectory::build(0.0, 0.0, current, points);
+      JointTrajectory::fromPoints(0.0, points, current.size());
     } catch (const Error& e) {
       return e.what();
     }

@@ -42,26 +42,6 @@ struct TopicOptions {
 
 // --- messages -----------------------------------------------------------------
 
-// The message in its full JSON form, checked against its type; throws
-// servoloop::Error naming the type and field for a bad value or unknown type.
-nlohmann::json normalizeMessage(const std::string& type, const nlohmann::json& value) {
-  if (type == servoloop::std_msgs::Float64::kTypeName) {
-    return servoloop::node::toJson(servoloop::node::messageFromJson<servoloop::std_msgs::Float64>(value));
-  }
-  if (type == servoloop::std_msgs::Float64MultiArray::kTypeName) {
-    return servoloop::node::toJson(servoloop::node::messageFromJson<servoloop::std_msgs::Float64MultiArray>(value));
-  }
-  if (type == servoloop::sensor_msgs::JointState::kTypeName) {
-    return servoloop::node::toJson(servoloop::node::messageFromJson<servoloop::sensor_msgs::JointState>(value));
-  }
-  if (type == servoloop::control_msgs::JointControllerState::kTypeName) {
-    return servoloop::node::toJson(servoloop::node::messageFromJson<servoloop::control_msgs::JointControllerState>(value));
-  }
-  std::string known;
-  for (const auto& name : servoloop::node::knownMessageTypes()) known += (known.empty() ? "" : ", ") + name;
-  throw Error("unknown message type '" + type + "'; known types: " + known);
-}
-
 // JSON with a space after ':' and ',' (the form CLI.md shows), keys in the
 // order given.
 std::string dumpSpaced(const nlohmann::ordered_json& value) {
@@ -116,7 +96,7 @@ void runPub(const TopicOptions& options) {
     throw Error("VALUE is empty: give the " + options.type +
                 " message, e.g. 1.0 or \"{data: 1.0}\" (\"{}\" publishes one with every field at its default)");
   }
-  const auto msg = normalizeMessage(options.type, servoloop::node::parseMessageText(options.value, "VALUE"));
+  const auto msg = servoloop::node::normalizeMessage(options.type, servoloop::node::parseMessageText(options.value, "VALUE"));
   if (options.rate_hz < 0.0) throw Error("-r/--rate must be > 0 (messages per second)");
   if (options.count < 0) throw Error("-n/--count must be >= 0");
   servoloop::ipc::IpcClient client = connectForName(topic, options.ns);

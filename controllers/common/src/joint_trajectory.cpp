@@ -41,73 +41,103 @@ SplineKind kindOf(const TrajectoryPoint& point) {
   return SplineKind::linear;
 }
 
-JointSample stateOf(const TrajectoryPoint& point, std::size_t joint, double offset) {
-  return {point.positions[joint] + offset, point.velocities.empty() ? 0.0 : point.velocities[joint],
-          point.accelerations.empty() ? 0.0 : point.accelerations[joint]};
-}
-
 }  // namespace
 
-JointTrajectory JointTrajectory::build(double now, double start_time, const std::vector<JointSample>& current,
-                                       const std::vector<TrajectoryPoint>& points,
-                                       const std::vector<bool>& continuous) {
-  const std::size_t joints = current.size();
-  if (!continuous.empty() && continuous.size() != joints) {
-    throw Error("JointTrajectory: " + std::to_string(continuous.size()) + " continuous flags for " +
-                std::to_string(joints) + " joints");
+JointTrajectory JointTrajectory::fromPoints(double start_time, const std::vector<TrajectoryPoint>& points,
+                                            std::size_t joint_count, const std::vector<bool>& continuous,
+                                            const std::vector<bool>& held) {
+  if ((!continuous.empty() && continuous.size() != joint_count) || (!held.empty() && held.size() != joint_count)) {
+    throw Error("JointTrajectory: continuous or held flags do not match the " + std::to_string(joint_count) +
+                " joints");
   }
-  const double start = start_time > 0.0 ? start_time : now;
+  if (!std::isfinite(start_time)) throw Error("trajectory start time is not a finite number");
   double previous = -INFINITY;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    checkPoint(points[i], i, joints, previous);
+    checkPoint(points[i], i, joint_count, previous);
     previous = points[i].time_from_start;
   }
 
   JointTrajectory trajectory;
-  trajectory.end_time_ = now;
-  std::size_t first = 0;
-  while (first < points.size() && !(start + points[first].time_from_start > now)) ++first;
-  trajectory.dropped_points_ = first;
-  if (first == points.size()) return trajectory;
-
-  trajectory.segments_.resize(joints);
-  for (std::size_t j = 0; j < joints; ++j) {
-    // Whole turns that bring the first point the short way round.
-    double offset = 0.0;
-    if (!continuous.empty() && continuous[j]) {
-      const double target = points[first].positions[j];
-      offset = current[j].position + shortestAngularDistance(current[j].position, target) - target;
-    }
-    std::vector<SplineSegment>& segments = trajectory.segments_[j];
-    segments.reserve(points.size() - first);
-    double from_time = now;
-    JointSample from = current[j];
-    for (std::size_t i = first; i < points.size(); ++i) {
-      const double to_time = start + points[i].time_from_start;
-      const JointSample to = stateOf(points[i], j, offset);
-      segments.emplace_back(from_time, from, to_time, to, kindOf(points[i]));
-      from_time = to_time;
-      from = to;
+  trajectory.start_time_ = start_time;
+  trajectory.continuous_ = continuous.empty() ? std::vector<bool>(joint_count, false) : continuous;
+  trajectory.held_ = held.empty() ? std::vector<bool>(joint_count, false) : held;
+  trajectory.times_.reserve(points.size());
+  for (const auto& point : points) trajectory.times_.push_back(point.time_from_start);
+  trajectory.knots_.assign(joint_count, {});
+  trajectory.segments_.assign(joint_count, {});
+  trajectory.lead_.assign(joint_count, SplineSegment{});
+  trajectory.offset_.assign(joint_count, 0.0);
+  for (std::size_t j = 0; j < joint_count; ++j) {
+    auto& knots = trajectory.knots_[j];
+    auto& segments = trajectory.segments_[j];
+    knots.reserve(points.size());
+    segments.reserve(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const TrajectoryPoint& point = points[i];
+      const JointSample state{point.positions[j], point.velocities.empty() ? 0.0 : point.velocities[j],
+                              point.accelerations.empty() ? 0.0 : point.accelerations[j]};
+      knots.push_back({state, kindOf(point)});
+      if (i == 0) {
+        segments.emplace_back();
+      } else {
+        segments.emplace_back(trajectory.times_[i - 1], knots[i - 1].state, trajectory.times_[i], state,
+                              knots[i].kind);
+      }
     }
   }
-  trajectory.end_time_ = start + points.back().time_from_start;
   return trajectory;
 }
 
-void JointTrajectory::sample(double time, std::vector<JointSample>& out) const noexcept {
-  for (std::size_t j = 0; j < segments_.size() && j < out.size(); ++j) {
-    const std::vector<SplineSegment>& segments = segments_[j];
-    if (segments.empty()) continue;
+bool JointTrajectory::activate(double now, const std::vector<JointSample>& current) noexcept {
+  const double start = start_time_ > 0.0 ? start_time_ : now;
+  const double since_start = now - start;
+  std::size_t first = 0;
+  while (first < times_.size() && !(times_[first] > since_start)) ++first;
+  if (first == times_.size() || current.size() < knots_.size()) return false;
+  start_time_ = start;
+  first_ = first;
+  activation_time_ = now;
+  for (std::size_t j = 0; j < knots_.size(); ++j) {
+    const JointSample& from = current[j];
+    if (held_[j]) {
+      const JointSample rest{from.position, 0.0, 0.0};
+      lead_[j] = SplineSegment(since_start, rest, since_start, rest, SplineKind::linear);
+      continue;
+    }
+    const Knot& target = knots_[j][first];
+    offset_[j] = 0.0;
+    if (continuous_[j]) {
+      // Whole turns that bring the first point the short way round.
+      offset_[j] = from.position + shortestAngularDistance(from.position, target.state.position) -
+                   target.state.position;
+    }
+    JointSample to = target.state;
+    to.position += offset_[j];
+    lead_[j] = SplineSegment(since_start, from, times_[first], to, target.kind);
+  }
+  return true;
+}
+
+void JointTrajectory::sample(double now, std::vector<JointSample>& out) const noexcept {
+  const double time = now - start_time_;
+  const std::size_t last = times_.empty() ? 0 : times_.size() - 1;
+  for (std::size_t j = 0; j < knots_.size() && j < out.size(); ++j) {
+    if (held_[j] || times_.empty() || time < times_[first_] || first_ == last) {
+      out[j] = lead_[j].sample(time);
+      continue;
+    }
     // The segment that runs at `time`: the last one starting at or before it
-    // (the first before the start; the last after the end).
-    std::size_t lo = 0;
-    std::size_t hi = segments.size();
+    // (after the end, the last, which holds its end point).
+    std::size_t lo = first_ + 1;
+    std::size_t hi = times_.size();
     while (hi - lo > 1) {
       const std::size_t mid = (lo + hi) / 2;
-      if (segments[mid].startTime() <= time) lo = mid;
+      if (segments_[j][mid].startTime() <= time) lo = mid;
       else hi = mid;
     }
-    out[j] = segments[lo].sample(time);
+    JointSample sample = segments_[j][lo].sample(time);
+    sample.position += offset_[j];
+    out[j] = sample;
   }
 }
 

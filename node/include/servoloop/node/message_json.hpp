@@ -32,12 +32,16 @@ nlohmann::json toJson(const std_msgs::Float64MultiArray& msg);
 nlohmann::json toJson(const sensor_msgs::JointState& msg);
 nlohmann::json toJson(const control_msgs::JointControllerState& msg);
 nlohmann::json toJson(const nav_msgs::Odometry& msg);
+nlohmann::json toJson(const trajectory_msgs::JointTrajectory& msg);
+nlohmann::json toJson(const control_msgs::JointTrajectoryControllerState& msg);
 
 void fromJson(const nlohmann::json& json, std_msgs::Float64& out);
 void fromJson(const nlohmann::json& json, std_msgs::Float64MultiArray& out);
 void fromJson(const nlohmann::json& json, sensor_msgs::JointState& out);
 void fromJson(const nlohmann::json& json, control_msgs::JointControllerState& out);
 void fromJson(const nlohmann::json& json, nav_msgs::Odometry& out);
+void fromJson(const nlohmann::json& json, trajectory_msgs::JointTrajectory& out);
+void fromJson(const nlohmann::json& json, control_msgs::JointTrajectoryControllerState& out);
 
 template <class Msg>
 Msg messageFromJson(const nlohmann::json& json) {
@@ -55,9 +59,10 @@ nlohmann::json yamlToJson(const YAML::Node& node);
 // "[1, 2]", "1.0") or JSON. source_name prefixes syntax errors.
 nlohmann::json parseMessageText(std::string_view text, std::string_view source_name = "message");
 
-// Throws servoloop::Error when a command message (std_msgs/Float64 or
-// Float64MultiArray, given as JSON) holds NaN (null) or an infinite value: a
-// command from a user or client must be a finite number. Other types pass.
+// Throws servoloop::Error when a command message (std_msgs/Float64,
+// Float64MultiArray or trajectory_msgs/JointTrajectory, given as JSON) holds
+// NaN (null) or an infinite value, naming the field: a command from a user or
+// client must be a finite number. Other types pass.
 void requireFiniteCommand(std::string_view type_name, const nlohmann::json& msg);
 
 // --- Type-erased helpers (for the IPC server and the recorder) --------------
@@ -79,6 +84,11 @@ std::string toText(const Msg& msg) {
 // A message of any known type as JSON; throws servoloop::Error naming the type
 // for a type that has no JSON form (one only a plugin knows).
 nlohmann::json toJson(const realtime::MessageView& msg);
+
+// msg read as type_name and written back in full (every field, defaults
+// filled in). Throws servoloop::Error naming the type and the field, or the
+// known types for an unknown one.
+nlohmann::json normalizeMessage(std::string_view type_name, const nlohmann::json& msg);
 
 // A subscriber that takes any message type in its JSON form, with the time it
 // was published.

@@ -64,6 +64,48 @@ struct JointControllerState {
 
 }  // namespace control_msgs
 
+namespace trajectory_msgs {
+
+// One point of a joint trajectory, joints in the order of the trajectory's
+// joint_names. velocities, accelerations and effort are either empty or one
+// per joint. time_from_start is seconds from the trajectory's start.
+struct JointTrajectoryPoint {
+  std::vector<double> positions;
+  std::vector<double> velocities;
+  std::vector<double> accelerations;
+  std::vector<double> effort;
+  double time_from_start = 0.0;  // s
+};
+
+// A trajectory for some joints: the points are reached at stamp +
+// time_from_start (stamp is control time; 0 means "when it arrives").
+struct JointTrajectory {
+  static constexpr std::string_view kTypeName = "trajectory_msgs/JointTrajectory";
+  double stamp = 0.0;  // control time, s; 0 = now
+  std::vector<std::string> joint_names;
+  std::vector<JointTrajectoryPoint> points;
+};
+
+}  // namespace trajectory_msgs
+
+namespace control_msgs {
+
+// What a joint trajectory controller reports: for its joints (in the order of
+// joint_names), the state it wants now (desired), the state it measures
+// (actual) and desired - actual (error; the shortest way round for
+// continuous joints). Each point's time_from_start is the time since the
+// trajectory started (0 while holding).
+struct JointTrajectoryControllerState {
+  static constexpr std::string_view kTypeName = "control_msgs/JointTrajectoryControllerState";
+  double stamp = 0.0;  // control time, s
+  std::vector<std::string> joint_names;
+  trajectory_msgs::JointTrajectoryPoint desired;
+  trajectory_msgs::JointTrajectoryPoint actual;
+  trajectory_msgs::JointTrajectoryPoint error;
+};
+
+}  // namespace control_msgs
+
 namespace geometry_msgs {
 
 struct Point {

@@ -199,5 +199,7 @@ SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64MultiArray, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::JointState, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, extern)
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(trajectory_msgs::JointTrajectory, extern)
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointTrajectoryControllerState, extern)
 
 }  // namespace servoloop::realtime

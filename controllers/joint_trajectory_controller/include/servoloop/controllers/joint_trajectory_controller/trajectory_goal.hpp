@@ -1,0 +1,79 @@
+#pragma once
+// One trajectory goal (what a follow_joint_trajectory action goal becomes):
+// its tolerances and its outcome, written by the controller's real-time
+// thread and read by anyone holding it. Result codes are
+// control_msgs/FollowJointTrajectoryResult's.
+#include <atomic>
+#include <string>
+
+#include "servoloop/controllers/joint_trajectory_controller/trajectory_tolerances.hpp"
+
+namespace servoloop::controllers::joint_trajectory_controller {
+
+enum class GoalStatus : int {
+  pending,    // accepted, not yet taken over by the controller
+  active,     // being followed
+  succeeded,  // ended inside the goal tolerances
+  aborted,    // a tolerance was violated, or the trajectory was in the past
+  preempted,  // replaced by a newer trajectory or goal, or the controller stopped
+  canceled,   // canceled by its sender; the joints stop within stop_trajectory_duration
+  rejected,   // refused before it started (see error_string)
+};
+
+const char* goalStatusName(GoalStatus status) noexcept;
+
+// control_msgs/FollowJointTrajectoryResult error codes.
+enum class TrajectoryErrorCode : int {
+  successful = 0,
+  invalid_goal = -1,
+  invalid_joints = -2,
+  old_header_timestamp = -3,
+  path_tolerance_violated = -4,
+  goal_tolerance_violated = -5,
+};
+
+class TrajectoryGoal {
+ public:
+  explicit TrajectoryGoal(TrajectoryTolerances tolerances) : tolerances_(std::move(tolerances)) {}
+
+  const TrajectoryTolerances& tolerances() const noexcept { return tolerances_; }
+
+  // Any thread.
+  GoalStatus status() const noexcept { return status_.load(std::memory_order_acquire); }
+  TrajectoryErrorCode errorCode() const noexcept { return error_code_.load(std::memory_order_acquire); }
+  bool done() const noexcept {
+    const GoalStatus s = status();
+    return s != GoalStatus::pending && s != GoalStatus::active;
+  }
+  // Why it ended, in words (the error code's meaning, or why it was rejected).
+  std::string errorString() const;
+  // The joint that violated a tolerance (index into the controller's joints), or -1.
+  int violatingJoint() const noexcept { return violating_joint_.load(std::memory_order_acquire); }
+
+  // Any thread: ask the controller to stop following it.
+  void requestCancel() noexcept { cancel_requested_.store(true, std::memory_order_release); }
+  bool cancelRequested() const noexcept { return cancel_requested_.load(std::memory_order_acquire); }
+
+  // The controller's side (real-time safe).
+  void setActive() noexcept { status_.store(GoalStatus::active, std::memory_order_release); }
+  void finish(GoalStatus status, TrajectoryErrorCode code, int violating_joint = -1) noexcept {
+    error_code_.store(code, std::memory_order_relaxed);
+    violating_joint_.store(violating_joint, std::memory_order_relaxed);
+    status_.store(status, std::memory_order_release);
+  }
+  // Non-real-time, before the goal is handed over.
+  void reject(TrajectoryErrorCode code, std::string why) {
+    rejection_ = std::move(why);
+    finish(GoalStatus::rejected, code);
+  }
+
+ private:
+  TrajectoryTolerances tolerances_;
+  std::string rejection_;
+  std::atomic<GoalStatus> status_{GoalStatus::pending};
+  std::atomic<TrajectoryErrorCode> error_code_{TrajectoryErrorCode::successful};
+  std::atomic<int> violating_joint_{-1};
+  std::atomic<bool> cancel_requested_{false};
+};
+
+}  // namespace servoloop::controllers::joint_trajectory_controller

@@ -1,0 +1,371 @@
+#include "servoloop/controllers/joint_trajectory_controller/trajectory_follower.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "servoloop/controllers/common/angles.hpp"
+#include "servoloop/controllers/common/controller_params.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
+
+namespace servoloop::controllers::joint_trajectory_controller {
+
+namespace {
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+double positiveOrZero(const controller_manager::ControllerContext& context, const std::string& key,
+                      double fallback) {
+  const double value = optionalNumber(context, key, fallback);
+  if (value < 0.0) {
+    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) + "' is " +
+                      std::to_string(value) + "; it must be >= 0");
+  }
+  return value;
+}
+
+bool optionalBool(const controller_manager::ControllerContext& context, const std::string& key, bool fallback) {
+  const params::Parameters value = context.params.child(key);
+  if (value.empty()) return fallback;
+  try {
+    return value.as<bool>();
+  } catch (const ConfigError&) {
+    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) +
+                      "' must be true or false, got " + value.describe());
+  }
+}
+
+void resizePoint(servoloop::trajectory_msgs::JointTrajectoryPoint& point, std::size_t joints) {
+  point.positions.assign(joints, 0.0);
+  point.velocities.assign(joints, 0.0);
+  point.accelerations.assign(joints, 0.0);
+}
+
+}  // namespace
+
+TrajectoryFollower::~TrajectoryFollower() {
+  command_subscription_ = {};
+  delete active_;  // the controller is not running any more
+  active_ = nullptr;
+}
+
+void TrajectoryFollower::init(const controller_manager::ControllerContext& context,
+                              const std::vector<std::string>& joint_names) {
+  controller_name_ = context.name;
+  joint_names_ = joint_names;
+  const std::size_t n = joint_names.size();
+  position_errors_.assign(n, JointPositionError());
+  continuous_.assign(n, false);
+  if (context.robot_model) {
+    for (std::size_t j = 0; j < n; ++j) {
+      position_errors_[j] = JointPositionError::fromModel(*context.robot_model, joint_names[j], context.name);
+      continuous_[j] = position_errors_[j].kind() == JointPositionError::Kind::continuous;
+    }
+  } else {
+    logger().warn("controller '{}': no robot description was given, so no joint is taken as continuous "
+                  "(errors are plain differences)",
+                  context.name);
+  }
+  default_tolerances_ = readTolerances(context, joint_names);
+  stop_trajectory_duration_ = positiveOrZero(context, "stop_trajectory_duration", 0.0);
+  state_gate_.setRate(positiveOrZero(context, "state_publish_rate", 50.0));
+  action_monitor_rate_ = positiveOrZero(context, "action_monitor_rate", 20.0);
+  allow_partial_joints_goal_ = optionalBool(context, "allow_partial_joints_goal", false);
+
+  hold_.assign(n, SplineSegment{});
+  desired_.assign(n, {});
+  error_.assign(n, {});
+  actual_.assign(n, {});
+  current_.assign(n, {});
+
+  command_topic_ = controllerTopic(context, "command");
+  if (context.topics != nullptr) {
+    StateMessage prototype;
+    prototype.joint_names = joint_names;
+    resizePoint(prototype.desired, n);
+    resizePoint(prototype.actual, n);
+    resizePoint(prototype.error, n);
+    state_publisher_ = context.topics->advertise<StateMessage>(controllerTopic(context, "state"), prototype);
+    command_subscription_ = context.topics->subscribe<TrajectoryMessage>(
+        command_topic_, [this](const TrajectoryMessage& msg) { onTopicMessage(msg); });
+  }
+}
+
+// --- non-real-time ------------------------------------------------------------------
+
+std::unique_ptr<TrajectoryFollower::Command> TrajectoryFollower::makeCommand(const TrajectoryMessage& msg,
+                                                                             TrajectoryErrorCode& code) {
+  const std::size_t n = joint_names_.size();
+  auto command = std::make_unique<Command>();
+  if (msg.points.empty()) {
+    command->stop = true;
+    return command;
+  }
+  // Where each of the message's joints is in the controller's order.
+  code = TrajectoryErrorCode::invalid_joints;
+  std::vector<std::size_t> index_of(msg.joint_names.size());
+  std::vector<bool> named(n, false);
+  for (std::size_t k = 0; k < msg.joint_names.size(); ++k) {
+    const auto it = std::find(joint_names_.begin(), joint_names_.end(), msg.joint_names[k]);
+    if (it == joint_names_.end()) {
+      throw Error("joint_names[" + std::to_string(k) + "] '" + msg.joint_names[k] +
+                  "' is not a joint of the controller (" + joinNames(joint_names_) + ")");
+    }
+    const auto j = static_cast<std::size_t>(it - joint_names_.begin());
+    if (named[j]) throw Error("joint_names lists '" + msg.joint_names[k] + "' twice");
+    named[j] = true;
+    index_of[k] = j;
+  }
+  std::vector<bool> held(n, false);
+  std::vector<std::string> missing;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!named[j]) {
+      held[j] = true;
+      missing.push_back(joint_names_[j]);
+    }
+  }
+  if (!missing.empty() && !allow_partial_joints_goal_) {
+    throw Error("joint_names leaves out " + joinNames(missing) +
+                "; name every joint of the controller, or set allow_partial_joints_goal: true");
+  }
+
+  code = TrajectoryErrorCode::invalid_goal;
+  std::vector<TrajectoryPoint> points(msg.points.size());
+  for (std::size_t i = 0; i < msg.points.size(); ++i) {
+    const auto& given = msg.points[i];
+    const std::string where = "points[" + std::to_string(i) + "]";
+    const auto reorder = [&](const std::vector<double>& values, const char* field, std::vector<double>& out) {
+      if (values.empty()) return;
+      if (values.size() != msg.joint_names.size()) {
+        throw Error(where + "." + field + " has " + std::to_string(values.size()) + " values for " +
+                    std::to_string(msg.joint_names.size()) + " joint_names; give one per joint" +
+                    (std::string(field) == "positions" ? "" : " or none"));
+      }
+      out.assign(n, 0.0);
+      for (std::size_t k = 0; k < values.size(); ++k) out[index_of[k]] = values[k];
+    };
+    if (given.positions.empty()) throw Error(where + ".positions is empty; give one position per joint");
+    reorder(given.positions, "positions", points[i].positions);
+    reorder(given.velocities, "velocities", points[i].velocities);
+    reorder(given.accelerations, "accelerations", points[i].accelerations);
+    points[i].time_from_start = given.time_from_start;
+  }
+  command->trajectory = JointTrajectory::fromPoints(msg.stamp, points, n, continuous_, held);
+
+  const double now = last_time_.load(std::memory_order_acquire);
+  if (msg.stamp > 0.0 && !(command->trajectory.endTime() > now)) {
+    code = TrajectoryErrorCode::old_header_timestamp;
+    throw Error("every point is in the past: the trajectory ends at " + std::to_string(command->trajectory.endTime()) +
+                " s and the control time is " + std::to_string(now) + " s (stamp 0 starts it on arrival)");
+  }
+  code = TrajectoryErrorCode::successful;
+  return command;
+}
+
+void TrajectoryFollower::push(std::unique_ptr<Command> command) {
+  const std::lock_guard lock(push_mutex_);  // the topic's thread and a goal's sender
+  std::unique_ptr<Command> replaced = handoff_.push(std::move(command));
+  if (replaced && replaced->goal) replaced->goal->finish(GoalStatus::preempted, TrajectoryErrorCode::successful);
+}
+
+void TrajectoryFollower::onTopicMessage(const TrajectoryMessage& msg) {
+  if (!running_.load(std::memory_order_acquire)) {
+    refused_.fetch_add(1, std::memory_order_relaxed);
+    logger().warn("controller '{}': trajectory on {} ignored: the controller is not running; start it first",
+                  controller_name_, command_topic_);
+    return;
+  }
+  TrajectoryErrorCode code = TrajectoryErrorCode::successful;
+  try {
+    push(makeCommand(msg, code));
+  } catch (const Error& e) {
+    refused_.fetch_add(1, std::memory_order_relaxed);
+    logger().warn("controller '{}': trajectory on {} ignored: {}", controller_name_, command_topic_, e.what());
+  }
+}
+
+std::shared_ptr<TrajectoryGoal> TrajectoryFollower::submitGoal(const TrajectoryMessage& msg,
+                                                               TrajectoryTolerances tolerances) {
+  auto goal = std::make_shared<TrajectoryGoal>(std::move(tolerances));
+  if (!running_.load(std::memory_order_acquire)) {
+    goal->reject(TrajectoryErrorCode::invalid_goal,
+                 "controller '" + controller_name_ + "' is not running; start it first");
+    return goal;
+  }
+  if (goal->tolerances().path.size() != joint_names_.size() || goal->tolerances().goal.size() != joint_names_.size()) {
+    goal->reject(TrajectoryErrorCode::invalid_goal, "the tolerances do not match the controller's joints");
+    return goal;
+  }
+  TrajectoryErrorCode code = TrajectoryErrorCode::successful;
+  try {
+    std::unique_ptr<Command> command = makeCommand(msg, code);
+    command->goal = goal;
+    push(std::move(command));
+  } catch (const Error& e) {
+    goal->reject(code, e.what());
+  }
+  return goal;
+}
+
+// --- real-time -------------------------------------------------------------------------
+
+void TrajectoryFollower::start(const Time& time, const std::vector<double>& actual_positions,
+                               const std::vector<double>& actual_velocities) noexcept {
+  for (std::size_t j = 0; j < desired_.size(); ++j) {
+    desired_[j] = {actual_positions[j], actual_velocities[j], 0.0};
+    error_[j] = {};
+  }
+  // A trajectory sent while stopped was refused, but one may have crossed
+  // over just before the stop: it is not followed.
+  if (Command* stale = handoff_.take()) {
+    if (stale->goal) stale->goal->finish(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal);
+    handoff_.retire(stale);
+  }
+  hold(time.seconds);
+  last_time_.store(time.seconds, std::memory_order_release);
+  state_gate_.reset();
+  running_.store(true, std::memory_order_release);
+}
+
+void TrajectoryFollower::stop() noexcept {
+  running_.store(false, std::memory_order_release);
+  finishActive(GoalStatus::preempted, TrajectoryErrorCode::successful);
+  handoff_.retire(active_);
+  active_ = nullptr;
+}
+
+void TrajectoryFollower::finishActive(GoalStatus status, TrajectoryErrorCode code, int joint) noexcept {
+  if (active_ != nullptr && active_->goal && !active_->goal->done()) active_->goal->finish(status, code, joint);
+}
+
+void TrajectoryFollower::hold(double now) noexcept {
+  // Come to rest from the desired state in stop_trajectory_duration: the
+  // quintic from (p, v) to (p, -v) over twice that time is at rest half way;
+  // the hold runs from (p, v) to that state.
+  const double stop = stop_trajectory_duration_;
+  for (std::size_t j = 0; j < hold_.size(); ++j) {
+    const JointSample from{desired_[j].position, desired_[j].velocity, 0.0};
+    if (!(stop > 0.0)) {
+      const JointSample rest{from.position, 0.0, 0.0};
+      hold_[j] = SplineSegment(now, rest, now, rest, SplineKind::linear);
+      continue;
+    }
+    const SplineSegment there_and_back(now, from, now + 2.0 * stop, {from.position, -from.velocity, 0.0},
+                                       SplineKind::quintic);
+    hold_[j] = SplineSegment(now, from, now + stop, there_and_back.sample(now + stop), SplineKind::quintic);
+  }
+  handoff_.retire(active_);
+  active_ = nullptr;
+}
+
+void TrajectoryFollower::sampleDesired(double now) noexcept {
+  if (active_ != nullptr) {
+    active_->trajectory.sample(now, desired_);
+  } else {
+    for (std::size_t j = 0; j < hold_.size(); ++j) desired_[j] = hold_[j].sample(now);
+  }
+}
+
+void TrajectoryFollower::applyCommand(Command* command, double now) noexcept {
+  // desired_ holds the state wanted now; the new trajectory starts from it.
+  if (command->stop) {
+    finishActive(GoalStatus::preempted, TrajectoryErrorCode::successful);
+    hold(now);
+    handoff_.retire(command);
+    return;
+  }
+  if (!command->trajectory.activate(now, desired_)) {
+    // Every point went by between its check and now: keep what runs.
+    if (command->goal) command->goal->finish(GoalStatus::aborted, TrajectoryErrorCode::old_header_timestamp);
+    refused_.fetch_add(1, std::memory_order_relaxed);
+    handoff_.retire(command);
+    return;
+  }
+  finishActive(GoalStatus::preempted, TrajectoryErrorCode::successful);
+  handoff_.retire(active_);
+  active_ = command;
+  if (active_->goal) active_->goal->setActive();
+  taken_.fetch_add(1, std::memory_order_relaxed);
+}
+
+void TrajectoryFollower::update(const Time& time, const std::vector<double>& actual_positions,
+                                const std::vector<double>& actual_velocities) noexcept {
+  const double now = time.seconds;
+  last_time_.store(now, std::memory_order_release);
+  sampleDesired(now);
+  if (Command* command = handoff_.take()) [[unlikely]] {
+    applyCommand(command, now);
+    sampleDesired(now);
+  }
+  if (active_ != nullptr && active_->goal && active_->goal->cancelRequested()) [[unlikely]] {
+    finishActive(GoalStatus::canceled, TrajectoryErrorCode::successful);
+    hold(now);
+    sampleDesired(now);
+  }
+
+  for (std::size_t j = 0; j < desired_.size(); ++j) {
+    actual_[j] = {actual_positions[j], actual_velocities[j], 0.0};
+    const double position_error = continuous_[j]
+                                      ? shortestAngularDistance(actual_positions[j], desired_[j].position)
+                                      : desired_[j].position - actual_positions[j];
+    // Acceleration is not measured: its error is taken as 0.
+    error_[j] = {position_error, desired_[j].velocity - actual_velocities[j], 0.0};
+  }
+  if (active_ != nullptr && active_->goal && !active_->goal->done()) checkTolerances(now);
+}
+
+void TrajectoryFollower::checkTolerances(double now) noexcept {
+  const TrajectoryTolerances& tolerances = active_->goal->tolerances();
+  const double end = active_->trajectory.endTime();
+  if (now < end) {
+    for (std::size_t j = 0; j < error_.size(); ++j) {
+      if (!withinTolerance(tolerances.path[j], error_[j].position, error_[j].velocity, error_[j].acceleration)) {
+        finishActive(GoalStatus::aborted, TrajectoryErrorCode::path_tolerance_violated, static_cast<int>(j));
+        hold(now);
+        return;
+      }
+    }
+    return;
+  }
+  int outside = -1;
+  for (std::size_t j = 0; j < error_.size() && outside < 0; ++j) {
+    if (!withinTolerance(tolerances.goal[j], error_[j].position, error_[j].velocity, error_[j].acceleration)) {
+      outside = static_cast<int>(j);
+    }
+  }
+  if (outside < 0) {
+    finishActive(GoalStatus::succeeded, TrajectoryErrorCode::successful);
+  } else if (!(now < end + tolerances.goal_time)) {
+    finishActive(GoalStatus::aborted, TrajectoryErrorCode::goal_tolerance_violated, outside);
+  }
+}
+
+void TrajectoryFollower::publishStateIfDue(const Time& time, const Duration& period) noexcept {
+  if (!state_gate_.due(time, period)) return;
+  if (!state_publisher_.valid() || !state_publisher_.trylock()) return;
+  StateMessage& msg = state_publisher_.msg();
+  msg.stamp = time.seconds;
+  const double since_start = active_ != nullptr ? time.seconds - active_->trajectory.startTime() : 0.0;
+  for (std::size_t j = 0; j < desired_.size(); ++j) {
+    msg.desired.positions[j] = desired_[j].position;
+    msg.desired.velocities[j] = desired_[j].velocity;
+    msg.desired.accelerations[j] = desired_[j].acceleration;
+    msg.actual.positions[j] = actual_[j].position;
+    msg.actual.velocities[j] = actual_[j].velocity;
+    msg.actual.accelerations[j] = 0.0;
+    msg.error.positions[j] = error_[j].position;
+    msg.error.velocities[j] = error_[j].velocity;
+    msg.error.accelerations[j] = error_[j].acceleration;
+  }
+  msg.desired.time_from_start = since_start;
+  msg.actual.time_from_start = since_start;
+  msg.error.time_from_start = since_start;
+  state_publisher_.unlockAndPublish();
+}
+
+}  // namespace servoloop::controllers::joint_trajectory_controller

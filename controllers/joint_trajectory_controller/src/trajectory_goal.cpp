@@ -1,0 +1,33 @@
+#include "servoloop/controllers/joint_trajectory_controller/trajectory_goal.hpp"
+
+namespace servoloop::controllers::joint_trajectory_controller {
+
+const char* goalStatusName(GoalStatus status) noexcept {
+  switch (status) {
+    case GoalStatus::pending: return "pending";
+    case GoalStatus::active: return "active";
+    case GoalStatus::succeeded: return "succeeded";
+    case GoalStatus::aborted: return "aborted";
+    case GoalStatus::preempted: return "preempted";
+    case GoalStatus::canceled: return "canceled";
+    case GoalStatus::rejected: return "rejected";
+  }
+  return "unknown";
+}
+
+std::string TrajectoryGoal::errorString() const {
+  if (status() == GoalStatus::rejected) return rejection_;
+  const std::string joint = violatingJoint() >= 0 ? " (joint " + std::to_string(violatingJoint()) + ")" : "";
+  switch (errorCode()) {
+    case TrajectoryErrorCode::successful: return "";
+    case TrajectoryErrorCode::invalid_goal: return "invalid goal";
+    case TrajectoryErrorCode::invalid_joints: return "the goal's joints do not match the controller's";
+    case TrajectoryErrorCode::old_header_timestamp: return "every point of the trajectory was in the past";
+    case TrajectoryErrorCode::path_tolerance_violated: return "a joint left the path tolerance" + joint;
+    case TrajectoryErrorCode::goal_tolerance_violated:
+      return "a joint was outside the goal tolerance after goal_time" + joint;
+  }
+  return "";
+}
+
+}  // namespace servoloop::controllers::joint_trajectory_controller
