@@ -2,7 +2,9 @@
 // JointStateController publishing at 50 Hz and the seed's
 // effort_controllers/JointPositionController (state topic every 10th update)
 // receiving a new setpoint from another thread every 100 cycles, with the
-// bus's delivery thread running. Also the raw PD and a group controller.
+// bus's delivery thread running. Also the raw PD and a group controller, and
+// a 6-joint trajectory controller taking trajectories, goals, cancels and
+// stops while it publishes its state.
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +19,7 @@
 #include "servoloop/controllers/effort_controllers/forward_controllers.hpp"
 #include "servoloop/controllers/effort_controllers/joint_position_controller.hpp"
 #include "servoloop/controllers/joint_state_controller/joint_state_controller.hpp"
+#include "servoloop/controllers/joint_trajectory_controller/joint_trajectory_controller.hpp"
 #include "servoloop/controllers/minimal_joint_controller/minimal_joint_controller.hpp"
 #include "servoloop/params/parameters_yaml.hpp"
 
@@ -119,6 +122,106 @@ TEST(ControllersAllocation, NoAllocationOnTheControlThreadAfterStartUp) {
   // 50 Hz over 100 s of control time: the first cycle, then every 20th.
   EXPECT_EQ(joint_states.publishedCount(), static_cast<std::uint64_t>(kCycles / 20));
   EXPECT_GT(joint_state_messages, 0u);
+}
+
+// Every 100 cycles the trajectory controller gets, in turn: a trajectory on
+// its topic (cubic points), a goal (quintic points) that succeeds or is
+// preempted, a goal with a path tolerance the still joints violate (aborted,
+// then the stop profile), a cancel of a goal, and an empty trajectory (stop).
+TEST(ControllersAllocation, TrajectoryControllerTakesTrajectoriesAndGoalsWithoutAllocating) {
+  namespace jtc = joint_trajectory_controller;
+  servoloop::realtime::TopicBus bus;
+  const std::vector<std::string> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
+  TestJointsHW hw(joints);
+  jtc::EffortJointTrajectoryController controller;
+  std::string gains;
+  for (const auto& joint : joints) gains += (gains.empty() ? "" : ", ") + joint + ": {p: 100, d: 5, i: 1, i_clamp: 1}";
+  initController(controller, hw,
+                 makeContext("arm",
+                             "{joints: [j1, j2, j3, j4, j5, j6], gains: {" + gains +
+                                 "}, stop_trajectory_duration: 0.05, state_publish_rate: 100}",
+                             &bus));
+  std::uint64_t states = 0;
+  auto subscription = bus.subscribe<servoloop::control_msgs::JointTrajectoryControllerState>(
+      "/robot/arm/state", [&](const auto&) { ++states; });
+  bus.start();
+
+  const auto trajectory = [&](double scale, bool with_accelerations) {
+    servoloop::trajectory_msgs::JointTrajectory msg;
+    msg.joint_names = joints;
+    for (int i = 1; i <= 4; ++i) {
+      servoloop::trajectory_msgs::JointTrajectoryPoint point;
+      point.positions.assign(6, scale * i);
+      point.velocities.assign(6, i < 4 ? 0.1 * i : 0.0);  // at rest at the end
+      if (with_accelerations) point.accelerations.assign(6, 0.0);
+      point.time_from_start = 0.02 * i;
+      msg.points.push_back(point);
+    }
+    return msg;
+  };
+
+  std::atomic<int> requested{0};
+  std::atomic<int> published{0};
+  std::size_t allocations = 0;
+  std::thread control([&] {
+    const Duration period(0.001);
+    controller.startRequest(Time(0.0));
+    servoloop::testing::AllocationCounter counter;
+    for (int k = 1; k <= kCycles; ++k) {
+      if (k % kCommandEvery == 0) {
+        requested.store(k / kCommandEvery);
+        while (published.load() != k / kCommandEvery) std::this_thread::yield();
+      }
+      const Time now(0.001 * k);
+      bus.setTime(now);
+      for (std::size_t j = 0; j < 6; ++j) hw.position[j] = 0.01 * std::sin(0.001 * k + static_cast<double>(j));
+      controller.update(now, period);
+    }
+    allocations = counter.allocations();
+  });
+  int goals = 0, topic_trajectories = 0;
+  std::vector<std::shared_ptr<jtc::TrajectoryGoal>> kept;
+  for (int n = 1; n <= kCycles / kCommandEvery; ++n) {
+    while (requested.load() != n) std::this_thread::yield();
+    jtc::TrajectoryTolerances tolerances = controller.follower().defaultTolerances();
+    switch (n % 5) {
+      case 0:
+        bus.publish("/robot/arm/command", trajectory(0.1, false));
+        bus.flush();
+        ++topic_trajectories;
+        break;
+      case 1:
+        kept.push_back(controller.follower().submitGoal(trajectory(-0.1, true), tolerances));
+        ++goals;
+        break;
+      case 2:
+        for (auto& t : tolerances.path) t.position = 0.01;
+        kept.push_back(controller.follower().submitGoal(trajectory(0.2, false), tolerances));
+        ++goals;
+        break;
+      case 3:
+        kept.back()->requestCancel();
+        break;
+      case 4:
+        bus.publish("/robot/arm/command", servoloop::trajectory_msgs::JointTrajectory{0.0, joints, {}});
+        bus.flush();
+        break;
+    }
+    published.store(n);
+  }
+  control.join();
+  bus.stop();
+
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_EQ(controller.follower().trajectoriesTaken(), static_cast<std::uint64_t>(goals + topic_trajectories));
+  EXPECT_EQ(controller.follower().trajectoriesRefused(), 0u);
+  int aborted = 0;
+  for (const auto& goal : kept) {
+    EXPECT_TRUE(goal->done());
+    aborted += goal->status() == jtc::GoalStatus::aborted;
+  }
+  EXPECT_EQ(aborted, goals / 2);  // every path-tolerance goal, no other
+  EXPECT_GT(states, static_cast<std::uint64_t>(kCycles / 10 / 2));
 }
 
 }  // namespace
