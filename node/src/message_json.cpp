@@ -210,7 +210,11 @@ std::string textOf(const json& value, bool quote_strings) {
     case json::value_t::number_float: return formatDouble(value.get<double>());
     case json::value_t::number_integer:
     case json::value_t::number_unsigned: return jsonText(value);
-    case json::value_t::string: return quote_strings ? jsonText(value) : value.get<std::string>();
+    case json::value_t::string: {
+      // jsonText shows bytes that are not UTF-8 as U+FFFD; unquoted, the quotes go.
+      const std::string quoted = jsonText(value);
+      return quote_strings ? quoted : quoted.substr(1, quoted.size() - 2);
+    }
     case json::value_t::array: return inlineList(value);
     default: return jsonText(value);
   }

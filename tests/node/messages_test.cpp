@@ -51,9 +51,13 @@ TEST(Messages, TypeNames) {
   EXPECT_EQ(std_msgs::Float64MultiArray::kTypeName, "std_msgs/Float64MultiArray");
   EXPECT_EQ(sensor_msgs::JointState::kTypeName, "sensor_msgs/JointState");
   EXPECT_EQ(control_msgs::JointControllerState::kTypeName, "control_msgs/JointControllerState");
+  EXPECT_EQ(trajectory_msgs::JointTrajectory::kTypeName, "trajectory_msgs/JointTrajectory");
+  EXPECT_EQ(control_msgs::JointTrajectoryControllerState::kTypeName, "control_msgs/JointTrajectoryControllerState");
   EXPECT_EQ(knownMessageTypes(),
-            (std::vector<std::string>{"control_msgs/JointControllerState", "sensor_msgs/JointState",
-                                      "std_msgs/Float64", "std_msgs/Float64MultiArray"}));
+            (std::vector<std::string>{"control_msgs/JointControllerState",
+                                      "control_msgs/JointTrajectoryControllerState", "nav_msgs/Odometry",
+                                      "sensor_msgs/JointState", "std_msgs/Float64", "std_msgs/Float64MultiArray",
+                                      "trajectory_msgs/JointTrajectory"}));
   EXPECT_TRUE(isKnownMessageType("std_msgs/Float64"));
   EXPECT_FALSE(isKnownMessageType("std_msgs/Float32"));
 }
@@ -113,6 +117,57 @@ TEST(Messages, JointControllerStateJsonRoundTrip) {
   EXPECT_EQ(toJson(msg), expected);
   const auto back = messageFromJson<control_msgs::JointControllerState>(json::parse(expected.dump()));
   EXPECT_EQ(toJson(back), expected);
+}
+
+TEST(Messages, JointTrajectoryJsonRoundTripAndErrors) {
+  // As a user writes it for `topic pub`: YAML, integers for numbers, fields left out.
+  const auto msg = messageFromJson<trajectory_msgs::JointTrajectory>(parseMessageText(
+      "{joint_names: [a, b], points: [{positions: [1, 2], time_from_start: 0.5}, "
+      "{positions: [3, 4], velocities: [0, 0], time_from_start: 1}]}"));
+  EXPECT_EQ(msg.stamp, 0.0);
+  ASSERT_EQ(msg.points.size(), 2u);
+  EXPECT_EQ(msg.points[0].positions, (std::vector<double>{1.0, 2.0}));
+  EXPECT_TRUE(msg.points[0].velocities.empty());
+  EXPECT_EQ(msg.points[1].velocities, (std::vector<double>{0.0, 0.0}));
+  EXPECT_DOUBLE_EQ(msg.points[1].time_from_start, 1.0);
+  const auto again = messageFromJson<trajectory_msgs::JointTrajectory>(toJson(msg));
+  EXPECT_EQ(again.joint_names, msg.joint_names);
+  EXPECT_EQ(again.points[1].positions, msg.points[1].positions);
+
+  EXPECT_EQ(errorOf([] {
+              messageFromJson<trajectory_msgs::JointTrajectory>(
+                  json::parse(R"({"points": [{"positions": [1]}, {"positions": ["x"]}]})"));
+            }),
+            "trajectory_msgs/JointTrajectory: field 'points[1].positions[0]': expected a number, got string \"x\"");
+  EXPECT_EQ(errorOf([] {
+              messageFromJson<trajectory_msgs::JointTrajectory>(json::parse(R"({"points": [{"position": [1]}]})"));
+            }),
+            "trajectory_msgs/JointTrajectory: unknown field 'points[0].position'; the fields are: positions, "
+            "velocities, accelerations, effort, time_from_start");
+  EXPECT_THAT(errorOf([] { messageFromJson<trajectory_msgs::JointTrajectory>(json::parse(R"({"points": [3]})")); }),
+              HasSubstr("field 'points[0]': expected an object with fields positions"));
+  // A command must be finite, wherever the NaN hides.
+  EXPECT_EQ(errorOf([] {
+              requireFiniteCommand("trajectory_msgs/JointTrajectory",
+                                   json::parse(R"({"points": [{"positions": [1, null]}]})"));
+            }),
+            "trajectory_msgs/JointTrajectory: points[0].positions[1] is nan; a trajectory must hold finite numbers");
+}
+
+TEST(Messages, JointTrajectoryControllerStateTextAndCsv) {
+  control_msgs::JointTrajectoryControllerState state;
+  state.stamp = 1.5;
+  state.joint_names = {"a"};
+  state.desired.positions = {0.5};
+  state.actual.positions = {0.25};
+  state.error.positions = {0.25};
+  EXPECT_EQ(csvHeader(state),
+            "time,joint_names[0],desired.positions[0],desired.time_from_start,actual.positions[0],"
+            "actual.time_from_start,error.positions[0],error.time_from_start");
+  EXPECT_EQ(csvRow(state, Time(1.5)), "1.5,a,0.5,0.0,0.25,0.0,0.25,0.0");
+  const auto again = messageFromJson<control_msgs::JointTrajectoryControllerState>(toJson(state));
+  EXPECT_EQ(again.desired.positions, state.desired.positions);
+  EXPECT_EQ(again.joint_names, state.joint_names);
 }
 
 TEST(Messages, NanSurvivesJsonTextAsNull) {
