@@ -1,5 +1,6 @@
-// `topic pub` text read as YAML/JSON, then converted to every message type
-// servoloop knows and printed back as rostopic text.
+// `topic pub` text read as YAML/JSON, then read as every message type
+// servoloop knows (and checked, and flattened to CSV) and printed back as
+// rostopic text.
 #include "fuzz_common.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/realtime/messages.hpp"
@@ -11,11 +12,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const std::string& type : servoloop::node::knownMessageTypes()) {
       servoloop::fuzz::refusalsAllowed([&] { servoloop::node::messageToText(type, message); });
     }
-    servoloop::fuzz::refusalsAllowed([&] { servoloop::node::messageFromJson<servoloop::std_msgs::Float64>(message); });
-    servoloop::fuzz::refusalsAllowed(
-        [&] { servoloop::node::messageFromJson<servoloop::std_msgs::Float64MultiArray>(message); });
-    servoloop::fuzz::refusalsAllowed(
-        [&] { servoloop::node::messageFromJson<servoloop::sensor_msgs::JointState>(message); });
-    servoloop::fuzz::refusalsAllowed([&] { servoloop::node::messageFromJson<servoloop::nav_msgs::Odometry>(message); });
+    for (const std::string& type : servoloop::node::knownMessageTypes()) {
+      servoloop::fuzz::refusalsAllowed([&] {
+        const nlohmann::json normalized = servoloop::node::normalizeMessage(type, message);
+        servoloop::node::requireFiniteCommand(type, normalized);
+        servoloop::node::csvRow(type, servoloop::Time(0.0), normalized);
+      });
+    }
   });
 }
