@@ -19,6 +19,8 @@
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 #include "servoloop/plugin/plugin_api.hpp"
+#include "servoloop/realtime/action_messages.hpp"
+#include "servoloop/realtime/action_registry.hpp"
 #include "servoloop/realtime/messages.hpp"
 #include "servoloop/realtime/realtime_publisher.hpp"
 #include "servoloop/realtime/realtime_subscriber.hpp"

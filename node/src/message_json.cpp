@@ -220,13 +220,29 @@ std::string textOf(const json& value, bool quote_strings) {
   }
 }
 
+// The type of a message's nested field that has a field order of its own
+// (a trajectory point), or "".
+constexpr std::string_view kPointType = "trajectory_msgs/JointTrajectoryPoint";
+std::string_view nestedType(std::string_view type_name, std::string_view key) {
+  if (type_name == control_msgs::JointTrajectoryControllerState::kTypeName &&
+      (key == "desired" || key == "actual" || key == "error")) {
+    return kPointType;
+  }
+  if (type_name == trajectory_msgs::JointTrajectory::kTypeName && key == "points") return kPointType;
+  return {};
+}
+
 // Keys of an object: the type's known fields in ROS order, then any others.
 std::vector<std::string> orderedKeys(std::string_view type_name, const json& object) {
   std::vector<std::string> keys;
+  const auto& fields = type_name == kPointType ? pointFields() : std::vector<std::string_view>{};
   if (auto it = fieldTable().find(type_name); it != fieldTable().end()) {
     for (auto field : it->second) {
       if (object.contains(std::string(field))) keys.emplace_back(field);
     }
+  }
+  for (auto field : fields) {
+    if (object.contains(std::string(field))) keys.emplace_back(field);
   }
   for (const auto& [key, value] : object.items()) {
     if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
@@ -240,7 +256,7 @@ void appendText(std::string& out, std::string_view type_name, const json& object
     out += std::string(static_cast<std::size_t>(indent), ' ') + key + ":";
     if (value.is_object()) {
       out += "\n";
-      appendText(out, "", value, indent + 2);
+      appendText(out, nestedType(type_name, key), value, indent + 2);
     } else {
       out += " " + textOf(value, true) + "\n";
     }
@@ -279,15 +295,20 @@ std::vector<std::pair<std::string, std::string>> flatten(std::string_view type_n
   }
   struct Walker {
     std::vector<std::pair<std::string, std::string>>& columns;
-    void walk(const std::string& prefix, std::string_view type, const json& value) {
+    void walk(const std::string& prefix, std::string_view type, const json& value, std::string_view item_type = {}) {
       if (value.is_object()) {
         for (const std::string& key : orderedKeys(type, value)) {
           // The time column already carries the stamp.
           if (prefix.empty() && key == "stamp") continue;
-          walk(prefix.empty() ? key : prefix + "." + key, "", value.at(key));
+          const std::string_view nested = nestedType(type, key);
+          const json& field = value.at(key);
+          walk(prefix.empty() ? key : prefix + "." + key, field.is_array() ? "" : nested, field,
+               field.is_array() ? nested : "");
         }
       } else if (value.is_array()) {
-        for (std::size_t i = 0; i < value.size(); ++i) walk(prefix + "[" + std::to_string(i) + "]", "", value[i]);
+        for (std::size_t i = 0; i < value.size(); ++i) {
+          walk(prefix + "[" + std::to_string(i) + "]", item_type, value[i]);
+        }
       } else {
         columns.emplace_back(prefix.empty() ? "value" : prefix, csvCell(value));
       }

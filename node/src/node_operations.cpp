@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/ipc/ipc_protocol.hpp"
+#include "servoloop/node/action_json.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/node.hpp"
 #include "servoloop/params/parameter_store.hpp"
@@ -22,6 +23,8 @@ namespace {
 
 // Topics a robot's bus may hold; `topic pub` to a new name past this is refused.
 constexpr std::size_t kMaxTopicsPerRobot = 4096;
+// Goals one socket tracks at once; `action.send` past this is refused.
+constexpr std::size_t kMaxTrackedGoals = 1024;
 
 using nlohmann::json;
 
@@ -195,9 +198,14 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   if (op == "topic.pub") return topicPub(robot, request);
   if (op == "topic.subscribe") return topicSubscribe(robot, request, connection);
   if (op == "topic.unsubscribe") return topicUnsubscribe(request, connection);
+  if (op == "action.list") return actionList(robot);
+  if (op == "action.send") return actionSend(robot, request, connection);
+  if (op == "action.status") return actionStatus(request, connection);
+  if (op == "action.cancel") return actionCancel(request, connection);
   throw Error("unknown op '" + op +
               "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries}, "
-              "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, model.spawn, world.shutdown");
+              "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, "
+              "action.{list,send,status,cancel}, model.spawn, world.shutdown");
 }
 
 json NodeOperations::ping() {
@@ -355,6 +363,106 @@ json NodeOperations::topicUnsubscribe(const json& request, ipc::IpcConnection& c
     subscriptions_.erase(it);
   }
   return nullptr;  // `dropped` unsubscribes here, outside the lock
+}
+
+json NodeOperations::actionList(RobotInstance& robot) {
+  json actions = json::array();
+  for (const realtime::ActionInfo& info : robot.actions().list()) {
+    actions.push_back({{"name", info.name}, {"type", info.type}});
+  }
+  return {{"actions", std::move(actions)}};
+}
+
+namespace {
+std::uint64_t requireGoalId(const json& request) {
+  const auto it = request.find("goal_id");
+  if (it == request.end() || !it->is_number_unsigned()) {
+    throw Error(fmt::format("'{}' needs the field 'goal_id' that action.send replied", request.value("op", "")));
+  }
+  return it->get<std::uint64_t>();
+}
+}  // namespace
+
+json NodeOperations::actionSend(RobotInstance& robot, const json& request, ipc::IpcConnection& connection) {
+  const std::string name = requireString(request, "name");
+  const std::string type = optionalString(request, "type", "");
+  if (!request.contains("goal")) throw Error("'action.send' needs a field 'goal' (the goal as JSON)");
+  {
+    std::lock_guard lock(goals_mutex_);
+    if (goals_.size() >= kMaxTrackedGoals) {
+      throw Error("'action.send': " + std::to_string(kMaxTrackedGoals) +
+                  " goals of this socket are still followed; read their status (action.status) until they end");
+    }
+  }
+  std::shared_ptr<realtime::ActionGoal> goal = sendGoalJson(robot.actions(), name, type, request["goal"]);
+  std::string action_type = type;
+  if (action_type.empty()) {
+    for (const realtime::ActionInfo& info : robot.actions().list()) {
+      if (info.name == realtime::TopicBus::normalizeTopicName(name)) action_type = info.type;
+    }
+  }
+  const std::uint64_t connection_id = connection.id();
+  std::uint64_t id = 0;
+  bool watch = false;
+  {
+    std::lock_guard lock(goals_mutex_);
+    id = next_goal_id_++;
+    goals_[id] = TrackedGoal{connection_id, action_type, goal};
+    watch = goal_connections_.insert(connection_id).second;
+  }
+  if (watch) {
+    connection.onClose([this, connection_id] {
+      std::vector<std::shared_ptr<realtime::ActionGoal>> dropped;  // released outside the lock
+      std::lock_guard lock(goals_mutex_);
+      goal_connections_.erase(connection_id);
+      for (auto it = goals_.begin(); it != goals_.end();) {
+        if (it->second.connection == connection_id) {
+          dropped.push_back(std::move(it->second.goal));
+          it = goals_.erase(it);
+        } else {
+          ++it;
+        }
+      }
+    });
+  }
+  return {{"goal_id", id}, {"state", realtime::goalStateName(goal->state())}};
+}
+
+json NodeOperations::actionStatus(const json& request, ipc::IpcConnection& connection) {
+  const std::uint64_t id = requireGoalId(request);
+  TrackedGoal tracked;
+  {
+    std::lock_guard lock(goals_mutex_);
+    const auto it = goals_.find(id);
+    if (it == goals_.end() || it->second.connection != connection.id()) {
+      throw Error("'action.status': no goal " + std::to_string(id) + " of this connection (it ended and was read, "
+                  "or was sent over another connection)");
+    }
+    tracked = it->second;
+  }
+  const realtime::GoalState state = tracked.goal->state();
+  json reply = {{"state", realtime::goalStateName(state)}, {"feedback", feedbackJson(tracked.type, *tracked.goal)}};
+  if (realtime::goalDone(state)) {
+    reply["result"] = resultJson(tracked.type, *tracked.goal);
+    std::lock_guard lock(goals_mutex_);
+    goals_.erase(id);
+  }
+  return reply;
+}
+
+json NodeOperations::actionCancel(const json& request, ipc::IpcConnection& connection) {
+  const std::uint64_t id = requireGoalId(request);
+  std::shared_ptr<realtime::ActionGoal> goal;
+  {
+    std::lock_guard lock(goals_mutex_);
+    const auto it = goals_.find(id);
+    if (it == goals_.end() || it->second.connection != connection.id()) {
+      throw Error("'action.cancel': no goal " + std::to_string(id) + " of this connection");
+    }
+    goal = it->second.goal;
+  }
+  goal->cancel();
+  return nullptr;
 }
 
 json NodeOperations::modelSpawn(const json& request) {

@@ -118,6 +118,8 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   controller_manager::ControllerContext context;
   context.robot_namespace = namespace_;
   context.topics = bus_.get();
+  actions_ = std::make_unique<realtime::ActionRegistry>();
+  context.actions = actions_.get();
   context.parameters = &store;
   context.robot_model = model_;
   const double update_rate_hz =

@@ -8,11 +8,14 @@
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "controller_test_support.hpp"
 #include "servoloop/controllers/joint_trajectory_controller/joint_trajectory_controller.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/realtime/action_messages.hpp"
+#include "servoloop/realtime/action_registry.hpp"
 
 namespace servoloop::controllers::joint_trajectory_controller {
 namespace {
@@ -378,6 +381,101 @@ TEST(JointTrajectoryController, StatePublishesDesiredActualAndError) {
   EXPECT_DOUBLE_EQ(last.desired.positions[0], 0.25);
   EXPECT_DOUBLE_EQ(last.actual.positions[0], 0.25);
   EXPECT_DOUBLE_EQ(last.error.positions[0], 0.0);
+}
+
+// --- the follow_joint_trajectory action ---------------------------------------------------
+
+class ActionTest : public ::testing::Test {
+ protected:
+  ActionTest() {
+    auto context = makeContext("arm", "{joints: [rev, cont], action_monitor_rate: 100}", &bus, testing::testRobotModel());
+    context.actions = &actions;
+    controller = std::make_unique<PositionJointTrajectoryController>();
+    initController(*controller, hw, context);
+    controller->startRequest(Time(0.0));
+  }
+  std::shared_ptr<servoloop::realtime::ActionGoal> send(const servoloop::control_msgs::FollowJointTrajectoryGoal& goal) {
+    return actions.sendGoal("/robot/arm/follow_joint_trajectory", goal.kActionType, &goal);
+  }
+  void step() {
+    now += kDt;
+    controller->update(Time(now), Duration(kDt));
+  }
+  static servoloop::control_msgs::FollowJointTrajectoryGoal goalTo(double rev, double time) {
+    servoloop::control_msgs::FollowJointTrajectoryGoal goal;
+    goal.trajectory = trajectoryMsg({"rev", "cont"}, {pointMsg({rev, 0.0}, time)});
+    return goal;
+  }
+
+  servoloop::realtime::TopicBus bus;
+  servoloop::realtime::ActionRegistry actions;
+  TestJointsHW hw{{"rev", "cont"}};
+  std::unique_ptr<PositionJointTrajectoryController> controller;
+  double now = 0.0;
+};
+
+TEST_F(ActionTest, ServedUnderTheControllersNameWithFeedbackAndResult) {
+  ASSERT_EQ(actions.list().size(), 1u);
+  EXPECT_EQ(actions.list()[0].name, "/robot/arm/follow_joint_trajectory");
+  EXPECT_EQ(actions.list()[0].type, "control_msgs/FollowJointTrajectory");
+
+  auto goal = send(goalTo(1.0, 0.5));
+  servoloop::control_msgs::FollowJointTrajectoryFeedback feedback;
+  EXPECT_FALSE(goal->feedback(&feedback));  // not taken over yet
+  for (int k = 0; k < 100; ++k) {
+    step();
+    hw.position[0] = hw.position_command[0];  // an ideal joint
+  }
+  ASSERT_TRUE(goal->feedback(&feedback));
+  EXPECT_EQ(feedback.joint_names, (std::vector<std::string>{"rev", "cont"}));
+  // Feedback at 100 Hz: the newest is from the 91st update (t = 0.091 s).
+  EXPECT_NEAR(feedback.stamp, 0.091, 1e-9);
+  EXPECT_NEAR(feedback.desired.positions[0], 1.0 * (0.091 - 0.001) / 0.5, 1e-9);
+  EXPECT_EQ(goal->state(), servoloop::realtime::GoalState::active);
+  while (now < 0.6) {
+    step();
+    hw.position[0] = hw.position_command[0];
+  }
+  EXPECT_EQ(goal->state(), servoloop::realtime::GoalState::succeeded);
+  servoloop::control_msgs::FollowJointTrajectoryResult result;
+  goal->result(&result);
+  EXPECT_EQ(result.error_code, 0);
+}
+
+TEST_F(ActionTest, APathToleranceBrokenOnTheFirstUpdateAbortsCleanly) {
+  // The controller holds 0; the joint is pushed 0.5 rad away: the goal's
+  // first update (which also writes feedback) breaks a 0.01 rad path tolerance.
+  hw.position[0] = 0.5;
+  auto goal_message = goalTo(1.0, 1.0);
+  goal_message.path_tolerance = {{"rev", 0.01, 0.0, 0.0}};
+  auto goal = send(goal_message);
+  step();
+  EXPECT_EQ(goal->state(), servoloop::realtime::GoalState::aborted);
+  servoloop::control_msgs::FollowJointTrajectoryResult result;
+  goal->result(&result);
+  EXPECT_EQ(result.error_code, -4);
+  step();  // holding: still fine
+}
+
+TEST_F(ActionTest, ToleranceForAnUnknownJointIsRejectedAndGoalsOutliveTheController) {
+  auto goal_message = goalTo(1.0, 1.0);
+  goal_message.goal_tolerance = {{"elbow", 0.1, 0.0, 0.0}};
+  auto rejected = send(goal_message);
+  EXPECT_EQ(rejected->state(), servoloop::realtime::GoalState::rejected);
+  servoloop::control_msgs::FollowJointTrajectoryResult result;
+  rejected->result(&result);
+  EXPECT_EQ(result.error_code, -1);
+  EXPECT_THAT(result.error_string, ::testing::HasSubstr("'elbow'"));
+
+  auto running = send(goalTo(1.0, 1.0));
+  step();
+  controller->stopRequest(Time(now));
+  EXPECT_EQ(running->state(), servoloop::realtime::GoalState::preempted);
+  controller.reset();  // unloaded
+  EXPECT_TRUE(actions.list().empty());
+  servoloop::control_msgs::FollowJointTrajectoryFeedback feedback;
+  EXPECT_TRUE(running->feedback(&feedback));  // what it last had
+  running->cancel();                          // nothing to cancel any more: no crash
 }
 
 }  // namespace

@@ -165,6 +165,12 @@ TEST(Messages, JointTrajectoryControllerStateTextAndCsv) {
             "time,joint_names[0],desired.positions[0],desired.time_from_start,actual.positions[0],"
             "actual.time_from_start,error.positions[0],error.time_from_start");
   EXPECT_EQ(csvRow(state, Time(1.5)), "1.5,a,0.5,0.0,0.25,0.0,0.25,0.0");
+  // Nested points print their fields in ROS order, as `rostopic echo` does.
+  EXPECT_EQ(toText(state),
+            "stamp: 1.5\njoint_names: [a]\n"
+            "desired:\n  positions: [0.5]\n  velocities: []\n  accelerations: []\n  effort: []\n  time_from_start: 0.0\n"
+            "actual:\n  positions: [0.25]\n  velocities: []\n  accelerations: []\n  effort: []\n  time_from_start: 0.0\n"
+            "error:\n  positions: [0.25]\n  velocities: []\n  accelerations: []\n  effort: []\n  time_from_start: 0.0\n");
   const auto again = messageFromJson<control_msgs::JointTrajectoryControllerState>(toJson(state));
   EXPECT_EQ(again.desired.positions, state.desired.positions);
   EXPECT_EQ(again.joint_names, state.joint_names);

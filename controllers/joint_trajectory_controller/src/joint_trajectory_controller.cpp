@@ -78,7 +78,7 @@ void JointTrajectoryController<Interface>::stopping(const Time& /*time*/) {
 template <class Interface>
 ReturnType JointTrajectoryController<Interface>::update(const Time& time, const Duration& period) {
   readState();
-  follower_.update(time, positions_, velocities_);
+  follower_.update(time, period, positions_, velocities_);
   const std::vector<JointSample>& desired = follower_.desired();
   const std::vector<JointSample>& error = follower_.error();
   for (std::size_t j = 0; j < joints_.size(); ++j) {

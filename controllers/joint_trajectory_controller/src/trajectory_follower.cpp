@@ -5,6 +5,8 @@
 
 #include "servoloop/controllers/common/angles.hpp"
 #include "servoloop/controllers/common/controller_params.hpp"
+#include "servoloop/controllers/joint_trajectory_controller/follow_joint_trajectory_action.hpp"
+#include "servoloop/realtime/action_registry.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
@@ -49,6 +51,7 @@ void resizePoint(servoloop::trajectory_msgs::JointTrajectoryPoint& point, std::s
 }  // namespace
 
 TrajectoryFollower::~TrajectoryFollower() {
+  action_registration_.reset();  // no goal arrives from here on
   command_subscription_ = {};
   delete active_;  // the controller is not running any more
   active_ = nullptr;
@@ -75,6 +78,7 @@ void TrajectoryFollower::init(const controller_manager::ControllerContext& conte
   stop_trajectory_duration_ = positiveOrZero(context, "stop_trajectory_duration", 0.0);
   state_gate_.setRate(positiveOrZero(context, "state_publish_rate", 50.0));
   action_monitor_rate_ = positiveOrZero(context, "action_monitor_rate", 20.0);
+  feedback_gate_.setRate(action_monitor_rate_);
   allow_partial_joints_goal_ = optionalBool(context, "allow_partial_joints_goal", false);
 
   hold_.assign(n, SplineSegment{});
@@ -93,6 +97,19 @@ void TrajectoryFollower::init(const controller_manager::ControllerContext& conte
     state_publisher_ = context.topics->advertise<StateMessage>(controllerTopic(context, "state"), prototype);
     command_subscription_ = context.topics->subscribe<TrajectoryMessage>(
         command_topic_, [this](const TrajectoryMessage& msg) { onTopicMessage(msg); });
+  }
+  {
+    auto& feedback = goal_feedback_->feedback;
+    feedback.joint_names = joint_names;
+    resizePoint(feedback.desired, n);
+    resizePoint(feedback.actual, n);
+    resizePoint(feedback.error, n);
+  }
+  if (context.actions != nullptr) {
+    action_registration_ =
+        context.actions->add(controllerTopic(context, "follow_joint_trajectory"),
+                             servoloop::control_msgs::FollowJointTrajectoryGoal::kActionType,
+                             std::make_shared<FollowJointTrajectoryAction>(*this));
   }
 }
 
@@ -289,11 +306,14 @@ void TrajectoryFollower::applyCommand(Command* command, double now) noexcept {
   finishActive(GoalStatus::preempted, TrajectoryErrorCode::successful);
   handoff_.retire(active_);
   active_ = command;
-  if (active_->goal) active_->goal->setActive();
+  if (active_->goal) {
+    active_->goal->setActive();
+    feedback_gate_.reset();
+  }
   taken_.fetch_add(1, std::memory_order_relaxed);
 }
 
-void TrajectoryFollower::update(const Time& time, const std::vector<double>& actual_positions,
+void TrajectoryFollower::update(const Time& time, const Duration& period, const std::vector<double>& actual_positions,
                                 const std::vector<double>& actual_velocities) noexcept {
   const double now = time.seconds;
   last_time_.store(now, std::memory_order_release);
@@ -316,7 +336,32 @@ void TrajectoryFollower::update(const Time& time, const std::vector<double>& act
     // Acceleration is not measured: its error is taken as 0.
     error_[j] = {position_error, desired_[j].velocity - actual_velocities[j], 0.0};
   }
-  if (active_ != nullptr && active_->goal && !active_->goal->done()) checkTolerances(now);
+  if (active_ != nullptr && active_->goal && !active_->goal->done()) {
+    if (feedback_gate_.due(time, period)) writeFeedback(now);
+    checkTolerances(now);  // may end the goal and hold (active_ then null)
+  }
+}
+
+void TrajectoryFollower::writeFeedback(double now) noexcept {
+  GoalFeedback& store = *goal_feedback_;
+  if (!store.mutex.try_lock()) return;  // the sender is reading: next time
+  store.goal = active_->goal.get();
+  auto& feedback = store.feedback;
+  feedback.stamp = now;
+  const double since_start = now - active_->trajectory.startTime();
+  for (std::size_t j = 0; j < desired_.size(); ++j) {
+    feedback.desired.positions[j] = desired_[j].position;
+    feedback.desired.velocities[j] = desired_[j].velocity;
+    feedback.desired.accelerations[j] = desired_[j].acceleration;
+    feedback.actual.positions[j] = actual_[j].position;
+    feedback.actual.velocities[j] = actual_[j].velocity;
+    feedback.error.positions[j] = error_[j].position;
+    feedback.error.velocities[j] = error_[j].velocity;
+  }
+  feedback.desired.time_from_start = since_start;
+  feedback.actual.time_from_start = since_start;
+  feedback.error.time_from_start = since_start;
+  store.mutex.unlock();
 }
 
 void TrajectoryFollower::checkTolerances(double now) noexcept {

@@ -2,19 +2,6 @@
 
 namespace servoloop::controllers::joint_trajectory_controller {
 
-const char* goalStatusName(GoalStatus status) noexcept {
-  switch (status) {
-    case GoalStatus::pending: return "pending";
-    case GoalStatus::active: return "active";
-    case GoalStatus::succeeded: return "succeeded";
-    case GoalStatus::aborted: return "aborted";
-    case GoalStatus::preempted: return "preempted";
-    case GoalStatus::canceled: return "canceled";
-    case GoalStatus::rejected: return "rejected";
-  }
-  return "unknown";
-}
-
 std::string TrajectoryGoal::errorString() const {
   if (status() == GoalStatus::rejected) return rejection_;
   const std::string joint = violatingJoint() >= 0 ? " (joint " + std::to_string(violatingJoint()) + ")" : "";

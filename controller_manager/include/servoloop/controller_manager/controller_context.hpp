@@ -10,7 +10,8 @@ class ModelInterface;  // <urdf_model/model.h>: include it to read the robot mod
 }
 
 namespace servoloop::realtime {
-class TopicBus;  // servoloop/realtime/topic_bus.hpp
+class TopicBus;        // servoloop/realtime/topic_bus.hpp
+class ActionRegistry;  // servoloop/realtime/action_registry.hpp
 }
 namespace servoloop::params {
 class ParameterStore;  // servoloop/params/parameter_store.hpp
@@ -26,6 +27,7 @@ struct ControllerContext {
   std::string robot_namespace;   // e.g. "/one_DOF_robot"
   params::Parameters params;     // the controller's own parameters (<ns>/<name>), read-only
   realtime::TopicBus* topics = nullptr;    // may be null (tests)
+  realtime::ActionRegistry* actions = nullptr;  // where to serve actions; may be null (tests)
   const params::ParameterStore* parameters = nullptr;  // whole store; may be null
   std::shared_ptr<const urdf::ModelInterface> robot_model;  // may be null
   double manager_update_rate_hz = 0.0;  // 0 when the manager runs at no fixed rate

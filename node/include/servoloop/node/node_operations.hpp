@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "servoloop/ipc/ipc_connection.hpp"
+#include "servoloop/realtime/action_registry.hpp"
 #include "servoloop/realtime/topic_subscription.hpp"
 
 namespace servoloop::node {
@@ -60,6 +61,10 @@ class NodeOperations {
   nlohmann::json topicSubscribe(RobotInstance& robot, const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json topicUnsubscribe(const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json modelSpawn(const nlohmann::json& request);
+  nlohmann::json actionList(RobotInstance& robot);
+  nlohmann::json actionSend(RobotInstance& robot, const nlohmann::json& request, ipc::IpcConnection& connection);
+  nlohmann::json actionStatus(const nlohmann::json& request, ipc::IpcConnection& connection);
+  nlohmann::json actionCancel(const nlohmann::json& request, ipc::IpcConnection& connection);
 
   Node& node_;
   RobotInstance* robot_;
@@ -68,6 +73,18 @@ class NodeOperations {
   std::mutex subscriptions_mutex_;
   std::map<std::pair<std::uint64_t, std::string>, realtime::Subscription> subscriptions_;  // (connection, topic)
   std::set<std::uint64_t> watched_connections_;  // onClose registered
+
+  // Goals sent over this socket, by id, until their sender saw them end or
+  // went away (the goals themselves run on).
+  struct TrackedGoal {
+    std::uint64_t connection = 0;
+    std::string type;
+    std::shared_ptr<realtime::ActionGoal> goal;
+  };
+  std::mutex goals_mutex_;
+  std::map<std::uint64_t, TrackedGoal> goals_;
+  std::uint64_t next_goal_id_ = 1;
+  std::set<std::uint64_t> goal_connections_;  // onClose registered
 
   std::mutex jobs_mutex_;
   std::condition_variable jobs_changed_;

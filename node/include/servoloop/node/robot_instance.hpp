@@ -46,6 +46,7 @@
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
+#include "servoloop/realtime/action_registry.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
@@ -106,6 +107,7 @@ class RobotInstance {
   const std::filesystem::path& urdfPath() const { return urdf_path_; }
   controller_manager::ControllerManager& manager() { return *manager_; }
   realtime::TopicBus& topics() { return *bus_; }
+  realtime::ActionRegistry& actions() { return *actions_; }
   hardware_interface::SimulatedRobotHW& hardware() { return *sim_hw_; }
   controller_manager::SimulationLoop& loop() { return *loop_; }
   const std::shared_ptr<const urdf::ModelInterface>& model() const { return model_; }
@@ -143,6 +145,7 @@ class RobotInstance {
   plugin::PluginPtr<hardware_interface::RobotHW> backend_;
   hardware_interface::SimulatedRobotHW* sim_hw_ = nullptr;
   std::unique_ptr<realtime::TopicBus> bus_;
+  std::unique_ptr<realtime::ActionRegistry> actions_;
   // Floating bases only; the loop calls it, so it outlives loop_.
   std::unique_ptr<GroundTruthPublisher> ground_truth_;
   std::unique_ptr<controller_manager::ControllerManager> manager_;

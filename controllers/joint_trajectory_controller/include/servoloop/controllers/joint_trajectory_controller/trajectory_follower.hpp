@@ -37,6 +37,8 @@
 #include "servoloop/controllers/joint_trajectory_controller/trajectory_goal.hpp"
 #include "servoloop/controllers/joint_trajectory_controller/trajectory_tolerances.hpp"
 #include "servoloop/core/time.hpp"
+#include "servoloop/realtime/action_messages.hpp"
+#include "servoloop/realtime/action_registry.hpp"
 #include "servoloop/realtime/messages.hpp"
 #include "servoloop/realtime/realtime_handoff.hpp"
 #include "servoloop/realtime/realtime_publisher.hpp"
@@ -57,7 +59,9 @@ class TrajectoryFollower {
   // Non-real-time. Reads joints' types (continuous joints wrap) from the
   // robot model, the parameters (constraints, stop_trajectory_duration,
   // state_publish_rate, action_monitor_rate, allow_partial_joints_goal),
-  // subscribes to <controller>/command and advertises <controller>/state.
+  // subscribes to <controller>/command, advertises <controller>/state and
+  // serves the action <controller>/follow_joint_trajectory
+  // (control_msgs/FollowJointTrajectory).
   // Throws servoloop::ConfigError naming the parameter.
   void init(const controller_manager::ControllerContext& context, const std::vector<std::string>& joint_names);
 
@@ -76,7 +80,7 @@ class TrajectoryFollower {
   // Real-time: takes a new trajectory if one came, samples the desired state
   // at time, computes the error against the actual state and checks the
   // goal's tolerances. Read the results with desired() and error().
-  void update(const Time& time, const std::vector<double>& actual_positions,
+  void update(const Time& time, const Duration& period, const std::vector<double>& actual_positions,
               const std::vector<double>& actual_velocities) noexcept;
   // Real-time: publishes the state topic when it is due (state_publish_rate).
   void publishStateIfDue(const Time& time, const Duration& period) noexcept;
@@ -90,6 +94,15 @@ class TrajectoryFollower {
   bool allowPartialJointsGoal() const noexcept { return allow_partial_joints_goal_; }
   // Controller thread: whether a trajectory (not a hold) is being followed.
   bool following() const noexcept { return active_ != nullptr; }
+  // The newest feedback of the running goal, written by the real-time thread
+  // at action_monitor_rate and read by the goal's sender.
+  struct GoalFeedback {
+    std::mutex mutex;  // the real-time thread only try_locks it
+    const TrajectoryGoal* goal = nullptr;
+    servoloop::control_msgs::FollowJointTrajectoryFeedback feedback;
+  };
+  const std::shared_ptr<GoalFeedback>& goalFeedback() const noexcept { return goal_feedback_; }
+
   // Any thread: trajectories taken over, and those refused on the topic.
   std::uint64_t trajectoriesTaken() const noexcept { return taken_.load(std::memory_order_relaxed); }
   std::uint64_t trajectoriesRefused() const noexcept { return refused_.load(std::memory_order_relaxed); }
@@ -114,6 +127,7 @@ class TrajectoryFollower {
   void hold(double now) noexcept;
   void finishActive(GoalStatus status, TrajectoryErrorCode code, int joint = -1) noexcept;
   void checkTolerances(double now) noexcept;
+  void writeFeedback(double now) noexcept;
 
   std::string controller_name_;
   std::string command_topic_;
@@ -130,6 +144,9 @@ class TrajectoryFollower {
   servoloop::realtime::Subscription command_subscription_;
   servoloop::realtime::RealtimePublisher<StateMessage> state_publisher_;
   PeriodicGate state_gate_;
+  PeriodicGate feedback_gate_;
+  std::shared_ptr<GoalFeedback> goal_feedback_ = std::make_shared<GoalFeedback>();
+  servoloop::realtime::ActionRegistration action_registration_;
 
   // Shared with the non-real-time side.
   std::atomic<bool> running_{false};

@@ -7,20 +7,15 @@
 #include <string>
 
 #include "servoloop/controllers/joint_trajectory_controller/trajectory_tolerances.hpp"
+#include "servoloop/realtime/action_registry.hpp"
 
 namespace servoloop::controllers::joint_trajectory_controller {
 
-enum class GoalStatus : int {
-  pending,    // accepted, not yet taken over by the controller
-  active,     // being followed
-  succeeded,  // ended inside the goal tolerances
-  aborted,    // a tolerance was violated, or the trajectory was in the past
-  preempted,  // replaced by a newer trajectory or goal, or the controller stopped
-  canceled,   // canceled by its sender; the joints stop within stop_trajectory_duration
-  rejected,   // refused before it started (see error_string)
-};
-
-const char* goalStatusName(GoalStatus status) noexcept;
+// pending, active, succeeded, aborted (a tolerance was violated, or the
+// trajectory was in the past), preempted (replaced by a newer trajectory or
+// goal, or the controller stopped), canceled (by its sender; the joints stop
+// within stop_trajectory_duration), rejected (refused before it started).
+using GoalStatus = servoloop::realtime::GoalState;
 
 // control_msgs/FollowJointTrajectoryResult error codes.
 enum class TrajectoryErrorCode : int {
@@ -41,10 +36,7 @@ class TrajectoryGoal {
   // Any thread.
   GoalStatus status() const noexcept { return status_.load(std::memory_order_acquire); }
   TrajectoryErrorCode errorCode() const noexcept { return error_code_.load(std::memory_order_acquire); }
-  bool done() const noexcept {
-    const GoalStatus s = status();
-    return s != GoalStatus::pending && s != GoalStatus::active;
-  }
+  bool done() const noexcept { return servoloop::realtime::goalDone(status()); }
   // Why it ended, in words (the error code's meaning, or why it was rejected).
   std::string errorString() const;
   // The joint that violated a tolerance (index into the controller's joints), or -1.
