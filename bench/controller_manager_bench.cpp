@@ -16,8 +16,13 @@
 //   manager/joint_states_only/<rate>      the JointStateController alone
 //   manager/per_joint/<rate>/joints:N     JointStateController + N JointPositionControllers
 //   manager/group/<rate>/joints:N         JointStateController + one JointGroupPositionController
+//   manager/trajectory/<rate>/joints:N    JointStateController + one effort JointTrajectoryController
+//                                         (state at 50 Hz) always mid-trajectory: a new 20-point
+//                                         quintic trajectory over 2 s replaces the old one every
+//                                         second, so each cycle samples a segment and runs N PIDs
 // <rate> is the JointStateController's publish_rate: jsc_50Hz (the seed's,
 // publishing every 20th cycle) or jsc_every_cycle (1000 Hz).
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -42,7 +47,7 @@ constexpr double kManagerRateHz = 1000.0;
 constexpr std::uint64_t kCyclesPerCommand = 1000;  // one new setpoint per second of control time
 constexpr const char* kNamespace = "/bench";
 
-enum class PositionControllers { none, per_joint, group };
+enum class PositionControllers { none, per_joint, group, trajectory };
 
 // The seed's PID gains (robots/one_dof/control_config/one_dof_ctl_params.yaml).
 YAML::Node seedPid() { return YAML::Load("{p: 10.0, i: 10.0, d: 10.0, i_clamp_min: -10.0, i_clamp_max: 10.0}"); }
@@ -79,6 +84,24 @@ class ManagerUnderTest {
       controllers.push_back(name);
       group_command_topic_ = std::string(kNamespace) + "/" + name + "/command";
       group_command_.data.assign(names.size(), 0.0);
+    } else if (layout == PositionControllers::trajectory) {
+      const std::string name = "arm_controller";
+      params[name]["type"] = "effort_controllers/JointTrajectoryController";
+      for (const auto& joint : names) {
+        params[name]["joints"].push_back(joint);
+        params[name]["gains"][joint] = YAML::Load("{p: 100.0, d: 10.0, i: 1.0, i_clamp: 1.0}");
+      }
+      controllers.push_back(name);
+      trajectory_topic_ = std::string(kNamespace) + "/" + name + "/command";
+      trajectory_.joint_names = names;
+      for (int i = 1; i <= 20; ++i) {
+        servoloop::trajectory_msgs::JointTrajectoryPoint point;
+        point.positions.assign(names.size(), 0.0);
+        point.velocities.assign(names.size(), 0.0);
+        point.accelerations.assign(names.size(), 0.0);
+        point.time_from_start = 0.1 * i;
+        trajectory_.points.push_back(point);
+      }
     }
 
     cm::ControllerContext context;
@@ -113,6 +136,20 @@ class ManagerUnderTest {
       for (double& value : group_command_.data) value = setpoint_rad;
       bus_.publish(group_command_topic_, group_command_);
     }
+    if (!trajectory_topic_.empty()) {
+      // Points of a sine over the 2 s, with their velocities and accelerations.
+      for (std::size_t i = 0; i < trajectory_.points.size(); ++i) {
+        auto& point = trajectory_.points[i];
+        const double t = point.time_from_start;
+        for (std::size_t j = 0; j < point.positions.size(); ++j) {
+          point.positions[j] = setpoint_rad * std::sin(t);
+          point.velocities[j] = setpoint_rad * std::cos(t);
+          point.accelerations[j] = -setpoint_rad * std::sin(t);
+        }
+      }
+      bus_.publish(trajectory_topic_, trajectory_);
+      bus_.flush();  // the controller builds the trajectory on the delivery side
+    }
   }
 
   // The effort the first joint is commanded (read after the timed loop).
@@ -125,6 +162,8 @@ class ManagerUnderTest {
   std::vector<std::string> command_topics_;
   std::string group_command_topic_;
   servoloop::std_msgs::Float64MultiArray group_command_;
+  std::string trajectory_topic_;
+  servoloop::trajectory_msgs::JointTrajectory trajectory_;
   std::uint64_t cycles_ = 0;
 };
 
@@ -172,6 +211,18 @@ void registerAll() {
         ->Arg(8)
         ->Arg(64)
         ->ArgName("joints");
+    benchmark::RegisterBenchmark(("manager/trajectory" + suffix).c_str(), managerUpdate,
+                                 PositionControllers::trajectory, rate.publish_rate_hz)
+        ->Arg(1)
+        ->Arg(6)
+        ->Arg(64)
+        ->ArgName("joints");
+    if (rate.publish_rate_hz == 50.0) {
+      benchmark::RegisterBenchmark(("manager/group" + suffix).c_str(), managerUpdate, PositionControllers::group,
+                                   rate.publish_rate_hz)
+          ->Arg(6)
+          ->ArgName("joints");
+    }
   }
 }
 
@@ -223,6 +274,8 @@ void summary(const MedianTable& table, std::ostream& out) {
   }
   printRatioLine(out, table, nameOf("manager/per_joint/jsc_every_cycle", 1), nameOf("manager/per_joint/jsc_50Hz", 1),
                  "1 joint, publish every cycle / 50 Hz");
+  printRatioLine(out, table, nameOf("manager/trajectory/jsc_50Hz", 6), nameOf("manager/group/jsc_50Hz", 6),
+                 "6 joints, trajectory controller mid-trajectory / group position controller");
   const std::string target = nameOf("manager/per_joint/jsc_50Hz", 1);
   const double target_ns = 200.0;
   out << "\nTarget: one joint (JointStateController at 50 Hz + one JointPositionController) < " << target_ns

@@ -10,15 +10,17 @@ namespace {
 
 using nlohmann::json;
 constexpr std::string_view kFollowJointTrajectory = control_msgs::FollowJointTrajectoryGoal::kActionType;
+constexpr std::string_view kGripperCommand = control_msgs::GripperCommandGoal::kActionType;
 
-[[noreturn]] void fail(const std::string& field, const std::string& problem) {
-  throw Error(std::string(kFollowJointTrajectory) + " goal: field '" + field + "': " + problem);
+[[noreturn]] void fail(const std::string& field, const std::string& problem,
+                       std::string_view type = kFollowJointTrajectory) {
+  throw Error(std::string(type) + " goal: field '" + field + "': " + problem);
 }
 
-double finiteNumber(const json& value, const std::string& field) {
-  if (!value.is_number()) fail(field, "expected a number, got " + value.dump());
+double finiteNumber(const json& value, const std::string& field, std::string_view type = kFollowJointTrajectory) {
+  if (!value.is_number()) fail(field, "expected a number, got " + value.dump(), type);
   const double number = value.get<double>();
-  if (!std::isfinite(number)) fail(field, "must be a finite number");
+  if (!std::isfinite(number)) fail(field, "must be a finite number", type);
   return number;
 }
 
@@ -53,7 +55,33 @@ std::vector<control_msgs::JointTolerance> tolerances(const json& value, const st
 
 }  // namespace
 
-std::vector<std::string> knownActionTypes() { return {std::string(kFollowJointTrajectory)}; }
+std::vector<std::string> knownActionTypes() { return {std::string(kFollowJointTrajectory), std::string(kGripperCommand)}; }
+
+void fromJson(const json& value, control_msgs::GripperCommandGoal& out) {
+  if (!value.is_object()) {
+    throw Error(std::string(kGripperCommand) + " goal: expected {command: {position, max_effort}}, got " + value.dump());
+  }
+  for (const auto& [key, entry] : value.items()) {
+    if (key != "command") fail(key, "unknown field; the goal has one field, command: {position, max_effort}", kGripperCommand);
+    if (!entry.is_object()) fail("command", "expected {position, max_effort}", kGripperCommand);
+    for (const auto& [field, number] : entry.items()) {
+      if (field == "position") {
+        out.command.position = finiteNumber(number, "command.position", kGripperCommand);
+      } else if (field == "max_effort") {
+        out.command.max_effort = finiteNumber(number, "command.max_effort", kGripperCommand);
+      } else {
+        fail("command." + field, "unknown field; the fields are: position, max_effort", kGripperCommand);
+      }
+    }
+  }
+}
+
+json toJson(const control_msgs::GripperCommandFeedback& feedback) {
+  return json{{"position", feedback.position},
+              {"effort", feedback.effort},
+              {"stalled", feedback.stalled},
+              {"reached_goal", feedback.reached_goal}};
+}
 
 void fromJson(const json& value, control_msgs::FollowJointTrajectoryGoal& out) {
   if (!value.is_object()) {
@@ -108,6 +136,11 @@ std::shared_ptr<realtime::ActionGoal> sendGoalJson(realtime::ActionRegistry& act
     fromJson(goal, message);
     return actions.sendGoal(name, type, &message);
   }
+  if (type == kGripperCommand) {
+    control_msgs::GripperCommandGoal message;
+    fromJson(goal, message);
+    return actions.sendGoal(name, type, &message);
+  }
   if (type.empty()) return actions.sendGoal(name, type, nullptr);  // names the actions there are
   std::string known;
   for (const std::string& t : knownActionTypes()) known += (known.empty() ? "" : ", ") + t;
@@ -120,12 +153,22 @@ json feedbackJson(std::string_view type, const realtime::ActionGoal& goal) {
     if (!goal.feedback(&feedback)) return nullptr;
     return toJson(feedback);
   }
+  if (type == kGripperCommand) {
+    control_msgs::GripperCommandFeedback feedback;
+    if (!goal.feedback(&feedback)) return nullptr;
+    return toJson(feedback);
+  }
   return nullptr;
 }
 
 json resultJson(std::string_view type, const realtime::ActionGoal& goal) {
   if (type == kFollowJointTrajectory) {
     control_msgs::FollowJointTrajectoryResult result;
+    goal.result(&result);
+    return toJson(result);
+  }
+  if (type == kGripperCommand) {
+    control_msgs::GripperCommandResult result;
     goal.result(&result);
     return toJson(result);
   }

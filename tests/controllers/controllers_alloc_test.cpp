@@ -19,7 +19,9 @@
 #include "servoloop/controllers/effort_controllers/forward_controllers.hpp"
 #include "servoloop/controllers/effort_controllers/joint_position_controller.hpp"
 #include "servoloop/controllers/joint_state_controller/joint_state_controller.hpp"
+#include "servoloop/controllers/gripper_action_controller/gripper_action_controller.hpp"
 #include "servoloop/controllers/joint_trajectory_controller/joint_trajectory_controller.hpp"
+#include "servoloop/realtime/action_registry.hpp"
 #include "servoloop/controllers/minimal_joint_controller/minimal_joint_controller.hpp"
 #include "servoloop/params/parameters_yaml.hpp"
 
@@ -222,6 +224,51 @@ TEST(ControllersAllocation, TrajectoryControllerTakesTrajectoriesAndGoalsWithout
   }
   EXPECT_EQ(aborted, goals / 2);  // every path-tolerance goal, no other
   EXPECT_GT(states, static_cast<std::uint64_t>(kCycles / 10 / 2));
+}
+
+// The effort gripper controller through its action: a goal every 100
+// cycles (from another thread, through the action registry), every third one
+// canceled, feedback read while it runs.
+TEST(ControllersAllocation, GripperControllerTakesGoalsWithoutAllocating) {
+  namespace gac = gripper_action_controller;
+  servoloop::realtime::TopicBus bus;
+  servoloop::realtime::ActionRegistry actions;
+  TestJointsHW hw({"finger"});
+  gac::EffortGripperActionController gripper;
+  auto context = makeContext("gripper", "{joint: finger, gains: {finger: {p: 100, d: 5}}, stall_timeout: 0.02}", &bus);
+  context.actions = &actions;
+  initController(gripper, hw, context);
+
+  std::atomic<int> requested{0};
+  std::atomic<int> published{0};
+  std::size_t allocations = 0;
+  std::thread control([&] {
+    const Duration period(0.001);
+    gripper.startRequest(Time(0.0));
+    servoloop::testing::AllocationCounter counter;
+    for (int k = 1; k <= kCycles; ++k) {
+      if (k % kCommandEvery == 0) {
+        requested.store(k / kCommandEvery);
+        while (published.load() != k / kCommandEvery) std::this_thread::yield();
+      }
+      hw.position[0] = 0.001 * std::sin(0.01 * k);
+      gripper.update(Time(0.001 * k), period);
+    }
+    allocations = counter.allocations();
+  });
+  std::vector<std::shared_ptr<servoloop::realtime::ActionGoal>> goals;
+  servoloop::control_msgs::GripperCommandFeedback feedback;
+  for (int n = 1; n <= kCycles / kCommandEvery; ++n) {
+    while (requested.load() != n) std::this_thread::yield();
+    const servoloop::control_msgs::GripperCommandGoal goal{{0.01 * (n % 3), 2.0}};
+    goals.push_back(actions.sendGoal("/robot/gripper/gripper_cmd", goal.kActionType, &goal));
+    if (n % 3 == 0) goals.back()->cancel();
+    if (n > 1) goals[goals.size() - 2]->feedback(&feedback);
+    published.store(n);
+  }
+  control.join();
+  EXPECT_EQ(allocations, 0u);
+  for (std::size_t i = 0; i + 1 < goals.size(); ++i) EXPECT_TRUE(servoloop::realtime::goalDone(goals[i]->state()));
 }
 
 }  // namespace

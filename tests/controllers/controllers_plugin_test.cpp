@@ -67,6 +67,8 @@ TEST(ControllerPlugins, OneLibraryPerPackageProvidesEveryType) {
       {"position_controllers/JointTrajectoryController", "libjoint_trajectory_controller.so"},
       {"velocity_controllers/JointTrajectoryController", "libjoint_trajectory_controller.so"},
       {"effort_controllers/JointTrajectoryController", "libjoint_trajectory_controller.so"},
+      {"position_controllers/GripperActionController", "libgripper_action_controller.so"},
+      {"effort_controllers/GripperActionController", "libgripper_action_controller.so"},
   };
   for (const auto& [type, library] : expected) {
     ASSERT_TRUE(library_of_type.count(type)) << type;

@@ -3,7 +3,9 @@
 // topic in any joint order, partial trajectories, replacement, the stop
 // profile of stop_trajectory_duration, and a goal's path and goal tolerances
 // with control_msgs/FollowJointTrajectoryResult's error codes.
+#include <atomic>
 #include <cmath>
+#include <thread>
 #include <memory>
 #include <string>
 #include <vector>
@@ -476,6 +478,43 @@ TEST_F(ActionTest, ToleranceForAnUnknownJointIsRejectedAndGoalsOutliveTheControl
   servoloop::control_msgs::FollowJointTrajectoryFeedback feedback;
   EXPECT_TRUE(running->feedback(&feedback));  // what it last had
   running->cancel();                          // nothing to cancel any more: no crash
+}
+
+// Trajectories, goals and cancels from two other threads while the control
+// thread runs freely, with no hand-shake: every goal ends or is still the
+// running one, and the action's feedback is read while it is written. (The
+// ThreadSanitizer lane runs this test.)
+TEST_F(ActionTest, GoalsTopicTrajectoriesAndCancelsRaceTheControlThread) {
+  bus.start();
+  std::atomic<bool> done{false};
+  std::thread control([&] {
+    for (int k = 0; k < 200000; ++k) {
+      step();
+      hw.position[0] = hw.position_command[0];
+    }
+    done = true;
+  });
+  std::thread topic([&] {
+    for (int n = 0; !done; ++n) {
+      bus.publish("/robot/arm/command", trajectoryMsg({"rev", "cont"}, {pointMsg({0.1 * (n % 5), 0.0}, 0.05)}));
+      std::this_thread::yield();
+    }
+  });
+  std::vector<std::shared_ptr<servoloop::realtime::ActionGoal>> goals;
+  servoloop::control_msgs::FollowJointTrajectoryFeedback feedback;
+  for (int n = 0; !done; ++n) {
+    goals.push_back(send(goalTo(0.2 * (n % 4), 0.02)));
+    if (n % 3 == 0) goals.back()->cancel();
+    goals[goals.size() / 2]->feedback(&feedback);
+    std::this_thread::yield();
+  }
+  control.join();
+  topic.join();
+  bus.stop();
+  ASSERT_GT(goals.size(), 1u);
+  for (std::size_t i = 0; i + 1 < goals.size(); ++i) {
+    EXPECT_TRUE(servoloop::realtime::goalDone(goals[i]->state())) << i;  // only the last may still run
+  }
 }
 
 }  // namespace

@@ -46,12 +46,15 @@ std::string indented(const std::string& text, int indent) {
 }
 
 // Feedback of a control_msgs/FollowJointTrajectory goal reads as the
-// controller's state message; other types print as JSON.
+// controller's state message; others as one "field: value" line per field.
 std::string feedbackText(const std::string& action_type, const nlohmann::json& feedback) {
   if (action_type == "control_msgs/FollowJointTrajectory") {
     return servoloop::node::messageToText("control_msgs/JointTrajectoryControllerState", feedback);
   }
-  return feedback.dump();
+  if (!feedback.is_object()) return feedback.dump();
+  std::string text;
+  for (const auto& [key, value] : feedback.items()) text += key + ": " + value.dump() + "\n";
+  return text;
 }
 
 int exitStatusOf(const std::string& state) {

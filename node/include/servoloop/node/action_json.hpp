@@ -8,6 +8,8 @@
 //   {trajectory: {joint_names: [...], points: [...]},     // trajectory_msgs/JointTrajectory
 //    path_tolerance: [{name, position, velocity, acceleration}],
 //    goal_tolerance: [...], goal_time_tolerance: 0.5}
+// control_msgs/GripperCommand goal:
+//   {command: {position: 0.02, max_effort: 10}}
 // Errors throw servoloop::Error naming the action type and the field.
 #include <memory>
 #include <string>
@@ -27,6 +29,8 @@ std::vector<std::string> knownActionTypes();
 void fromJson(const nlohmann::json& json, control_msgs::FollowJointTrajectoryGoal& out);
 nlohmann::json toJson(const control_msgs::FollowJointTrajectoryFeedback& feedback);
 nlohmann::json toJson(const control_msgs::FollowJointTrajectoryResult& result);
+void fromJson(const nlohmann::json& json, control_msgs::GripperCommandGoal& out);
+nlohmann::json toJson(const control_msgs::GripperCommandFeedback& feedback);  // also the result
 
 // Sends a goal given as JSON to the action `name` of type `type` (empty: the
 // action's own type). Throws servoloop::Error for an unknown action or type,

@@ -1,7 +1,7 @@
 #pragma once
 // The goal, feedback and result types of the actions servoloop's controllers
 // serve, with the field names of their ROS counterparts (control_msgs'
-// FollowJointTrajectory.action), so `servoloop action send` goals read the
+// FollowJointTrajectory.action and GripperCommand.action), so `servoloop action send` goals read the
 // way ROS users write them. JSON forms: node/message_json.hpp.
 #include <string>
 #include <string_view>
@@ -43,5 +43,28 @@ struct FollowJointTrajectoryResult {
   int error_code = 0;
   std::string error_string;
 };
+
+// A gripper command: move the gripper joint to position (m or rad), pushing
+// with at most max_effort (N or N·m; the effort controller's limit).
+struct GripperCommand {
+  double position = 0.0;
+  double max_effort = 0.0;
+};
+
+struct GripperCommandGoal {
+  static constexpr std::string_view kActionType = "control_msgs/GripperCommand";
+  GripperCommand command;
+};
+
+// Feedback and result: where the gripper is, the effort it applies, whether
+// it stopped moving short of the goal (stalled, e.g. on an object) and
+// whether it reached the goal.
+struct GripperCommandFeedback {
+  double position = 0.0;
+  double effort = 0.0;
+  bool stalled = false;
+  bool reached_goal = false;
+};
+using GripperCommandResult = GripperCommandFeedback;
 
 }  // namespace servoloop::control_msgs
