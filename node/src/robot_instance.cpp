@@ -359,7 +359,10 @@ void RobotInstance::shutdownControllers() {
     // update carries the switch out (stopping() runs) without stepping physics.
     manager_->update(now, loop_->controlPeriod());
   }
-  for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) manager_->unloadController(controller.name);
+  // Newest first: a fallback is loaded before the controller naming it, and
+  // must be unloaded after it.
+  const std::vector<controller_manager::ControllerSpec> loaded = manager_->listControllers();
+  for (auto it = loaded.rbegin(); it != loaded.rend(); ++it) manager_->unloadController(it->name);
 }
 
 double RobotInstance::simTime() const {
