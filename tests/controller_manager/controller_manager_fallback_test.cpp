@@ -110,5 +110,42 @@ TEST(Fallback, AFallbackIsUnloadedAfterItsController) {
   EXPECT_TRUE(f.manager.unloadController("hold"));
 }
 
+// Switches from another thread race the faults and the fallback starts of
+// a controller that faults three updates after every start, with the
+// real-time thread spinning: each switch starts it again and stops the
+// fallback. Every fault starts the fallback exactly once, a switch that
+// collides with a fallback start is refused (never half done), and in the end
+// the two never run together. (The ThreadSanitizer lane runs this test.)
+TEST(Fallback, SwitchesRacingFaultsAndFallbackStarts) {
+  ManagerFixture f(kYaml);
+  eventLogEnabled() = false;
+  ASSERT_TRUE(f.manager.loadController("hold"));
+  ASSERT_TRUE(f.manager.loadController("errors"));
+  auto* faulty = f.get<EffortTestController>("errors");
+  auto* hold = f.get<EffortTestController>("hold");
+  int switched = 0;
+  {
+    RealtimeThread realtime(f.manager, 0.001, /*spin=*/true);
+    for (int i = 0; i < 300; ++i) {
+      const ServiceResult result =
+          f.manager.switchController(SwitchRequest{{"errors"}, {"hold"}, SwitchStrictness::BEST_EFFORT, false, 5.0});
+      switched += result ? 1 : 0;
+    }
+    realtime.stop();
+  }
+  EXPECT_GT(switched, 150);  // most switches land between faults
+  // After its first fault the test controller (it counts updates over its
+  // whole life) faults in the first update after every start: each start
+  // but a still running one ended in a fault, and each fault started the
+  // fallback (which nothing else starts) once.
+  const bool faulty_running = faulty->state() == ControllerState::running;
+  EXPECT_EQ(hold->starting_calls, faulty->starting_calls - (faulty_running ? 1 : 0));
+  EXPECT_EQ(faulty->update_calls, faulty->starting_calls + 3 - (faulty_running ? 1 : 0));
+  EXPECT_FALSE(faulty_running && hold->state() == ControllerState::running);
+  // And the manager still switches.
+  ASSERT_TRUE(f.switchNow({}, {"hold"}));
+  EXPECT_NE(hold->state(), ControllerState::running);
+}
+
 }  // namespace
 }  // namespace servoloop::controller_manager::testing
