@@ -19,14 +19,17 @@ BenchJointsHW::BenchJointsHW(std::vector<std::string> joint_names)
       velocity(joint_names.size(), 0.0),
       effort(joint_names.size(), 0.0),
       effort_command(joint_names.size(), 0.0),
+      velocity_command(joint_names.size(), 0.0),
       names_(std::move(joint_names)) {
   for (std::size_t i = 0; i < names_.size(); ++i) {
     hi::JointStateHandle state(names_[i], &position[i], &velocity[i], &effort[i]);
     state_interface_.registerHandle(state);
     effort_interface_.registerHandle(hi::JointHandle(state, &effort_command[i]));
+    velocity_interface_.registerHandle(hi::JointHandle(state, &velocity_command[i]));
   }
   registerInterface(&state_interface_);
   registerInterface(&effort_interface_);
+  registerInterface(&velocity_interface_);
 }
 
 PluginControllerFactory::PluginControllerFactory() : loader_({pluginDirectory()}) {}

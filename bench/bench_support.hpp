@@ -18,7 +18,7 @@
 
 namespace servoloop::bench {
 
-// Joints with state storage and an effort command each, in joint space.
+// Joints with state storage and an effort and a velocity command each, in joint space.
 // read()/write() do nothing: the benchmark measures the controller manager
 // alone. Storage never moves after construction.
 class BenchJointsHW : public hardware_interface::RobotHW {
@@ -30,13 +30,14 @@ class BenchJointsHW : public hardware_interface::RobotHW {
   ReturnType write(Time, Duration) override { return ReturnType::ok; }
 
   const std::vector<std::string>& jointNames() const { return names_; }
-  // Joint state the controllers see (rad, rad/s, N·m) and what they command (N·m).
-  std::vector<double> position, velocity, effort, effort_command;
+  // Joint state the controllers see (rad, rad/s, N·m) and what they command (N·m, rad/s).
+  std::vector<double> position, velocity, effort, effort_command, velocity_command;
 
  private:
   std::vector<std::string> names_;
   hardware_interface::JointStateInterface state_interface_;
   hardware_interface::EffortJointInterface effort_interface_;
+  hardware_interface::VelocityJointInterface velocity_interface_;
 };
 
 // Controllers from the plugin libraries in the build's plugin folder, through

@@ -16,6 +16,8 @@
 //   manager/joint_states_only/<rate>      the JointStateController alone
 //   manager/per_joint/<rate>/joints:N     JointStateController + N JointPositionControllers
 //   manager/group/<rate>/joints:N         JointStateController + one JointGroupPositionController
+//   manager/diff_drive/jsc_50Hz/joints:2  JointStateController + a DiffDriveController on two wheels
+//                                         (limits on, odom and tf at 50 Hz, a new cmd_vel each second)
 //   manager/trajectory/<rate>/joints:N    JointStateController + one effort JointTrajectoryController
 //                                         (state at 50 Hz) always mid-trajectory: a new 20-point
 //                                         quintic trajectory over 2 s replaces the old one every
@@ -47,7 +49,7 @@ constexpr double kManagerRateHz = 1000.0;
 constexpr std::uint64_t kCyclesPerCommand = 1000;  // one new setpoint per second of control time
 constexpr const char* kNamespace = "/bench";
 
-enum class PositionControllers { none, per_joint, group, trajectory };
+enum class PositionControllers { none, per_joint, group, trajectory, diff_drive };
 
 // The seed's PID gains (robots/one_dof/control_config/one_dof_ctl_params.yaml).
 YAML::Node seedPid() { return YAML::Load("{p: 10.0, i: 10.0, d: 10.0, i_clamp_min: -10.0, i_clamp_max: 10.0}"); }
@@ -104,6 +106,20 @@ class ManagerUnderTest {
       }
     }
 
+    if (layout == PositionControllers::diff_drive) {
+      // Two wheels (the first two joints), limits on, odom and tf at 50 Hz.
+      const std::string name = "base_controller";
+      params[name] = YAML::Load(
+          "{type: diff_drive_controller/DiffDriveController, wheel_separation: 0.4, wheel_radius: 0.05, "
+          "cmd_vel_timeout: 2.0, linear: {x: {has_velocity_limits: true, max_velocity: 1.0, "
+          "has_acceleration_limits: true, max_acceleration: 2.0}}, angular: {z: {has_velocity_limits: true, "
+          "max_velocity: 2.0}}}");
+      params[name]["left_wheel"] = names.at(0);
+      params[name]["right_wheel"] = names.at(1);
+      controllers.push_back(name);
+      twist_topic_ = std::string(kNamespace) + "/" + name + "/cmd_vel";
+    }
+
     cm::ControllerContext context;
     context.robot_namespace = kNamespace;
     context.topics = &bus_;
@@ -136,6 +152,12 @@ class ManagerUnderTest {
       for (double& value : group_command_.data) value = setpoint_rad;
       bus_.publish(group_command_topic_, group_command_);
     }
+    if (!twist_topic_.empty()) {
+      servoloop::geometry_msgs::Twist twist;
+      twist.linear.x = setpoint_rad;
+      twist.angular.z = -setpoint_rad;
+      bus_.publish(twist_topic_, twist);
+    }
     if (!trajectory_topic_.empty()) {
       // Points of a sine over the 2 s, with their velocities and accelerations.
       for (std::size_t i = 0; i < trajectory_.points.size(); ++i) {
@@ -164,6 +186,7 @@ class ManagerUnderTest {
   servoloop::std_msgs::Float64MultiArray group_command_;
   std::string trajectory_topic_;
   servoloop::trajectory_msgs::JointTrajectory trajectory_;
+  std::string twist_topic_;
   std::uint64_t cycles_ = 0;
 };
 
@@ -221,6 +244,10 @@ void registerAll() {
       benchmark::RegisterBenchmark(("manager/group" + suffix).c_str(), managerUpdate, PositionControllers::group,
                                    rate.publish_rate_hz)
           ->Arg(6)
+          ->ArgName("joints");
+      benchmark::RegisterBenchmark(("manager/diff_drive" + suffix).c_str(), managerUpdate,
+                                   PositionControllers::diff_drive, rate.publish_rate_hz)
+          ->Arg(2)
           ->ArgName("joints");
     }
   }

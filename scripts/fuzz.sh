@@ -42,6 +42,7 @@ mkdir -p "$work/message_json_fuzz/corpus" "$work/message_json_fuzz/artifacts"
 printf 'data: 1.0' > "$work/message_json_fuzz/corpus/float"
 printf '{name: [j1, j2], position: [0.1, 0.2], velocity: [], effort: []}' > "$work/message_json_fuzz/corpus/joint_state"
 printf '[1, 2, 3]' > "$work/message_json_fuzz/corpus/array"
+printf '{linear: {x: 0.5}, angular: {z: 1.0}}' > "$work/message_json_fuzz/corpus/twist"
 printf '{joint_names: [a, b], points: [{positions: [1, 2], velocities: [0, 0], time_from_start: 1.5}]}' > "$work/message_json_fuzz/corpus/trajectory"
 
 status=0

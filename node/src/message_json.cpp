@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 
+#include "message_json_detail.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/core/errors.hpp"
 
@@ -15,182 +16,7 @@ namespace servoloop::node {
 namespace {
 
 using nlohmann::json;
-
-// JSON text for messages and errors; a string that is not UTF-8 (YAML lets
-// one through) shows its bad bytes as U+FFFD instead of throwing.
-std::string jsonText(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
-
-// Field names of each known type, in ROS order (text and CSV use this order).
-const std::map<std::string_view, std::vector<std::string_view>>& fieldTable() {
-  static const std::map<std::string_view, std::vector<std::string_view>> table = {
-      {std_msgs::Float64::kTypeName, {"data"}},
-      {std_msgs::Float64MultiArray::kTypeName, {"data"}},
-      {sensor_msgs::JointState::kTypeName, {"stamp", "name", "position", "velocity", "effort"}},
-      {control_msgs::JointControllerState::kTypeName,
-       {"stamp", "set_point", "process_value", "process_value_dot", "error", "time_step", "command", "p", "i",
-        "d", "i_clamp", "antiwindup"}},
-      {nav_msgs::Odometry::kTypeName, {"stamp", "frame_id", "child_frame_id", "pose", "twist"}},
-      {trajectory_msgs::JointTrajectory::kTypeName, {"stamp", "joint_names", "points"}},
-      {control_msgs::JointTrajectoryControllerState::kTypeName, {"stamp", "joint_names", "desired", "actual", "error"}},
-  };
-  return table;
-}
-
-// The fields of a trajectory_msgs/JointTrajectoryPoint, in ROS order.
-const std::vector<std::string_view>& pointFields() {
-  static const std::vector<std::string_view> fields = {"positions", "velocities", "accelerations", "effort",
-                                                       "time_from_start"};
-  return fields;
-}
-
-std::string describe(const json& value) {
-  switch (value.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return value.get<bool>() ? "true" : "false";
-    case json::value_t::string: return "string " + jsonText(value);
-    case json::value_t::array: return "a list";
-    case json::value_t::object: return "an object";
-    default: return jsonText(value);
-  }
-}
-
-std::string joinFields(const std::vector<std::string_view>& fields) {
-  std::string joined;
-  for (auto field : fields) joined += (joined.empty() ? "" : ", ") + std::string(field);
-  return joined;
-}
-
-// Reads the fields of one message type from a JSON object, with errors that
-// name the type and the field.
-class FieldReader {
- public:
-  FieldReader(std::string_view type_name, const json& object)
-      : FieldReader(type_name, object, fieldTable().at(type_name), "") {}
-
-  // A nested message (e.g. one trajectory point) with its own fields; where
-  // names it in errors ("points[2]").
-  FieldReader(std::string_view type_name, const json& object, const std::vector<std::string_view>& fields,
-              const std::string& where)
-      : type_(type_name), prefix_(where.empty() ? "" : where + "."), object_(object) {
-    if (!object.is_object()) {
-      if (!where.empty()) {
-        throw Error(type_ + ": field '" + where + "': expected an object with fields " + joinFields(fields) +
-                    ", got " + describe(object));
-      }
-      fail("", "an object with fields " + joinFields(fields), object);
-    }
-    for (const auto& [key, value] : object.items()) {
-      const bool known = std::find(fields.begin(), fields.end(), key) != fields.end();
-      // ROS's Float64MultiArray has a layout field that ros_control never reads.
-      const bool ignored = key == "layout" && type_name == std_msgs::Float64MultiArray::kTypeName;
-      if (!known && !ignored) {
-        throw Error(type_ + ": unknown field '" + prefix_ + key + "'; the fields are: " + joinFields(fields));
-      }
-    }
-  }
-
-  void number(const char* field, double& out) const {
-    if (const json* value = find(field)) out = toDouble(field, *value);
-  }
-
-  void boolean(const char* field, bool& out) const {
-    if (const json* value = find(field)) {
-      if (!value->is_boolean()) fail(field, "true or false", *value);
-      out = value->get<bool>();
-    }
-  }
-
-  void numbers(const char* field, std::vector<double>& out) const {
-    if (const json* value = find(field)) {
-      if (!value->is_array()) fail(field, "a list of numbers", *value);
-      out.clear();
-      for (std::size_t i = 0; i < value->size(); ++i) {
-        out.push_back(toDouble(std::string(field) + "[" + std::to_string(i) + "]", (*value)[i]));
-      }
-    }
-  }
-
-  void strings(const char* field, std::vector<std::string>& out) const {
-    if (const json* value = find(field)) {
-      if (!value->is_array()) fail(field, "a list of strings", *value);
-      out.clear();
-      for (std::size_t i = 0; i < value->size(); ++i) {
-        const json& item = (*value)[i];
-        if (!item.is_string()) fail(std::string(field) + "[" + std::to_string(i) + "]", "a string", item);
-        out.push_back(item.get<std::string>());
-      }
-    }
-  }
-
-  void text(const char* field, std::string& out) const {
-    if (const json* value = find(field)) {
-      if (!value->is_string()) fail(field, "a string", *value);
-      out = value->get<std::string>();
-    }
-  }
-
-  // A nested object of numbers, e.g. pose.position {x, y, z}: `components`
-  // names its fields, `out` receives them in that order; missing ones stay.
-  void numberObject(const std::string& field, const json* value, std::initializer_list<const char*> components,
-                    std::initializer_list<double*> out) const {
-    if (value == nullptr) return;
-    if (!value->is_object()) fail(field, "an object", *value);
-    for (const auto& [key, item] : value->items()) {
-      bool known = false;
-      for (const char* c : components) known |= key == c;
-      if (!known) fail(field + "." + key, "one of the fields of " + field, item);
-    }
-    auto target = out.begin();
-    for (const char* c : components) {
-      if (auto it = value->find(c); it != value->end()) **target = toDouble(field + "." + c, *it);
-      ++target;
-    }
-  }
-
-  // A nested object whose fields are objects, e.g. pose {position, orientation}.
-  const json* child(const std::string& field, const json* parent, const char* key,
-                    std::initializer_list<const char*> keys) const {
-    if (parent == nullptr) return nullptr;
-    if (!parent->is_object()) fail(field, "an object", *parent);
-    for (const auto& [k, item] : parent->items()) {
-      bool known = false;
-      for (const char* c : keys) known |= k == c;
-      if (!known) fail(field + "." + k, "one of the fields of " + field, item);
-    }
-    auto it = parent->find(key);
-    return it == parent->end() ? nullptr : &*it;
-  }
-
-  const json* field(const char* name) const { return find(name); }
-
-  [[noreturn]] void fail(const std::string& field, const std::string& expected, const json& got) const {
-    const std::string where = field.empty() ? "" : " field '" + prefix_ + field + "':";
-    throw Error(type_ + ":" + where + " expected " + expected + ", got " + describe(got));
-  }
-
- private:
-  const json* find(const char* field) const {
-    auto it = object_.find(field);
-    return it == object_.end() ? nullptr : &*it;
-  }
-
-  double toDouble(const std::string& field, const json& value) const {
-    // null stands for NaN: JSON has no NaN and the serialiser writes it as null.
-    if (value.is_null()) return std::numeric_limits<double>::quiet_NaN();
-    if (!value.is_number()) fail(field, "a number", value);
-    return value.get<double>();
-  }
-
-  std::string type_;
-  std::string prefix_;  // "points[2]." inside a nested message
-  const json& object_;
-};
-
-json numberList(const std::vector<double>& values) {
-  json list = json::array();
-  for (double v : values) list.push_back(v);
-  return list;
-}
+using namespace detail;
 
 std::string textOf(const json& value, bool quote_strings);
 
@@ -321,174 +147,6 @@ std::vector<std::pair<std::string, std::string>> flatten(std::string_view type_n
 }  // namespace
 
 
-// --- JSON per type ------------------------------------------------------------------
-
-json toJson(const std_msgs::Float64& msg) { return json{{"data", msg.data}}; }
-
-json toJson(const std_msgs::Float64MultiArray& msg) { return json{{"data", numberList(msg.data)}}; }
-
-json toJson(const sensor_msgs::JointState& msg) {
-  return json{{"stamp", msg.stamp},
-              {"name", msg.name},
-              {"position", numberList(msg.position)},
-              {"velocity", numberList(msg.velocity)},
-              {"effort", numberList(msg.effort)}};
-}
-
-json toJson(const control_msgs::JointControllerState& msg) {
-  return json{{"stamp", msg.stamp},         {"set_point", msg.set_point},
-              {"process_value", msg.process_value}, {"process_value_dot", msg.process_value_dot},
-              {"error", msg.error},         {"time_step", msg.time_step},
-              {"command", msg.command},     {"p", msg.p},
-              {"i", msg.i},                 {"d", msg.d},
-              {"i_clamp", msg.i_clamp},     {"antiwindup", msg.antiwindup}};
-}
-
-json toJson(const nav_msgs::Odometry& msg) {
-  return json{{"stamp", msg.stamp},
-              {"frame_id", msg.frame_id},
-              {"child_frame_id", msg.child_frame_id},
-              {"pose",
-               {{"position", {{"x", msg.position.x}, {"y", msg.position.y}, {"z", msg.position.z}}},
-                {"orientation",
-                 {{"x", msg.orientation.x}, {"y", msg.orientation.y}, {"z", msg.orientation.z},
-                  {"w", msg.orientation.w}}}}},
-              {"twist",
-               {{"linear", {{"x", msg.linear.x}, {"y", msg.linear.y}, {"z", msg.linear.z}}},
-                {"angular", {{"x", msg.angular.x}, {"y", msg.angular.y}, {"z", msg.angular.z}}}}}};
-}
-
-namespace {
-
-json toJson(const trajectory_msgs::JointTrajectoryPoint& point) {
-  return json{{"positions", numberList(point.positions)},
-              {"velocities", numberList(point.velocities)},
-              {"accelerations", numberList(point.accelerations)},
-              {"effort", numberList(point.effort)},
-              {"time_from_start", point.time_from_start}};
-}
-
-void pointFromJson(std::string_view type_name, const json& value, const std::string& where,
-                   trajectory_msgs::JointTrajectoryPoint& out) {
-  FieldReader reader(type_name, value, pointFields(), where);
-  reader.numbers("positions", out.positions);
-  reader.numbers("velocities", out.velocities);
-  reader.numbers("accelerations", out.accelerations);
-  reader.numbers("effort", out.effort);
-  reader.number("time_from_start", out.time_from_start);
-}
-
-}  // namespace
-
-json toJson(const trajectory_msgs::JointTrajectory& msg) {
-  json points = json::array();
-  for (const auto& point : msg.points) points.push_back(toJson(point));
-  return json{{"stamp", msg.stamp}, {"joint_names", msg.joint_names}, {"points", points}};
-}
-
-json toJson(const control_msgs::JointTrajectoryControllerState& msg) {
-  return json{{"stamp", msg.stamp},
-              {"joint_names", msg.joint_names},
-              {"desired", toJson(msg.desired)},
-              {"actual", toJson(msg.actual)},
-              {"error", toJson(msg.error)}};
-}
-
-void fromJson(const json& value, std_msgs::Float64& out) {
-  if (value.is_number()) {  // `topic pub /cmd std_msgs/Float64 1.0`
-    out.data = value.get<double>();
-    return;
-  }
-  FieldReader reader(std_msgs::Float64::kTypeName, value);
-  reader.number("data", out.data);
-}
-
-void fromJson(const json& value, std_msgs::Float64MultiArray& out) {
-  if (value.is_array()) {  // `topic pub /cmd std_msgs/Float64MultiArray "[1, 2]"`
-    FieldReader(std_msgs::Float64MultiArray::kTypeName, json{{"data", value}}).numbers("data", out.data);
-    return;
-  }
-  FieldReader reader(std_msgs::Float64MultiArray::kTypeName, value);
-  reader.numbers("data", out.data);
-}
-
-void fromJson(const json& value, sensor_msgs::JointState& out) {
-  FieldReader reader(sensor_msgs::JointState::kTypeName, value);
-  reader.number("stamp", out.stamp);
-  reader.strings("name", out.name);
-  reader.numbers("position", out.position);
-  reader.numbers("velocity", out.velocity);
-  reader.numbers("effort", out.effort);
-  const auto check_size = [&](const char* field, const std::vector<double>& values) {
-    if (!values.empty() && values.size() != out.name.size()) {
-      throw Error(std::string(sensor_msgs::JointState::kTypeName) + ": field '" + field + "' has " +
-                  std::to_string(values.size()) + " entries but 'name' has " + std::to_string(out.name.size()) +
-                  "; give one per joint or none");
-    }
-  };
-  check_size("position", out.position);
-  check_size("velocity", out.velocity);
-  check_size("effort", out.effort);
-}
-
-void fromJson(const json& value, control_msgs::JointControllerState& out) {
-  FieldReader reader(control_msgs::JointControllerState::kTypeName, value);
-  reader.number("stamp", out.stamp);
-  reader.number("set_point", out.set_point);
-  reader.number("process_value", out.process_value);
-  reader.number("process_value_dot", out.process_value_dot);
-  reader.number("error", out.error);
-  reader.number("time_step", out.time_step);
-  reader.number("command", out.command);
-  reader.number("p", out.p);
-  reader.number("i", out.i);
-  reader.number("d", out.d);
-  reader.number("i_clamp", out.i_clamp);
-  reader.boolean("antiwindup", out.antiwindup);
-}
-
-void fromJson(const json& value, nav_msgs::Odometry& out) {
-  FieldReader reader(nav_msgs::Odometry::kTypeName, value);
-  reader.number("stamp", out.stamp);
-  reader.text("frame_id", out.frame_id);
-  reader.text("child_frame_id", out.child_frame_id);
-  const json* pose = reader.field("pose");
-  reader.numberObject("pose.position", reader.child("pose", pose, "position", {"position", "orientation"}),
-                      {"x", "y", "z"}, {&out.position.x, &out.position.y, &out.position.z});
-  reader.numberObject("pose.orientation", reader.child("pose", pose, "orientation", {"position", "orientation"}),
-                      {"x", "y", "z", "w"},
-                      {&out.orientation.x, &out.orientation.y, &out.orientation.z, &out.orientation.w});
-  const json* twist = reader.field("twist");
-  reader.numberObject("twist.linear", reader.child("twist", twist, "linear", {"linear", "angular"}),
-                      {"x", "y", "z"}, {&out.linear.x, &out.linear.y, &out.linear.z});
-  reader.numberObject("twist.angular", reader.child("twist", twist, "angular", {"linear", "angular"}),
-                      {"x", "y", "z"}, {&out.angular.x, &out.angular.y, &out.angular.z});
-}
-
-void fromJson(const json& value, trajectory_msgs::JointTrajectory& out) {
-  constexpr std::string_view type = trajectory_msgs::JointTrajectory::kTypeName;
-  FieldReader reader(type, value);
-  reader.number("stamp", out.stamp);
-  reader.strings("joint_names", out.joint_names);
-  if (const json* points = reader.field("points")) {
-    if (!points->is_array()) reader.fail("points", "a list of points", *points);
-    out.points.assign(points->size(), {});
-    for (std::size_t i = 0; i < points->size(); ++i) {
-      pointFromJson(type, (*points)[i], "points[" + std::to_string(i) + "]", out.points[i]);
-    }
-  }
-}
-
-void fromJson(const json& value, control_msgs::JointTrajectoryControllerState& out) {
-  constexpr std::string_view type = control_msgs::JointTrajectoryControllerState::kTypeName;
-  FieldReader reader(type, value);
-  reader.number("stamp", out.stamp);
-  reader.strings("joint_names", out.joint_names);
-  if (const json* desired = reader.field("desired")) pointFromJson(type, *desired, "desired", out.desired);
-  if (const json* actual = reader.field("actual")) pointFromJson(type, *actual, "actual", out.actual);
-  if (const json* error = reader.field("error")) pointFromJson(type, *error, "error", out.error);
-}
-
 // --- YAML / text input ----------------------------------------------------------------
 
 json yamlToJson(const YAML::Node& node) {
@@ -539,6 +197,18 @@ void requireFiniteCommand(std::string_view type_name, const json& msg) {
     const std::string where = type_name == std_msgs::Float64::kTypeName ? "" : "[" + std::to_string(i) + "]";
     throw Error(std::string(type_name) + ": data" + where + " is " + formatDouble(values[i]) +
                 "; a command must be a finite number");
+  }
+  if (type_name == geometry_msgs::Twist::kTypeName) {
+    const auto twist = messageFromJson<geometry_msgs::Twist>(msg);
+    const double values[] = {twist.linear.x, twist.linear.y, twist.linear.z,
+                             twist.angular.x, twist.angular.y, twist.angular.z};
+    const char* names[] = {"linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z"};
+    for (std::size_t i = 0; i < 6; ++i) {
+      if (!std::isfinite(values[i])) {
+        throw Error(std::string(type_name) + ": " + names[i] + " is " + formatDouble(values[i]) +
+                    "; a command must be a finite number");
+      }
+    }
   }
   if (type_name == trajectory_msgs::JointTrajectory::kTypeName) {
     const auto trajectory = messageFromJson<trajectory_msgs::JointTrajectory>(msg);
@@ -603,6 +273,8 @@ void withMessageFromJson(std::string_view type_name, const json& value, Fn&& fn)
   if (type_name == control_msgs::JointTrajectoryControllerState::kTypeName) {
     return decode(control_msgs::JointTrajectoryControllerState{});
   }
+  if (type_name == geometry_msgs::Twist::kTypeName) return decode(geometry_msgs::Twist{});
+  if (type_name == tf2_msgs::TFMessage::kTypeName) return decode(tf2_msgs::TFMessage{});
   std::string known;
   for (const std::string& type : knownMessageTypes()) known += (known.empty() ? "" : ", ") + type;
   throw Error("unknown message type '" + std::string(type_name) + "'; known types: " + known);
@@ -626,6 +298,8 @@ json toJson(const realtime::MessageView& msg) {
   if (const auto* m = msg.as<nav_msgs::Odometry>()) return toJson(*m);
   if (const auto* m = msg.as<trajectory_msgs::JointTrajectory>()) return toJson(*m);
   if (const auto* m = msg.as<control_msgs::JointTrajectoryControllerState>()) return toJson(*m);
+  if (const auto* m = msg.as<geometry_msgs::Twist>()) return toJson(*m);
+  if (const auto* m = msg.as<tf2_msgs::TFMessage>()) return toJson(*m);
   throw Error("message type '" + std::string(msg.type) + "' has no JSON form");
 }
 

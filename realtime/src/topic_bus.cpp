@@ -35,7 +35,8 @@ std::string knownTypesText() {
   for (std::string_view type : {std_msgs::Float64::kTypeName, std_msgs::Float64MultiArray::kTypeName,
                                 sensor_msgs::JointState::kTypeName, control_msgs::JointControllerState::kTypeName,
                                 nav_msgs::Odometry::kTypeName, trajectory_msgs::JointTrajectory::kTypeName,
-                                control_msgs::JointTrajectoryControllerState::kTypeName}) {
+                                control_msgs::JointTrajectoryControllerState::kTypeName,
+                                geometry_msgs::Twist::kTypeName, tf2_msgs::TFMessage::kTypeName}) {
     text += (text.empty() ? "" : ", ") + std::string(type);
   }
   return text;
@@ -76,6 +77,8 @@ TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view
   if (type_name == control_msgs::JointTrajectoryControllerState::kTypeName) {
     return typedTopicLocked<control_msgs::JointTrajectoryControllerState>(name);
   }
+  if (type_name == geometry_msgs::Twist::kTypeName) return typedTopicLocked<geometry_msgs::Twist>(name);
+  if (type_name == tf2_msgs::TFMessage::kTypeName) return typedTopicLocked<tf2_msgs::TFMessage>(name);
   // A type only a plugin knows can still be used once that plugin typed the topic.
   auto it = topics.find(name);
   if (it != topics.end() && it->second->type() == type_name) return *it->second;
@@ -245,5 +248,7 @@ SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(trajectory_msgs::JointTrajectory, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointTrajectoryControllerState, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(geometry_msgs::Twist, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(tf2_msgs::TFMessage, )
 
 }  // namespace servoloop::realtime

@@ -19,6 +19,7 @@
 #include "servoloop/controllers/effort_controllers/forward_controllers.hpp"
 #include "servoloop/controllers/effort_controllers/joint_position_controller.hpp"
 #include "servoloop/controllers/joint_state_controller/joint_state_controller.hpp"
+#include "servoloop/controllers/diff_drive_controller/diff_drive_controller.hpp"
 #include "servoloop/controllers/gripper_action_controller/gripper_action_controller.hpp"
 #include "servoloop/controllers/joint_trajectory_controller/joint_trajectory_controller.hpp"
 #include "servoloop/realtime/action_registry.hpp"
@@ -269,6 +270,59 @@ TEST(ControllersAllocation, GripperControllerTakesGoalsWithoutAllocating) {
   control.join();
   EXPECT_EQ(allocations, 0u);
   for (std::size_t i = 0; i + 1 < goals.size(); ++i) EXPECT_TRUE(servoloop::realtime::goalDone(goals[i]->state()));
+}
+
+// The diff drive controller with its limits on, publishing odom and tf at
+// 50 Hz with the delivery thread running, taking a cmd_vel every 100 cycles
+// (and timing out between them).
+TEST(ControllersAllocation, DiffDriveControllerWithoutAllocating) {
+  servoloop::realtime::TopicBus bus;
+  TestJointsHW hw({"left_wheel", "right_wheel"});
+  diff_drive_controller::DiffDriveController base;
+  initController(base, hw,
+                 makeContext("base",
+                             "{left_wheel: left_wheel, right_wheel: right_wheel, wheel_separation: 0.4, "
+                             "wheel_radius: 0.05, cmd_vel_timeout: 0.05, "
+                             "linear: {x: {has_velocity_limits: true, max_velocity: 1.0, "
+                             "has_acceleration_limits: true, max_acceleration: 2.0, has_jerk_limits: true, max_jerk: 50}}, "
+                             "angular: {z: {has_velocity_limits: true, max_velocity: 2.0}}}",
+                             &bus));
+  std::uint64_t odom_messages = 0;
+  auto subscription = bus.subscribe<servoloop::nav_msgs::Odometry>(
+      "/robot/base/odom", [&](const auto&) { ++odom_messages; });
+  bus.start();
+  std::atomic<int> requested{0};
+  std::atomic<int> published{0};
+  std::size_t allocations = 0;
+  std::thread control([&] {
+    const Duration period(0.001);
+    base.startRequest(Time(0.0));
+    servoloop::testing::AllocationCounter counter;
+    for (int k = 1; k <= kCycles; ++k) {
+      if (k % kCommandEvery == 0) {
+        requested.store(k / kCommandEvery);
+        while (published.load() != k / kCommandEvery) std::this_thread::yield();
+      }
+      const Time now(0.001 * k);
+      bus.setTime(now);
+      base.update(now, period);
+      for (std::size_t i = 0; i < 2; ++i) hw.position[i] += 0.001 * hw.velocity_command[i];
+    }
+    allocations = counter.allocations();
+  });
+  for (int n = 1; n <= kCycles / kCommandEvery; ++n) {
+    while (requested.load() != n) std::this_thread::yield();
+    servoloop::geometry_msgs::Twist twist;
+    twist.linear.x = 0.5 * std::sin(0.1 * n);
+    twist.angular.z = std::cos(0.1 * n);
+    bus.publish("/robot/base/cmd_vel", twist);
+    published.store(n);
+  }
+  control.join();
+  bus.stop();
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_GT(odom_messages, 0u);
+  EXPECT_TRUE(std::isfinite(base.odometry().x()));
 }
 
 }  // namespace

@@ -69,6 +69,7 @@ TEST(ControllerPlugins, OneLibraryPerPackageProvidesEveryType) {
       {"effort_controllers/JointTrajectoryController", "libjoint_trajectory_controller.so"},
       {"position_controllers/GripperActionController", "libgripper_action_controller.so"},
       {"effort_controllers/GripperActionController", "libgripper_action_controller.so"},
+      {"diff_drive_controller/DiffDriveController", "libdiff_drive_controller.so"},
   };
   for (const auto& [type, library] : expected) {
     ASSERT_TRUE(library_of_type.count(type)) << type;

@@ -55,8 +55,9 @@ TEST(Messages, TypeNames) {
   EXPECT_EQ(control_msgs::JointTrajectoryControllerState::kTypeName, "control_msgs/JointTrajectoryControllerState");
   EXPECT_EQ(knownMessageTypes(),
             (std::vector<std::string>{"control_msgs/JointControllerState",
-                                      "control_msgs/JointTrajectoryControllerState", "nav_msgs/Odometry",
-                                      "sensor_msgs/JointState", "std_msgs/Float64", "std_msgs/Float64MultiArray",
+                                      "control_msgs/JointTrajectoryControllerState", "geometry_msgs/Twist",
+                                      "nav_msgs/Odometry", "sensor_msgs/JointState", "std_msgs/Float64",
+                                      "std_msgs/Float64MultiArray", "tf2_msgs/TFMessage",
                                       "trajectory_msgs/JointTrajectory"}));
   EXPECT_TRUE(isKnownMessageType("std_msgs/Float64"));
   EXPECT_FALSE(isKnownMessageType("std_msgs/Float32"));
@@ -174,6 +175,40 @@ TEST(Messages, JointTrajectoryControllerStateTextAndCsv) {
   const auto again = messageFromJson<control_msgs::JointTrajectoryControllerState>(toJson(state));
   EXPECT_EQ(again.desired.positions, state.desired.positions);
   EXPECT_EQ(again.joint_names, state.joint_names);
+}
+
+TEST(Messages, TwistTfAndOdometryCovariance) {
+  // `rostopic pub cmd_vel geometry_msgs/Twist` as ROS users write it.
+  const auto twist = messageFromJson<geometry_msgs::Twist>(parseMessageText("{linear: {x: 0.5}, angular: {z: -1}}"));
+  EXPECT_EQ(twist.linear.x, 0.5);
+  EXPECT_EQ(twist.angular.z, -1.0);
+  EXPECT_EQ(twist.linear.y, 0.0);
+  EXPECT_EQ(errorOf([] { requireFiniteCommand("geometry_msgs/Twist", json::parse(R"({"angular": {"z": null}})")); }),
+            "geometry_msgs/Twist: angular.z is nan; a command must be a finite number");
+  EXPECT_THAT(errorOf([] { messageFromJson<geometry_msgs::Twist>(json::parse(R"({"linear": {"w": 1}})")); }),
+              HasSubstr("linear.w"));
+
+  tf2_msgs::TFMessage tf;
+  tf.transforms.resize(1);
+  tf.transforms[0].frame_id = "odom";
+  tf.transforms[0].child_frame_id = "base_link";
+  tf.transforms[0].translation.x = 1.5;
+  const auto tf_again = messageFromJson<tf2_msgs::TFMessage>(toJson(tf));
+  ASSERT_EQ(tf_again.transforms.size(), 1u);
+  EXPECT_EQ(tf_again.transforms[0].child_frame_id, "base_link");
+  EXPECT_EQ(tf_again.transforms[0].translation.x, 1.5);
+  EXPECT_EQ(tf_again.transforms[0].rotation.w, 1.0);
+
+  nav_msgs::Odometry odom;
+  odom.pose_covariance[0] = 0.25;
+  odom.twist_covariance[35] = 0.5;
+  const json odom_json = toJson(odom);
+  ASSERT_EQ(odom_json["pose"]["covariance"].size(), 36u);
+  const auto odom_again = messageFromJson<nav_msgs::Odometry>(odom_json);
+  EXPECT_EQ(odom_again.pose_covariance[0], 0.25);
+  EXPECT_EQ(odom_again.twist_covariance[35], 0.5);
+  EXPECT_THAT(errorOf([] { messageFromJson<nav_msgs::Odometry>(json::parse(R"({"pose": {"covariance": [1, 2]}})")); }),
+              HasSubstr("pose.covariance': expected a list of 36 numbers"));
 }
 
 TEST(Messages, NanSurvivesJsonTextAsNull) {

@@ -193,8 +193,12 @@ void TrajectoryFollower::push(std::unique_ptr<Command> command) {
 void TrajectoryFollower::onTopicMessage(const TrajectoryMessage& msg) {
   if (!running_.load(std::memory_order_acquire)) {
     refused_.fetch_add(1, std::memory_order_relaxed);
-    logger().warn("controller '{}': trajectory on {} ignored: the controller is not running; start it first",
-                  controller_name_, command_topic_);
+    // Once per stop, so a publisher that keeps going does not flood the log.
+    if (!stopped_warning_logged_.exchange(true)) {
+      logger().warn("controller '{}': trajectory on {} ignored: the controller is not running; start it first "
+                    "(further ones are only counted until it starts)",
+                    controller_name_, command_topic_);
+    }
     return;
   }
   TrajectoryErrorCode code = TrajectoryErrorCode::successful;
@@ -246,6 +250,7 @@ void TrajectoryFollower::start(const Time& time, const std::vector<double>& actu
   hold(time.seconds);
   last_time_.store(time.seconds, std::memory_order_release);
   state_gate_.reset();
+  stopped_warning_logged_.store(false, std::memory_order_relaxed);
   running_.store(true, std::memory_order_release);
 }
 
@@ -293,6 +298,8 @@ void TrajectoryFollower::applyCommand(Command* command, double now) noexcept {
   if (command->stop) {
     finishActive(GoalStatus::preempted, TrajectoryErrorCode::successful);
     hold(now);
+    // A goal with no points asks for a stop, which this is.
+    if (command->goal) command->goal->finish(GoalStatus::succeeded, TrajectoryErrorCode::successful);
     handoff_.retire(command);
     return;
   }

@@ -34,6 +34,8 @@ nlohmann::json toJson(const control_msgs::JointControllerState& msg);
 nlohmann::json toJson(const nav_msgs::Odometry& msg);
 nlohmann::json toJson(const trajectory_msgs::JointTrajectory& msg);
 nlohmann::json toJson(const control_msgs::JointTrajectoryControllerState& msg);
+nlohmann::json toJson(const geometry_msgs::Twist& msg);
+nlohmann::json toJson(const tf2_msgs::TFMessage& msg);
 
 void fromJson(const nlohmann::json& json, std_msgs::Float64& out);
 void fromJson(const nlohmann::json& json, std_msgs::Float64MultiArray& out);
@@ -42,6 +44,8 @@ void fromJson(const nlohmann::json& json, control_msgs::JointControllerState& ou
 void fromJson(const nlohmann::json& json, nav_msgs::Odometry& out);
 void fromJson(const nlohmann::json& json, trajectory_msgs::JointTrajectory& out);
 void fromJson(const nlohmann::json& json, control_msgs::JointTrajectoryControllerState& out);
+void fromJson(const nlohmann::json& json, geometry_msgs::Twist& out);
+void fromJson(const nlohmann::json& json, tf2_msgs::TFMessage& out);
 
 template <class Msg>
 Msg messageFromJson(const nlohmann::json& json) {
@@ -60,7 +64,7 @@ nlohmann::json yamlToJson(const YAML::Node& node);
 nlohmann::json parseMessageText(std::string_view text, std::string_view source_name = "message");
 
 // Throws servoloop::Error when a command message (std_msgs/Float64,
-// Float64MultiArray or trajectory_msgs/JointTrajectory, given as JSON) holds
+// Float64MultiArray, geometry_msgs/Twist or trajectory_msgs/JointTrajectory, given as JSON) holds
 // NaN (null) or an infinite value, naming the field: a command from a user or
 // client must be a finite number. Other types pass.
 void requireFiniteCommand(std::string_view type_name, const nlohmann::json& msg);

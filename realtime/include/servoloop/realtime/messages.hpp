@@ -6,6 +6,7 @@
 //
 // Time stamps are control time in seconds (servoloop::Time::seconds), in
 // place of ROS's header.stamp. JSON, text and CSV forms: message_json.hpp.
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -118,13 +119,40 @@ struct Vector3 {
   double x = 0.0, y = 0.0, z = 0.0;
 };
 
+// A velocity command: linear in m/s, angular in rad/s (a mobile base's
+// cmd_vel; a differential drive reads linear.x and angular.z).
+struct Twist {
+  static constexpr std::string_view kTypeName = "geometry_msgs/Twist";
+  Vector3 linear;
+  Vector3 angular;
+};
+
+// Where child_frame_id is in frame_id: translation (m) and rotation.
+struct TransformStamped {
+  double stamp = 0.0;  // control time, s
+  std::string frame_id;
+  std::string child_frame_id;
+  Vector3 translation;
+  Quaternion rotation;
+};
+
 }  // namespace geometry_msgs
+
+namespace tf2_msgs {
+
+// The transforms of the /tf topic.
+struct TFMessage {
+  static constexpr std::string_view kTypeName = "tf2_msgs/TFMessage";
+  std::vector<geometry_msgs::TransformStamped> transforms;
+};
+
+}  // namespace tf2_msgs
 
 namespace nav_msgs {
 
 // Where a body is and how it moves: the pose of child_frame_id in frame_id,
-// and its twist in child_frame_id's axes, as ROS's Odometry (the covariances
-// are left out). m, rad, m/s, rad/s.
+// and its twist in child_frame_id's axes, as ROS's Odometry, with the 6×6
+// row-major covariances of (x, y, z, roll, pitch, yaw). m, rad, m/s, rad/s.
 struct Odometry {
   static constexpr std::string_view kTypeName = "nav_msgs/Odometry";
   double stamp = 0.0;  // control time, s
@@ -134,6 +162,8 @@ struct Odometry {
   geometry_msgs::Quaternion orientation;
   geometry_msgs::Vector3 linear;   // twist.linear, child frame
   geometry_msgs::Vector3 angular;  // twist.angular, child frame
+  std::array<double, 36> pose_covariance{};   // pose.covariance
+  std::array<double, 36> twist_covariance{};  // twist.covariance
 };
 
 }  // namespace nav_msgs

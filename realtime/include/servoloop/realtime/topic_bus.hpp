@@ -201,5 +201,7 @@ SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(trajectory_msgs::JointTrajectory, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointTrajectoryControllerState, extern)
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(geometry_msgs::Twist, extern)
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(tf2_msgs::TFMessage, extern)
 
 }  // namespace servoloop::realtime

@@ -150,6 +150,7 @@ class TrajectoryFollower {
 
   // Shared with the non-real-time side.
   std::atomic<bool> running_{false};
+  std::atomic<bool> stopped_warning_logged_{false};
   std::atomic<double> last_time_{0.0};  // control time of the last update
   std::atomic<std::uint64_t> taken_{0};
   std::atomic<std::uint64_t> refused_{0};

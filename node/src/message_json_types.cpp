@@ -1,0 +1,236 @@
+// Each message type's JSON form, both ways (message_json.hpp).
+#include <string>
+
+#include "message_json_detail.hpp"
+#include "servoloop/node/message_json.hpp"
+
+namespace servoloop::node {
+
+using nlohmann::json;
+using namespace detail;
+
+// --- JSON per type ------------------------------------------------------------------
+
+json toJson(const std_msgs::Float64& msg) { return json{{"data", msg.data}}; }
+
+json toJson(const std_msgs::Float64MultiArray& msg) { return json{{"data", numberList(msg.data)}}; }
+
+json toJson(const sensor_msgs::JointState& msg) {
+  return json{{"stamp", msg.stamp},
+              {"name", msg.name},
+              {"position", numberList(msg.position)},
+              {"velocity", numberList(msg.velocity)},
+              {"effort", numberList(msg.effort)}};
+}
+
+json toJson(const control_msgs::JointControllerState& msg) {
+  return json{{"stamp", msg.stamp},         {"set_point", msg.set_point},
+              {"process_value", msg.process_value}, {"process_value_dot", msg.process_value_dot},
+              {"error", msg.error},         {"time_step", msg.time_step},
+              {"command", msg.command},     {"p", msg.p},
+              {"i", msg.i},                 {"d", msg.d},
+              {"i_clamp", msg.i_clamp},     {"antiwindup", msg.antiwindup}};
+}
+
+json toJson(const nav_msgs::Odometry& msg) {
+  return json{{"stamp", msg.stamp},
+              {"frame_id", msg.frame_id},
+              {"child_frame_id", msg.child_frame_id},
+              {"pose",
+               {{"position", {{"x", msg.position.x}, {"y", msg.position.y}, {"z", msg.position.z}}},
+                {"orientation",
+                 {{"x", msg.orientation.x}, {"y", msg.orientation.y}, {"z", msg.orientation.z},
+                  {"w", msg.orientation.w}}},
+                {"covariance", numberList({msg.pose_covariance.begin(), msg.pose_covariance.end()})}}},
+              {"twist",
+               {{"linear", {{"x", msg.linear.x}, {"y", msg.linear.y}, {"z", msg.linear.z}}},
+                {"angular", {{"x", msg.angular.x}, {"y", msg.angular.y}, {"z", msg.angular.z}}},
+                {"covariance", numberList({msg.twist_covariance.begin(), msg.twist_covariance.end()})}}}};
+}
+
+json toJson(const geometry_msgs::Twist& msg) {
+  return json{{"linear", {{"x", msg.linear.x}, {"y", msg.linear.y}, {"z", msg.linear.z}}},
+              {"angular", {{"x", msg.angular.x}, {"y", msg.angular.y}, {"z", msg.angular.z}}}};
+}
+
+json toJson(const tf2_msgs::TFMessage& msg) {
+  json transforms = json::array();
+  for (const auto& t : msg.transforms) {
+    transforms.push_back(
+        {{"stamp", t.stamp},
+         {"frame_id", t.frame_id},
+         {"child_frame_id", t.child_frame_id},
+         {"translation", {{"x", t.translation.x}, {"y", t.translation.y}, {"z", t.translation.z}}},
+         {"rotation", {{"x", t.rotation.x}, {"y", t.rotation.y}, {"z", t.rotation.z}, {"w", t.rotation.w}}}});
+  }
+  return json{{"transforms", transforms}};
+}
+
+namespace {
+
+json toJson(const trajectory_msgs::JointTrajectoryPoint& point) {
+  return json{{"positions", numberList(point.positions)},
+              {"velocities", numberList(point.velocities)},
+              {"accelerations", numberList(point.accelerations)},
+              {"effort", numberList(point.effort)},
+              {"time_from_start", point.time_from_start}};
+}
+
+void pointFromJson(std::string_view type_name, const json& value, const std::string& where,
+                   trajectory_msgs::JointTrajectoryPoint& out) {
+  FieldReader reader(type_name, value, pointFields(), where);
+  reader.numbers("positions", out.positions);
+  reader.numbers("velocities", out.velocities);
+  reader.numbers("accelerations", out.accelerations);
+  reader.numbers("effort", out.effort);
+  reader.number("time_from_start", out.time_from_start);
+}
+
+}  // namespace
+
+json toJson(const trajectory_msgs::JointTrajectory& msg) {
+  json points = json::array();
+  for (const auto& point : msg.points) points.push_back(toJson(point));
+  return json{{"stamp", msg.stamp}, {"joint_names", msg.joint_names}, {"points", points}};
+}
+
+json toJson(const control_msgs::JointTrajectoryControllerState& msg) {
+  return json{{"stamp", msg.stamp},
+              {"joint_names", msg.joint_names},
+              {"desired", toJson(msg.desired)},
+              {"actual", toJson(msg.actual)},
+              {"error", toJson(msg.error)}};
+}
+
+void fromJson(const json& value, std_msgs::Float64& out) {
+  if (value.is_number()) {  // `topic pub /cmd std_msgs/Float64 1.0`
+    out.data = value.get<double>();
+    return;
+  }
+  FieldReader reader(std_msgs::Float64::kTypeName, value);
+  reader.number("data", out.data);
+}
+
+void fromJson(const json& value, std_msgs::Float64MultiArray& out) {
+  if (value.is_array()) {  // `topic pub /cmd std_msgs/Float64MultiArray "[1, 2]"`
+    FieldReader(std_msgs::Float64MultiArray::kTypeName, json{{"data", value}}).numbers("data", out.data);
+    return;
+  }
+  FieldReader reader(std_msgs::Float64MultiArray::kTypeName, value);
+  reader.numbers("data", out.data);
+}
+
+void fromJson(const json& value, sensor_msgs::JointState& out) {
+  FieldReader reader(sensor_msgs::JointState::kTypeName, value);
+  reader.number("stamp", out.stamp);
+  reader.strings("name", out.name);
+  reader.numbers("position", out.position);
+  reader.numbers("velocity", out.velocity);
+  reader.numbers("effort", out.effort);
+  const auto check_size = [&](const char* field, const std::vector<double>& values) {
+    if (!values.empty() && values.size() != out.name.size()) {
+      throw Error(std::string(sensor_msgs::JointState::kTypeName) + ": field '" + field + "' has " +
+                  std::to_string(values.size()) + " entries but 'name' has " + std::to_string(out.name.size()) +
+                  "; give one per joint or none");
+    }
+  };
+  check_size("position", out.position);
+  check_size("velocity", out.velocity);
+  check_size("effort", out.effort);
+}
+
+void fromJson(const json& value, control_msgs::JointControllerState& out) {
+  FieldReader reader(control_msgs::JointControllerState::kTypeName, value);
+  reader.number("stamp", out.stamp);
+  reader.number("set_point", out.set_point);
+  reader.number("process_value", out.process_value);
+  reader.number("process_value_dot", out.process_value_dot);
+  reader.number("error", out.error);
+  reader.number("time_step", out.time_step);
+  reader.number("command", out.command);
+  reader.number("p", out.p);
+  reader.number("i", out.i);
+  reader.number("d", out.d);
+  reader.number("i_clamp", out.i_clamp);
+  reader.boolean("antiwindup", out.antiwindup);
+}
+
+void fromJson(const json& value, nav_msgs::Odometry& out) {
+  FieldReader reader(nav_msgs::Odometry::kTypeName, value);
+  reader.number("stamp", out.stamp);
+  reader.text("frame_id", out.frame_id);
+  reader.text("child_frame_id", out.child_frame_id);
+  const json* pose = reader.field("pose");
+  reader.numberObject("pose.position",
+                      reader.child("pose", pose, "position", {"position", "orientation", "covariance"}),
+                      {"x", "y", "z"}, {&out.position.x, &out.position.y, &out.position.z});
+  reader.numberObject("pose.orientation",
+                      reader.child("pose", pose, "orientation", {"position", "orientation", "covariance"}),
+                      {"x", "y", "z", "w"},
+                      {&out.orientation.x, &out.orientation.y, &out.orientation.z, &out.orientation.w});
+  reader.fixedNumbers("pose.covariance", reader.child("pose", pose, "covariance", {"position", "orientation", "covariance"}),
+                      out.pose_covariance.data(), out.pose_covariance.size());
+  const json* twist = reader.field("twist");
+  reader.numberObject("twist.linear", reader.child("twist", twist, "linear", {"linear", "angular", "covariance"}),
+                      {"x", "y", "z"}, {&out.linear.x, &out.linear.y, &out.linear.z});
+  reader.numberObject("twist.angular", reader.child("twist", twist, "angular", {"linear", "angular", "covariance"}),
+                      {"x", "y", "z"}, {&out.angular.x, &out.angular.y, &out.angular.z});
+  reader.fixedNumbers("twist.covariance", reader.child("twist", twist, "covariance", {"linear", "angular", "covariance"}),
+                      out.twist_covariance.data(), out.twist_covariance.size());
+}
+
+void fromJson(const json& value, geometry_msgs::Twist& out) {
+  FieldReader reader(geometry_msgs::Twist::kTypeName, value);
+  reader.numberObject("linear", reader.field("linear"), {"x", "y", "z"}, {&out.linear.x, &out.linear.y, &out.linear.z});
+  reader.numberObject("angular", reader.field("angular"), {"x", "y", "z"},
+                      {&out.angular.x, &out.angular.y, &out.angular.z});
+}
+
+void fromJson(const json& value, tf2_msgs::TFMessage& out) {
+  constexpr std::string_view type = tf2_msgs::TFMessage::kTypeName;
+  FieldReader reader(type, value);
+  const json* transforms = reader.field("transforms");
+  if (transforms == nullptr) return;
+  if (!transforms->is_array()) reader.fail("transforms", "a list of transforms", *transforms);
+  static const std::vector<std::string_view> fields = {"stamp", "frame_id", "child_frame_id", "translation",
+                                                       "rotation"};
+  out.transforms.assign(transforms->size(), {});
+  for (std::size_t i = 0; i < transforms->size(); ++i) {
+    const std::string where = "transforms[" + std::to_string(i) + "]";
+    FieldReader item(type, (*transforms)[i], fields, where);
+    auto& t = out.transforms[i];
+    item.number("stamp", t.stamp);
+    item.text("frame_id", t.frame_id);
+    item.text("child_frame_id", t.child_frame_id);
+    item.numberObject("translation", item.field("translation"), {"x", "y", "z"},
+                      {&t.translation.x, &t.translation.y, &t.translation.z});
+    item.numberObject("rotation", item.field("rotation"), {"x", "y", "z", "w"},
+                      {&t.rotation.x, &t.rotation.y, &t.rotation.z, &t.rotation.w});
+  }
+}
+
+void fromJson(const json& value, trajectory_msgs::JointTrajectory& out) {
+  constexpr std::string_view type = trajectory_msgs::JointTrajectory::kTypeName;
+  FieldReader reader(type, value);
+  reader.number("stamp", out.stamp);
+  reader.strings("joint_names", out.joint_names);
+  if (const json* points = reader.field("points")) {
+    if (!points->is_array()) reader.fail("points", "a list of points", *points);
+    out.points.assign(points->size(), {});
+    for (std::size_t i = 0; i < points->size(); ++i) {
+      pointFromJson(type, (*points)[i], "points[" + std::to_string(i) + "]", out.points[i]);
+    }
+  }
+}
+
+void fromJson(const json& value, control_msgs::JointTrajectoryControllerState& out) {
+  constexpr std::string_view type = control_msgs::JointTrajectoryControllerState::kTypeName;
+  FieldReader reader(type, value);
+  reader.number("stamp", out.stamp);
+  reader.strings("joint_names", out.joint_names);
+  if (const json* desired = reader.field("desired")) pointFromJson(type, *desired, "desired", out.desired);
+  if (const json* actual = reader.field("actual")) pointFromJson(type, *actual, "actual", out.actual);
+  if (const json* error = reader.field("error")) pointFromJson(type, *error, "error", out.error);
+}
+
+}  // namespace servoloop::node
