@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "child_process.hpp"
+#include "csv_columns.hpp"
 #include "temp_dir.hpp"
 
 namespace {
@@ -45,27 +46,6 @@ std::vector<std::string> backends() {
   names.push_back("mujoco");
 #endif
   return names;
-}
-
-// A CSV file as columns of numbers by header name.
-std::map<std::string, std::vector<double>> readCsv(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  std::stringstream header_stream(line);
-  for (std::string cell; std::getline(header_stream, cell, ',');) header.push_back(cell);
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    std::size_t i = 0;
-    for (std::string cell; std::getline(row, cell, ',') && i < header.size(); ++i) {
-      char* end = nullptr;
-      const double value = std::strtod(cell.c_str(), &end);
-      columns[header[i]].push_back(end != cell.c_str() ? value : NAN);  // joint names are text
-    }
-  }
-  return columns;
 }
 
 // Minimum-jerk position, velocity and acceleration from q0 to q1 over T.
@@ -96,7 +76,7 @@ LaunchRun launch(const fs::path& dir, const std::string& backend, const std::str
           " --duration " + std::to_string(duration) + " --record " + ns + "/arm_controller/state=state.csv",
       {dir, dir, {{"SERVOLOOP_PLUGIN_PATH", std::nullopt}, {"SERVOLOOP_RUN_DIR", dir.string()}}}, 300.0);
   EXPECT_EQ(result.status, 0) << result.err;
-  return {readCsv(dir / "state.csv"), result.out + result.err};
+  return {servoloop::testing::readCsvColumns(dir / "state.csv"), result.out + result.err};
 }
 
 std::string trajectoryPublish(const std::string& ns, const std::vector<std::string>& joints,

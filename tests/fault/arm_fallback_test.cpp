@@ -20,30 +20,13 @@
 #include <gtest/gtest.h>
 
 #include "child_process.hpp"
+#include "csv_columns.hpp"
 #include "temp_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 constexpr double kG = 9.81;
-
-std::map<std::string, std::vector<double>> readCsv(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  std::stringstream header_stream(line);
-  for (std::string cell; std::getline(header_stream, cell, ',');) header.push_back(cell);
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    std::size_t i = 0;
-    for (std::string cell; std::getline(row, cell, ',') && i < header.size(); ++i) {
-      columns[header[i]].push_back(std::strtod(cell.c_str(), nullptr));
-    }
-  }
-  return columns;
-}
 
 // Runs the arm with the faulting controller, with or without the fallback;
 // returns the recorded joint states.
@@ -83,7 +66,7 @@ std::map<std::string, std::vector<double>> run(bool with_fallback) {
       << "the fault is reported: " << result.err;
   // The node shuts down cleanly: the fallback is unloaded after the controller naming it.
   EXPECT_EQ(result.err.find("[E] unload"), std::string::npos) << result.err;
-  return readCsv(dir.path() / "joint_states.csv");
+  return servoloop::testing::readCsvColumns(dir.path() / "joint_states.csv");
 }
 
 // The index of the first row at or after time t.

@@ -118,4 +118,33 @@ double optionalNumber(const ControllerContext& context, const std::string& key, 
   }
 }
 
+double optionalNonNegative(const ControllerContext& context, const std::string& key, double fallback) {
+  const double value = optionalNumber(context, key, fallback);
+  if (value < 0.0) {
+    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) + "' is " +
+                      std::to_string(value) + "; it must be >= 0");
+  }
+  return value;
+}
+
+double optionalPositive(const ControllerContext& context, const std::string& key, double fallback) {
+  const double value = optionalNumber(context, key, fallback);
+  if (!(value > 0.0)) {
+    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) + "' is " +
+                      std::to_string(value) + "; it must be > 0");
+  }
+  return value;
+}
+
+bool optionalBool(const ControllerContext& context, const std::string& key, bool fallback) {
+  const params::Parameters value = context.params.child(key);
+  if (value.empty()) return fallback;
+  try {
+    return value.as<bool>();
+  } catch (const ConfigError&) {
+    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) +
+                      "' must be true or false, got " + value.describe());
+  }
+}
+
 }  // namespace servoloop::controllers

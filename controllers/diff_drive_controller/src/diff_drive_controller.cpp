@@ -24,26 +24,6 @@ std::vector<std::string> wheelNames(const cm::ControllerContext& context, const 
   return requireStringList(context, key, key + ": " + key + "_joint");
 }
 
-double positive(const cm::ControllerContext& context, const std::string& key, double fallback) {
-  const double value = optionalNumber(context, key, fallback);
-  if (!(value > 0.0)) {
-    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) + "' is " +
-                      std::to_string(value) + "; it must be > 0");
-  }
-  return value;
-}
-
-bool optionalFlag(const cm::ControllerContext& context, const std::string& key, bool fallback) {
-  const params::Parameters value = context.params.child(key);
-  if (value.empty()) return fallback;
-  try {
-    return value.as<bool>();
-  } catch (const ConfigError&) {
-    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) +
-                      "' must be true or false, got " + value.describe());
-  }
-}
-
 std::array<double, 6> diagonal(const cm::ControllerContext& context, const std::string& key) {
   std::array<double, 6> values{};
   const params::Parameters value = context.params.child(key);
@@ -83,23 +63,23 @@ bool DiffDriveController::init(hardware_interface::VelocityJointInterface* hw, c
     fromUrdf("wheel_separation");
     wheel_separation_ = wheelSeparationFromUrdf(*context.robot_model, left.front(), right.front(), context.name);
   } else {
-    wheel_separation_ = positive(context, "wheel_separation", 0.0);
+    wheel_separation_ = optionalPositive(context, "wheel_separation", 0.0);
   }
   if (context.params.child("wheel_radius").empty()) {
     fromUrdf("wheel_radius");
     wheel_radius_ = wheelRadiusFromUrdf(*context.robot_model, left.front(), context.name);
   } else {
-    wheel_radius_ = positive(context, "wheel_radius", 0.0);
+    wheel_radius_ = optionalPositive(context, "wheel_radius", 0.0);
   }
-  separation_multiplier_ = positive(context, "wheel_separation_multiplier", 1.0);
-  const double radius_multiplier = positive(context, "wheel_radius_multiplier", 1.0);
-  left_radius_multiplier_ = positive(context, "left_wheel_radius_multiplier", radius_multiplier);
-  right_radius_multiplier_ = positive(context, "right_wheel_radius_multiplier", radius_multiplier);
-  cmd_vel_timeout_ = positive(context, "cmd_vel_timeout", 0.5);
-  open_loop_ = optionalFlag(context, "open_loop", false);
-  publish_tf_ = optionalFlag(context, "enable_odom_tf", true);
-  publish_gate_.setRate(positive(context, "publish_rate", 50.0));
-  const double window = positive(context, "velocity_rolling_window_size", 10.0);
+  separation_multiplier_ = optionalPositive(context, "wheel_separation_multiplier", 1.0);
+  const double radius_multiplier = optionalPositive(context, "wheel_radius_multiplier", 1.0);
+  left_radius_multiplier_ = optionalPositive(context, "left_wheel_radius_multiplier", radius_multiplier);
+  right_radius_multiplier_ = optionalPositive(context, "right_wheel_radius_multiplier", radius_multiplier);
+  cmd_vel_timeout_ = optionalPositive(context, "cmd_vel_timeout", 0.5);
+  open_loop_ = optionalBool(context, "open_loop", false);
+  publish_tf_ = optionalBool(context, "enable_odom_tf", true);
+  publish_gate_.setRate(optionalPositive(context, "publish_rate", 50.0));
+  const double window = optionalPositive(context, "velocity_rolling_window_size", 10.0);
   odometry_.resize(static_cast<std::size_t>(window));
   linear_limiter_ = SpeedLimiter::fromParams(context, "linear/x");
   angular_limiter_ = SpeedLimiter::fromParams(context, "angular/z");

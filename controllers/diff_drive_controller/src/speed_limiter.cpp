@@ -8,17 +8,6 @@
 namespace servoloop::controllers::diff_drive_controller {
 namespace {
 
-bool flag(const controller_manager::ControllerContext& context, const std::string& key) {
-  const params::Parameters value = context.params.child(key);
-  if (value.empty()) return false;
-  try {
-    return value.as<bool>();
-  } catch (const ConfigError&) {
-    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) +
-                      "' must be true or false, got " + value.describe());
-  }
-}
-
 // One limit pair: max (default 0) and min (default −max); min <= max.
 void bounds(const controller_manager::ControllerContext& context, const std::string& prefix, const char* what,
             double& min, double& max) {
@@ -35,9 +24,9 @@ void bounds(const controller_manager::ControllerContext& context, const std::str
 
 SpeedLimiter SpeedLimiter::fromParams(const controller_manager::ControllerContext& context, const std::string& prefix) {
   SpeedLimiter limiter;
-  limiter.has_velocity_limits = flag(context, prefix + "/has_velocity_limits");
-  limiter.has_acceleration_limits = flag(context, prefix + "/has_acceleration_limits");
-  limiter.has_jerk_limits = flag(context, prefix + "/has_jerk_limits");
+  limiter.has_velocity_limits = optionalBool(context, prefix + "/has_velocity_limits", false);
+  limiter.has_acceleration_limits = optionalBool(context, prefix + "/has_acceleration_limits", false);
+  limiter.has_jerk_limits = optionalBool(context, prefix + "/has_jerk_limits", false);
   bounds(context, prefix, "velocity", limiter.min_velocity, limiter.max_velocity);
   bounds(context, prefix, "acceleration", limiter.min_acceleration, limiter.max_acceleration);
   bounds(context, prefix, "jerk", limiter.min_jerk, limiter.max_jerk);

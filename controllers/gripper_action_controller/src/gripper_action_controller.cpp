@@ -20,15 +20,6 @@ namespace {
 template <class Interface>
 constexpr bool kEffort = std::is_same_v<Interface, hi::EffortJointInterface>;
 
-double nonNegative(const controller_manager::ControllerContext& context, const std::string& key, double fallback) {
-  const double value = optionalNumber(context, key, fallback);
-  if (value < 0.0) {
-    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) + "' is " +
-                      std::to_string(value) + "; it must be >= 0");
-  }
-  return value;
-}
-
 // A goal as its sender sees it; holds what it reads, so it may outlive the controller.
 class GripperActionGoal : public servoloop::realtime::ActionGoal {
  public:
@@ -84,11 +75,11 @@ bool GripperActionController<Interface>::init(Interface* hw, const controller_ma
     pid_ = std::make_unique<Pid>();
     pid_->initFromParams(context.params.child(key), parameterPath(context, key));
   }
-  goal_tolerance_ = nonNegative(context, "goal_tolerance", 0.01);
-  default_max_effort_ = nonNegative(context, "max_effort", 0.0);
-  stall_velocity_threshold_ = nonNegative(context, "stall_velocity_threshold", 0.001);
-  stall_timeout_ = nonNegative(context, "stall_timeout", 1.0);
-  feedback_gate_.setRate(nonNegative(context, "action_monitor_rate", 20.0));
+  goal_tolerance_ = optionalNonNegative(context, "goal_tolerance", 0.01);
+  default_max_effort_ = optionalNonNegative(context, "max_effort", 0.0);
+  stall_velocity_threshold_ = optionalNonNegative(context, "stall_velocity_threshold", 0.001);
+  stall_timeout_ = optionalNonNegative(context, "stall_timeout", 1.0);
+  feedback_gate_.setRate(optionalNonNegative(context, "action_monitor_rate", 20.0));
   joint_ = getJointHandle(*hw, joint_name, context, "joint");
   if (context.actions != nullptr) {
     action_registration_ =

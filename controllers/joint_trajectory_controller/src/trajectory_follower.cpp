@@ -21,27 +21,6 @@ std::string joinNames(const std::vector<std::string>& names) {
   return text;
 }
 
-double positiveOrZero(const controller_manager::ControllerContext& context, const std::string& key,
-                      double fallback) {
-  const double value = optionalNumber(context, key, fallback);
-  if (value < 0.0) {
-    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) + "' is " +
-                      std::to_string(value) + "; it must be >= 0");
-  }
-  return value;
-}
-
-bool optionalBool(const controller_manager::ControllerContext& context, const std::string& key, bool fallback) {
-  const params::Parameters value = context.params.child(key);
-  if (value.empty()) return fallback;
-  try {
-    return value.as<bool>();
-  } catch (const ConfigError&) {
-    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) +
-                      "' must be true or false, got " + value.describe());
-  }
-}
-
 void resizePoint(servoloop::trajectory_msgs::JointTrajectoryPoint& point, std::size_t joints) {
   point.positions.assign(joints, 0.0);
   point.velocities.assign(joints, 0.0);
@@ -75,9 +54,9 @@ void TrajectoryFollower::init(const controller_manager::ControllerContext& conte
                   context.name);
   }
   default_tolerances_ = readTolerances(context, joint_names);
-  stop_trajectory_duration_ = positiveOrZero(context, "stop_trajectory_duration", 0.0);
-  state_gate_.setRate(positiveOrZero(context, "state_publish_rate", 50.0));
-  action_monitor_rate_ = positiveOrZero(context, "action_monitor_rate", 20.0);
+  stop_trajectory_duration_ = optionalNonNegative(context, "stop_trajectory_duration", 0.0);
+  state_gate_.setRate(optionalNonNegative(context, "state_publish_rate", 50.0));
+  action_monitor_rate_ = optionalNonNegative(context, "action_monitor_rate", 20.0);
   feedback_gate_.setRate(action_monitor_rate_);
   allow_partial_joints_goal_ = optionalBool(context, "allow_partial_joints_goal", false);
 

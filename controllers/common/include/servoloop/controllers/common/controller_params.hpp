@@ -39,6 +39,14 @@ double requireNumber(const ControllerContext& context, const std::string& key,
 // An optional finite number with a default.
 double optionalNumber(const ControllerContext& context, const std::string& key, double fallback);
 
+// An optional number that must be >= 0 (optionalNonNegative) or > 0
+// (optionalPositive); the error names the parameter, its value and the rule.
+double optionalNonNegative(const ControllerContext& context, const std::string& key, double fallback);
+double optionalPositive(const ControllerContext& context, const std::string& key, double fallback);
+
+// An optional true/false with a default.
+bool optionalBool(const ControllerContext& context, const std::string& key, bool fallback);
+
 // The number at value (or fallback when it is missing or null); where names
 // it in errors.
 double numberAt(const params::Parameters& value, const std::string& where, double fallback);
