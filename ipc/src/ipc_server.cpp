@@ -30,6 +30,9 @@ constexpr std::chrono::milliseconds kCloseGracePeriod{1000};
 // How long a closing connection waits for the replies its handlers deferred
 // (a controller switch waits for the control loop; see kMaxSwitchWait_s).
 constexpr std::chrono::milliseconds kDeferredReplyGracePeriod{60000};
+// How long a closing connection whose replies are written keeps reading (and
+// dropping) what its client still sends, waiting for the client to close.
+constexpr std::chrono::milliseconds kLingerPeriod{2000};
 // After accept() runs out of file descriptors, the listening socket stays
 // readable; pause accepting instead of spinning.
 constexpr std::chrono::milliseconds kAcceptPauseOnExhaustion{100};
@@ -185,7 +188,7 @@ void IpcServer::serviceLoop() {
     poll_fds.push_back({accepting ? listen_fd_.get() : -1, POLLIN, 0});
     for (const auto& connection : connections_) {
       short events = 0;
-      if (!connection->peer_finished_sending_ && connection->isOpen()) events |= POLLIN;
+      if (!connection->peer_finished_sending_ && (connection->lingering_ || connection->isOpen())) events |= POLLIN;
       if (connection->wantsPollOut()) events |= POLLOUT;
       poll_fds.push_back({connection->fd_.get(), events, 0});
       polled.push_back(connection);
@@ -260,6 +263,13 @@ void IpcServer::readFrom(IpcConnection& connection) {
   if (connection.peer_finished_sending_) return;
   char buffer[kReadChunkBytes];
   const ssize_t received = ::recv(connection.fd_.get(), buffer, sizeof(buffer), 0);
+  if (connection.lingering_) {
+    // Dropped unread; the end of the input (or an error) lets it close.
+    if (received == 0 || (received < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+      connection.peer_finished_sending_ = true;
+    }
+    return;
+  }
   if (received > 0) {
     connection.input_.append(buffer, static_cast<std::size_t>(received));
     handleInput(connection);
@@ -389,7 +399,18 @@ Clock::time_point IpcServer::reapConnections() {
               connection->close_deadline_ =
                   now + (connection->deferred_replies_ > 0 ? kDeferredReplyGracePeriod : kCloseGracePeriod);
             }
-            close_it = connection->drainedLocked() || now >= connection->close_deadline_;
+            if (connection->lingering_) {
+              close_it = connection->peer_finished_sending_ || now >= connection->close_deadline_;
+            } else if (connection->drainedLocked() && !connection->peer_finished_sending_) {
+              // Every reply is written but the client may still be sending:
+              // closing now could reset the connection and lose the last
+              // reply. Shut our side, drop its input until it closes.
+              ::shutdown(connection->fd_.get(), SHUT_WR);
+              connection->lingering_ = true;
+              connection->close_deadline_ = now + kLingerPeriod;
+            } else {
+              close_it = connection->drainedLocked() || now >= connection->close_deadline_;
+            }
             if (!close_it) next_deadline = std::min(next_deadline, connection->close_deadline_);
           }
           break;

@@ -104,6 +104,10 @@ class IpcConnection : public std::enable_shared_from_this<IpcConnection> {
   std::size_t input_scanned_ = 0;     // prefix of input_ known to hold no '\n'
   bool peer_finished_sending_ = false;
   std::chrono::steady_clock::time_point close_deadline_{};
+  // After the last reply of a closing connection is written: our side is shut
+  // down for writing and what the client still sends is read and dropped, so
+  // closing never resets the connection before the client read that reply.
+  bool lingering_ = false;
 };
 
 }  // namespace servoloop::ipc
