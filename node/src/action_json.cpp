@@ -125,12 +125,7 @@ json toJson(const control_msgs::FollowJointTrajectoryResult& result) {
 
 std::shared_ptr<realtime::ActionGoal> sendGoalJson(realtime::ActionRegistry& actions, std::string_view name,
                                                    std::string type, const json& goal) {
-  if (type.empty()) {
-    const std::string normalized = realtime::TopicBus::normalizeTopicName(name);
-    for (const realtime::ActionInfo& info : actions.list()) {
-      if (info.name == normalized) type = info.type;
-    }
-  }
+  if (type.empty()) type = actions.typeOf(name);
   if (type == kFollowJointTrajectory) {
     control_msgs::FollowJointTrajectoryGoal message;
     fromJson(goal, message);

@@ -394,13 +394,8 @@ json NodeOperations::actionSend(RobotInstance& robot, const json& request, ipc::
                   " goals of this socket are still followed; read their status (action.status) until they end");
     }
   }
-  std::shared_ptr<realtime::ActionGoal> goal = sendGoalJson(robot.actions(), name, type, request["goal"]);
-  std::string action_type = type;
-  if (action_type.empty()) {
-    for (const realtime::ActionInfo& info : robot.actions().list()) {
-      if (info.name == realtime::TopicBus::normalizeTopicName(name)) action_type = info.type;
-    }
-  }
+  const std::string action_type = type.empty() ? robot.actions().typeOf(name) : type;
+  std::shared_ptr<realtime::ActionGoal> goal = sendGoalJson(robot.actions(), name, action_type, request["goal"]);
   const std::uint64_t connection_id = connection.id();
   std::uint64_t id = 0;
   bool watch = false;

@@ -85,6 +85,13 @@ std::vector<ActionInfo> ActionRegistry::list() const {
   return infos;
 }
 
+std::string ActionRegistry::typeOf(std::string_view name) const {
+  const std::string normalized = TopicBus::normalizeTopicName(name);
+  std::lock_guard lock(core_->mutex);
+  const auto it = core_->actions.find(normalized);
+  return it == core_->actions.end() ? std::string() : it->second.type;
+}
+
 std::shared_ptr<ActionGoal> ActionRegistry::sendGoal(std::string_view name, std::string_view type, const void* goal) {
   const std::string normalized = TopicBus::normalizeTopicName(name);
   std::lock_guard lock(core_->mutex);

@@ -147,4 +147,10 @@ bool optionalBool(const ControllerContext& context, const std::string& key, bool
   }
 }
 
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
 }  // namespace servoloop::controllers

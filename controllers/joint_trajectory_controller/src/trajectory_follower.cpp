@@ -15,12 +15,6 @@ namespace servoloop::controllers::joint_trajectory_controller {
 
 namespace {
 
-std::string joinNames(const std::vector<std::string>& names) {
-  std::string text;
-  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
-
 void resizePoint(servoloop::trajectory_msgs::JointTrajectoryPoint& point, std::size_t joints) {
   point.positions.assign(joints, 0.0);
   point.velocities.assign(joints, 0.0);

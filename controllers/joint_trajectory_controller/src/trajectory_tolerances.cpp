@@ -24,12 +24,6 @@ double nonNegative(const controller_manager::ControllerContext& context, const p
   return number;
 }
 
-std::string joinNames(const std::vector<std::string>& names) {
-  std::string text;
-  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
-
 std::size_t indexOf(const std::vector<std::string>& names, const std::string& name) {
   return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
 }

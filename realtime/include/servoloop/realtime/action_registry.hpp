@@ -98,6 +98,8 @@ class ActionRegistry {
 
   // Every action, sorted by name.
   std::vector<ActionInfo> list() const;
+  // The type of the action `name`, "" when there is none.
+  std::string typeOf(std::string_view name) const;
 
   // Sends goal (the type's Goal struct) to the action `name`. Throws
   // servoloop::Error naming the action and the actions there are when there

@@ -39,6 +39,9 @@ double requireNumber(const ControllerContext& context, const std::string& key,
 // An optional finite number with a default.
 double optionalNumber(const ControllerContext& context, const std::string& key, double fallback);
 
+// "a, b, c": names for messages.
+std::string joinNames(const std::vector<std::string>& names);
+
 // An optional number that must be >= 0 (optionalNonNegative) or > 0
 // (optionalPositive); the error names the parameter, its value and the rule.
 double optionalNonNegative(const ControllerContext& context, const std::string& key, double fallback);
