@@ -33,6 +33,7 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   world_settings.initial_base_position = settings.base_position;
   world_settings.initial_base_orientation = settings.base_orientation;
   world_settings.self_collision = settings.self_collide;
+  world_settings.link_friction = settings.link_friction;
   for (const sim_common::EngineJointConfig& joint : joints) {
     if (!(joint.reflected_rotor_inertia > 0.0)) continue;
     const urdf::JointConstSharedPtr urdf_joint = model.getJoint(joint.name);

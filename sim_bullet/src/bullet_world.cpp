@@ -25,6 +25,8 @@
 #include "body_tree.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/sim_common/collision_mesh.hpp"
+#include "servoloop/sim_common/contact_friction.hpp"
+#include "servoloop/sim_common/wheel_contact.hpp"
 
 static_assert(std::is_same_v<btScalar, double>,
               "sim_bullet needs Bullet in double precision (the -float64 libraries and BT_USE_DOUBLE_PRECISION)");
@@ -46,6 +48,29 @@ constexpr int kSolverIterations = 50;
 constexpr double kMimicErrorReduction = 0.2;
 // Convex hulls get Bullet's margin outside the hull; keep it at 1 mm.
 constexpr double kMeshCollisionMargin = 0.001;
+// Bullet multiplies the two objects' coefficients; the ground's 1 makes a
+// contact with it take the link's own coefficient, as in Gazebo.
+constexpr double kGroundFriction = 1.0;
+
+// Per-collision friction for a body whose merged links differ (a caster fixed
+// to the base): the collider's user pointer holds one coefficient per child
+// of its compound shape, and Bullet calls this for each new contact point of
+// a collider flagged CF_CUSTOM_MATERIAL_CALLBACK (the index is the compound
+// child, -1 for a shape that is not a compound).
+double shapeFriction(const btCollisionObjectWrapper* wrapper, int child) {
+  const btCollisionObject* object = wrapper->getCollisionObject();
+  if ((object->getCollisionFlags() & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) != 0) {
+    const auto* per_child = static_cast<const std::vector<double>*>(object->getUserPointer());
+    if (per_child != nullptr && child >= 0 && child < static_cast<int>(per_child->size())) return (*per_child)[child];
+  }
+  return object->getFriction();
+}
+
+bool perShapeFriction(btManifoldPoint& point, const btCollisionObjectWrapper* object0, int /*part0*/, int index0,
+                      const btCollisionObjectWrapper* object1, int /*part1*/, int index1) {
+  point.m_combinedFriction = shapeFriction(object0, index0) * shapeFriction(object1, index1);
+  return true;
+}
 
 btVector3 toBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
 Eigen::Vector3d toEigen(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
@@ -100,6 +125,8 @@ struct BulletWorld::Impl {
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints;
   std::unique_ptr<btCollisionObject> ground;
+  // Per-child friction of colliders whose merged links differ (shapeFriction).
+  std::vector<std::unique_ptr<std::vector<double>>> child_friction;
 
   // Scratch for forward kinematics after a teleport, sized once.
   btAlignedObjectArray<btQuaternion> scratch_rotations;
@@ -264,7 +291,9 @@ struct BulletWorld::Impl {
     }
   }
 
-  btCollisionShape* makeShape(const detail::CollisionShapeSpec& spec) {
+  // `body`: the body the shape belongs to (a wheel is a shape of the link its
+  // joint turns, not one merged into it).
+  btCollisionShape* makeShape(const detail::CollisionShapeSpec& spec, const detail::Body& body) {
     const urdf::Geometry& g = *spec.geometry;
     std::unique_ptr<btCollisionShape> shape;
     switch (g.type) {
@@ -275,8 +304,12 @@ struct BulletWorld::Impl {
       }
       case urdf::Geometry::CYLINDER: {
         const auto& cylinder = static_cast<const urdf::Cylinder&>(g);
+        const bool wheel = spec.link_name == body.link_name &&
+                           sim_common::isWheelCylinder(body.joint, spec.pose_in_body_link.linear(), cylinder.radius,
+                                                       cylinder.length);
         shape = std::make_unique<btCylinderShapeZ>(
             btVector3(cylinder.radius, cylinder.radius, cylinder.length * 0.5));
+        if (wheel) shape->setMargin(0.5 * cylinder.length);  // a tyre's profile (wheel_contact.hpp)
         break;
       }
       case urdf::Geometry::SPHERE:
@@ -313,9 +346,11 @@ struct BulletWorld::Impl {
       const detail::Body& b = tree.bodies[k];
       auto compound = std::make_unique<btCompoundShape>();
       const Eigen::Isometry3d link_in_com = b.principal_in_link.inverse();
+      auto friction = std::make_unique<std::vector<double>>();  // per compound child
       for (const auto& spec : b.shapes) {
-        if (btCollisionShape* shape = makeShape(spec)) {
+        if (btCollisionShape* shape = makeShape(spec, b)) {
           compound->addChildShape(toBt(link_in_com * spec.pose_in_body_link), shape);
+          friction->push_back(sim_common::linkFriction(settings.link_friction, spec.link_name));
         }
       }
       const bool has_geometry = compound->getNumChildShapes() > 0;
@@ -329,6 +364,7 @@ struct BulletWorld::Impl {
         collider->setCollisionShape(empty.get());
         shapes.push_back(std::move(empty));
       }
+      setFriction(*collider, std::move(friction));
       const bool is_static = link == -1 && fixed_base;
       // A collider without geometry is in no collision group and tests no group.
       int group = has_geometry ? int(btBroadphaseProxy::DefaultFilter) : 0;
@@ -352,10 +388,28 @@ struct BulletWorld::Impl {
       auto plane = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0);
       ground = std::make_unique<btCollisionObject>();
       ground->setCollisionShape(plane.get());
+      ground->setFriction(kGroundFriction);
       shapes.push_back(std::move(plane));
       world->addCollisionObject(ground.get(), int(btBroadphaseProxy::StaticFilter),
                                 int(btBroadphaseProxy::AllFilter) ^ int(btBroadphaseProxy::StaticFilter));
     }
+  }
+
+  // The URDF's friction (Gazebo's 1 when it sets none) instead of Bullet's
+  // 0.5; one coefficient per merged link when they differ.
+  void setFriction(btMultiBodyLinkCollider& collider, std::unique_ptr<std::vector<double>> per_child) {
+    if (per_child->empty()) {
+      collider.setFriction(sim_common::kDefaultContactFriction);
+      return;
+    }
+    collider.setFriction(per_child->front());
+    const bool uniform = std::all_of(per_child->begin(), per_child->end(),
+                                     [&](double mu) { return mu == per_child->front(); });
+    if (uniform) return;
+    collider.setCollisionFlags(collider.getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    collider.setUserPointer(per_child.get());
+    child_friction.push_back(std::move(per_child));
+    gContactAddedCallback = &perShapeFriction;  // process-wide in Bullet; acts on flagged colliders only
   }
 
   // --- state --------------------------------------------------------------

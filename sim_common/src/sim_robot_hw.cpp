@@ -12,6 +12,7 @@
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
 #include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/sim_common/contact_friction.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 
 namespace servoloop::sim_common {
@@ -84,6 +85,7 @@ void SimRobotHW::init(const hi::HardwareInfo& info) {
 
   // World settings and motor parameters.
   settings_ = parseSimSettings(info.parameters, *model_, ns, urdf_self_collide_);
+  settings_.link_friction = std::move(urdf_link_friction_);
   checkBase(ns);
   configureActuators(ns, info.parameters);
 
@@ -142,6 +144,7 @@ void SimRobotHW::loadModel(const hi::HardwareInfo& info) {
   xml = simulatableUrdf(xml, source_name_).xml;
   urdf_self_collide_ = urdfRequestsSelfCollision(xml);
   model_ = parseRobotModel(xml, source_name_);
+  urdf_link_friction_ = urdfLinkFriction(xml, *model_, source_name_);
   transmissions::RobotTransmissions::Options options;
   options.implicit_simple_transmissions = true;
   options.source_name = source_name_;

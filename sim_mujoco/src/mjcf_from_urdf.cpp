@@ -12,6 +12,8 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/sim_common/collision_mesh.hpp"
+#include "servoloop/sim_common/contact_friction.hpp"
+#include "servoloop/sim_common/wheel_contact.hpp"
 
 namespace servoloop::sim_mujoco {
 namespace {
@@ -80,7 +82,10 @@ class MjcfWriter {
     if (settings_.ground_plane) {
       // Without self-collision the robot's geoms (contype 1, conaffinity 2)
       // touch the ground (contype 2, conaffinity 1) but not each other.
-      world << "    <geom name=\"servoloop_ground_plane\" type=\"plane\" size=\"0 0 1\""
+      // MuJoCo takes the larger of two geoms' friction and contact dimension:
+      // a frictionless, normal-only ground leaves each contact the link's own.
+      world << "    <geom name=\"servoloop_ground_plane\" type=\"plane\" size=\"0 0 1\" friction=\"0 0 0\" "
+               "condim=\"1\""
             << (settings_.self_collide ? "" : " contype=\"2\" conaffinity=\"1\"") << "/>\n";
     }
     if (root_is_world) {
@@ -260,7 +265,7 @@ class MjcfWriter {
     for (const auto& collision : collisions) {
       if (!collision || !collision->geometry) continue;
       const urdf::Geometry& geometry = *collision->geometry;
-      const std::string pose = poseAttributes(collision->origin);
+      const std::string pose = poseAttributes(collision->origin) + frictionAttributes(link);
       switch (geometry.type) {
         case urdf::Geometry::BOX: {
           const auto& box = static_cast<const urdf::Box&>(geometry);
@@ -270,7 +275,13 @@ class MjcfWriter {
         }
         case urdf::Geometry::CYLINDER: {  // both along the local z axis
           const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
-          out << indent << "<geom type=\"cylinder\" " << pose << " size=\"" << number(cylinder.radius) << " "
+          const urdf::Rotation& q = collision->origin.rotation;
+          const bool wheel = sim_common::isWheelCylinder(
+              link.parent_joint.get(), Eigen::Quaterniond(q.w, q.x, q.y, q.z).toRotationMatrix(), cylinder.radius,
+              cylinder.length);
+          // A wheel's tyre profile (wheel_contact.hpp): same radius, touching in the middle plane.
+          out << indent << "<geom type=\"" << (wheel ? "ellipsoid" : "cylinder") << "\" " << pose << " size=\""
+              << number(cylinder.radius) << " " << (wheel ? number(cylinder.radius) + " " : std::string())
               << number(cylinder.length / 2) << "\"/>\n";
           break;
         }
@@ -286,6 +297,14 @@ class MjcfWriter {
           break;
       }
     }
+  }
+
+  // The link's Gazebo <mu1>/<mu2> as the geom's sliding friction (MuJoCo's
+  // default torsional and rolling terms, used only with condim > 3); a
+  // frictionless link has normal-only contacts.
+  std::string frictionAttributes(const urdf::Link& link) const {
+    const double mu = sim_common::linkFriction(settings_.link_friction, link.name);
+    return " friction=\"" + number(mu) + " 0.005 0.0001\"" + (mu == 0.0 ? " condim=\"1\"" : "");
   }
 
   std::string addMesh(const urdf::Link& link, const urdf::Mesh& mesh) {

@@ -53,7 +53,8 @@ TEST_F(CheckUrdfTest, SeedWithoutTransmissionNotesTheImplicitOne) {
                                     "      limits: position unlimited (wraps), velocity -, effort -\n"));
   EXPECT_THAT(result.out, HasSubstr("transmissions: none\n"));
   EXPECT_THAT(result.out,
-              HasSubstr("  joint1: JointStateInterface, EffortJointInterface  (no <transmission>: "
+              HasSubstr("  joint1: JointStateInterface, EffortJointInterface, VelocityJointInterface, "
+                        "PositionJointInterface  (no <transmission>: "
                         "implicit SimpleTransmission, reduction 1, actuator joint1_motor)\n"));
 
   result = runCli({"check-urdf", "--json", urdf}, run_dir_.scratch());
@@ -70,7 +71,8 @@ TEST_F(CheckUrdfTest, SeedWithoutTransmissionNotesTheImplicitOne) {
   EXPECT_EQ(joint["limits"], json({{"wraps", true}}));
   const auto hardware_joint = report["hardware"]["joints"][0];
   EXPECT_EQ(hardware_joint["name"], "joint1");
-  EXPECT_EQ(hardware_joint["interfaces"], json({"JointStateInterface", "EffortJointInterface"}));
+  EXPECT_EQ(hardware_joint["interfaces"], json({"JointStateInterface", "EffortJointInterface", "VelocityJointInterface",
+                                                     "PositionJointInterface"}));
   EXPECT_EQ(hardware_joint["implicit_transmission"], true);
 }
 

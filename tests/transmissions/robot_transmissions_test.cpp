@@ -133,6 +133,8 @@ TEST(RobotTransmissions, ImplicitTransmissionForRobotWithoutTransmissions) {
   EXPECT_EQ(rt->actuatorName(ActuatorIndex(0)), "joint1_motor");
   EXPECT_EQ(rt->implicitTransmissionJoints(), std::vector<std::string>{"joint1"});
   EXPECT_TRUE(rt->jointCommandInterfaces(JointIndex(0)).effort);
+  EXPECT_TRUE(rt->jointCommandInterfaces(JointIndex(0)).velocity);
+  EXPECT_TRUE(rt->jointCommandInterfaces(JointIndex(0)).position);
 
   const std::string log = sink_stream->str();
   EXPECT_NE(log.find("joint1"), std::string::npos) << log;

@@ -3,8 +3,8 @@
 // joint with its axis, limits, dynamics and soft limits, the transmissions, and
 // what a simulated robot's hardware will expose: the joints' state and command
 // interfaces, built the way the simulation backends build them (a joint that no
-// <transmission> names gets an implicit SimpleTransmission with
-// EffortJointInterface).
+// <transmission> names gets an implicit SimpleTransmission with the effort,
+// velocity and position joint interfaces).
 #include <algorithm>
 #include <fstream>
 #include <iostream>

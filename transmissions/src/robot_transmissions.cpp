@@ -57,16 +57,20 @@ RobotTransmissions::RobotTransmissions(const urdf::ModelInterface& robot,
       TransmissionInfo info;
       info.name = name + "_implicit_transmission";
       info.type = kSimpleTransmissionType;
-      info.joints.push_back({name, {"EffortJointInterface"}, "", 1.0, 0.0});
-      info.actuators.push_back({name + "_motor", {"EffortJointInterface"}, "", 1.0});
+      // Every joint command interface: the controller that claims the joint
+      // chooses effort, velocity or position (a diff drive's wheels take velocity).
+      const std::vector<std::string> interfaces{"EffortJointInterface", "VelocityJointInterface",
+                                                "PositionJointInterface"};
+      info.joints.push_back({name, interfaces, "", 1.0, 0.0});
+      info.actuators.push_back({name + "_motor", interfaces, "", 1.0});
       addTransmission(info, robot, options);
       implicit_joints_.push_back(name);
     }
     if (!implicit_joints_.empty()) {
       logger().info(
           "{}: robot '{}': no <transmission> for joint(s) {}; using an implicit "
-          "SimpleTransmission for each (reduction 1, offset 0, EffortJointInterface, actuator "
-          "'<joint>_motor')",
+          "SimpleTransmission for each (reduction 1, offset 0, actuator '<joint>_motor'; effort, velocity "
+          "or position, as the controller that claims it asks)",
           options.source_name, robot.getName(), joinNames(implicit_joints_));
     }
   }

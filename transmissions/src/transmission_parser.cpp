@@ -428,8 +428,8 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
       // simulation skips it and drives the joints as if it were not there.
       logger().warn(
           "{}: transmission {}: the pre-ros_control form (type=\"{}\" attribute, no <hardwareInterface>) is "
-          "skipped; its joints get the implicit SimpleTransmission (EffortJointInterface, reduction 1) when "
-          "simulated. To keep it, write <type>transmission_interface/SimpleTransmission</type> and put "
+          "skipped; its joints get the implicit SimpleTransmission (reduction 1; effort, velocity or position "
+          "joint interface) when simulated. To keep it, write <type>transmission_interface/SimpleTransmission</type> and put "
           "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface> in each <joint>",
           source_name, label, element->Attribute("type"));
       continue;

@@ -9,10 +9,11 @@
 
 namespace servoloop::controllers {
 
-void CommandTimeout::init(const controller_manager::ControllerContext& context, const std::string& fallback) {
-  timeout_s_ = optionalNumber(context, "command_timeout", 0.0);
+void CommandTimeout::init(const controller_manager::ControllerContext& context, const std::string& fallback,
+                          const std::string& parameter, double default_s, const std::string& command_topic) {
+  timeout_s_ = optionalNumber(context, parameter, default_s);
   if (!(timeout_s_ >= 0.0)) {
-    throw ConfigError("controller '" + context.name + "': " + parameterPath(context, "command_timeout") + " is " +
+    throw ConfigError("controller '" + context.name + "': " + parameterPath(context, parameter) + " is " +
                       std::to_string(timeout_s_) +
                       "; give the seconds without a command after which it stops (0: never)");
   }
@@ -21,12 +22,12 @@ void CommandTimeout::init(const controller_manager::ControllerContext& context, 
   publisher_ = context.topics->advertise<servoloop::std_msgs::Float64>(topic);
   auto logged = std::make_shared<std::atomic<bool>>(false);
   reporter_ = context.topics->subscribe<servoloop::std_msgs::Float64>(
-      topic, [name = context.name, command = controllerTopic(context, "command"), timeout = timeout_s_, fallback,
-              topic, logged](const servoloop::std_msgs::Float64& msg) {
+      topic, [name = context.name, command = controllerTopic(context, command_topic), timeout = timeout_s_, fallback,
+              parameter, topic, logged](const servoloop::std_msgs::Float64& msg) {
         if (logged->exchange(true)) return;
-        logger().warn("controller '{}': no command on {} for {} s (command_timeout) at t = {} s: {} until the next "
+        logger().warn("controller '{}': no command on {} for {} s ({}) at t = {} s: {} until the next "
                       "one (further timeouts are published on {})",
-                      name, command, timeout, msg.data, fallback, topic);
+                      name, command, timeout, parameter, msg.data, fallback, topic);
       });
 }
 

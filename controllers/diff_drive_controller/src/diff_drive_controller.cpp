@@ -76,6 +76,8 @@ bool DiffDriveController::init(hardware_interface::VelocityJointInterface* hw, c
   left_radius_multiplier_ = optionalPositive(context, "left_wheel_radius_multiplier", radius_multiplier);
   right_radius_multiplier_ = optionalPositive(context, "right_wheel_radius_multiplier", radius_multiplier);
   cmd_vel_timeout_ = optionalPositive(context, "cmd_vel_timeout", 0.5);
+  timeout_.init(context, "the base brakes to a stop within the acceleration limits", "cmd_vel_timeout", 0.5,
+                "cmd_vel");
   open_loop_ = optionalBool(context, "open_loop", false);
   publish_tf_ = optionalBool(context, "enable_odom_tf", true);
   publish_gate_.setRate(optionalPositive(context, "publish_rate", 50.0));
@@ -132,6 +134,7 @@ void DiffDriveController::brake() noexcept {
 void DiffDriveController::starting(const Time& time) {
   brake();
   command_ = Command{0.0, 0.0, time.seconds};
+  timeout_.disarm();  // standing still is no timeout
   command_input_.clear();
   odometry_.setWheelParams(separation_multiplier_ * wheel_separation_, left_radius_multiplier_ * wheel_radius_,
                            right_radius_multiplier_ * wheel_radius_);
@@ -159,13 +162,17 @@ ReturnType DiffDriveController::update(const Time& time, const Duration& period)
     if (const servoloop::geometry_msgs::Twist* msg = command_input_.latest()) {
       if (std::isfinite(msg->linear.x) && std::isfinite(msg->angular.z)) {
         command_ = Command{msg->linear.x, msg->angular.z, time.seconds};
+        timeout_.restart(time);
       } else {
         rejected_->fetch_add(1, std::memory_order_relaxed);
       }
     }
   }
   Command command = command_;
-  if (time.seconds - command.stamp > cmd_vel_timeout_) command.linear = command.angular = 0.0;
+  if (time.seconds - command.stamp > cmd_vel_timeout_) {
+    command.linear = command.angular = 0.0;
+    timeout_.expired(time);  // reports the first cycle of each timeout
+  }
   linear_limiter_.limit(command.linear, last0_.linear, last1_.linear, period.seconds);
   angular_limiter_.limit(command.angular, last0_.angular, last1_.angular, period.seconds);
   last1_ = last0_;

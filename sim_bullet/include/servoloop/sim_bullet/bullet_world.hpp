@@ -42,6 +42,9 @@ struct WorldSettings {
   // chain whose axes are not perpendicular feel it too (see
   // docs/simulation.md, the bullet section). Prismatic joints are rejected.
   std::map<std::string, double> reflected_rotor_inertia;
+  // Contact friction coefficient by link name (sim_common/contact_friction.hpp);
+  // links not listed have 1. A contact with the ground plane has the link's.
+  std::map<std::string, double> link_friction;
 };
 
 enum class JointType { revolute, continuous, prismatic };

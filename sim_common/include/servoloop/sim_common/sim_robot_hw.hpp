@@ -28,6 +28,7 @@
 // unless marked).
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -135,6 +136,7 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   std::string source_name_;
   std::shared_ptr<const urdf::ModelInterface> model_;
   bool urdf_self_collide_ = false;  // <gazebo><self_collide> of the description
+  std::map<std::string, double> urdf_link_friction_;  // <gazebo reference><mu1>/<mu2>, by link
   std::unique_ptr<transmissions::RobotTransmissions> transmissions_;
   hardware_interface::RobotJointLimits joint_limits_;
   SimSettings settings_;

@@ -54,6 +54,9 @@ struct SimSettings {
   Eigen::Quaterniond base_orientation{Eigen::Quaterniond::Identity()};
   // Collisions between the robot's own links (parent and child never collide).
   bool self_collide = false;
+  // Contact friction coefficient per link, from the URDF's <gazebo reference>
+  // <mu1>/<mu2> (contact_friction.hpp); links not listed have 1, Gazebo's default.
+  std::map<std::string, double> link_friction;
 };
 
 // True when the URDF asks for self-collision the Gazebo way: a

@@ -7,7 +7,8 @@
 // (std_msgs/Float64: the control time it happened), and the first one is
 // logged as a warning by a subscriber on the bus's delivery thread.
 //
-// Parameter: command_timeout (s, finite, >= 0; default 0: never times out).
+// Parameter: command_timeout (s, finite, >= 0; default 0: never times out), or
+// the name and default the controller gives.
 #include <atomic>
 #include <cstdint>
 #include <string>
@@ -26,16 +27,23 @@ class CommandTimeout {
   CommandTimeout(const CommandTimeout&) = delete;
   CommandTimeout& operator=(const CommandTimeout&) = delete;
 
-  // Non-real-time. Reads `command_timeout`; fallback says what the controller
-  // does on a timeout, for the log ("the effort command goes to 0").
-  // Throws servoloop::ConfigError for a value that is not a finite number >= 0.
-  void init(const controller_manager::ControllerContext& context, const std::string& fallback);
+  // Non-real-time. Reads `parameter` (a diff drive's is cmd_vel_timeout, for
+  // commands on its cmd_vel topic); fallback says what the controller does on
+  // a timeout, for the log ("the effort command goes to 0"). Throws
+  // servoloop::ConfigError for a value that is not a finite number >= 0.
+  void init(const controller_manager::ControllerContext& context, const std::string& fallback,
+            const std::string& parameter = "command_timeout", double default_s = 0.0,
+            const std::string& command_topic = "command");
 
   // Real-time: the clock starts again (a controller's starting(), or a command).
   void restart(const Time& time) noexcept {
     last_command_ = time;
     timed_out_ = false;
   }
+
+  // Real-time: nothing times out until the next restart() (a controller that
+  // starts with nothing to keep doing: no warning before the first command).
+  void disarm() noexcept { timed_out_ = true; }
 
   // Real-time: true in the one cycle the timeout is reached (the controller
   // then writes its fallback command, which stays until a command arrives).

@@ -10,7 +10,9 @@
 //   wheel_separation_multiplier       1.0
 //   left_wheel_radius_multiplier,     1.0 each (wheel_radius_multiplier sets both)
 //   right_wheel_radius_multiplier
-//   cmd_vel_timeout                   0.5 s: with no command for longer, the base stops
+//   cmd_vel_timeout                   0.5 s: with no command for longer, the base stops;
+//                                     the first timeout is logged, each one published on
+//                                     <robot ns>/<controller>/command_timed_out
 //   linear/x/..., angular/z/...       velocity, acceleration and jerk limits (speed_limiter.hpp)
 //   publish_rate                      50 Hz of odom and tf
 //   velocity_rolling_window_size      10 updates averaged for the odometry's velocities
@@ -35,6 +37,7 @@
 #include <vector>
 
 #include "servoloop/controller_manager/controller.hpp"
+#include "servoloop/controllers/common/command_timeout.hpp"
 #include "servoloop/controllers/common/periodic_gate.hpp"
 #include "servoloop/controllers/diff_drive_controller/odometry.hpp"
 #include "servoloop/controllers/diff_drive_controller/speed_limiter.hpp"
@@ -91,6 +94,7 @@ class DiffDriveController : public controller_manager::Controller<hardware_inter
   // Controller-thread state.
   Odometry odometry_;
   Command command_;              // the newest usable command
+  CommandTimeout timeout_;       // reports cmd_vel_timeout (the zeroing is update()'s)
   Command last0_, last1_;        // the limited commands of the last two cycles
 };
 
