@@ -28,6 +28,7 @@
 
 #include "child_process.hpp"
 #include "csv_columns.hpp"
+#include "physics_backends.hpp"
 #include "temp_dir.hpp"
 
 namespace {
@@ -36,17 +37,6 @@ namespace fs = std::filesystem;
 const fs::path kRobots = fs::path(SERVOLOOP_SOURCE_DIR) / "robots";
 constexpr double kG = 9.81;
 constexpr double kDt = 0.001;
-
-std::vector<std::string> backends() {
-  std::vector<std::string> names;
-#ifdef SERVOLOOP_HAVE_BULLET
-  names.push_back("bullet");
-#endif
-#ifdef SERVOLOOP_HAVE_MUJOCO
-  names.push_back("mujoco");
-#endif
-  return names;
-}
 
 // Minimum-jerk position, velocity and acceleration from q0 to q1 over T.
 struct Quintic {
@@ -130,7 +120,7 @@ TEST(TrajectoryTracking, SeedRobotFollowsAMinimumJerkMoveWithinItsBound) {
   const double load = I * move.maxAcceleration() + b * move.maxVelocity() + m_g_r * std::sin(1.0);
   const double bound = 1.5 * (load / kp + move.maxVelocity() * kDt);
   const std::string urdf = (kRobots / "one_dof" / "minimal_robot_description_w_jnt_ctl.urdf").string();
-  for (const std::string& backend : backends()) {
+  for (const std::string& backend : servoloop::testing::physicsBackends()) {
     SCOPED_TRACE(backend);
     servoloop::testing::TempDir dir("servoloop-jtc-seed");
     const LaunchRun run = launch(dir.path(), backend, "/one_DOF_robot",
@@ -218,7 +208,7 @@ TEST(TrajectoryTracking, SixJointChainFollowsAMinimumJerkMoveWithinItsBound) {
     constraints += "      " + joints[j] + ": {goal: " + std::to_string(bound[j]) + "}\n";
   }
   const std::string urdf = (kRobots / "chain" / "chain.urdf").string();
-  for (const std::string& backend : backends()) {
+  for (const std::string& backend : servoloop::testing::physicsBackends()) {
     SCOPED_TRACE(backend);
     servoloop::testing::TempDir dir("servoloop-jtc-chain");
     const LaunchRun run = launch(dir.path(), backend, "/robot",

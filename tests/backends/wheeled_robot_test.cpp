@@ -32,6 +32,7 @@
 
 #include "child_process.hpp"
 #include "csv_columns.hpp"
+#include "physics_backends.hpp"
 #include "temp_dir.hpp"
 
 namespace {
@@ -42,17 +43,6 @@ constexpr double kCommandTime = 0.5;  // s: the robot has settled on its wheels 
 // The controller's limits (robots/diff_bot/control_config): m/s² and rad/s².
 constexpr double kLinearAcceleration = 1.0;
 constexpr double kAngularAcceleration = 3.0;
-
-std::vector<std::string> backends() {
-  std::vector<std::string> names;
-#ifdef SERVOLOOP_HAVE_BULLET
-  names.push_back("bullet");
-#endif
-#ifdef SERVOLOOP_HAVE_MUJOCO
-  names.push_back("mujoco");
-#endif
-  return names;
-}
 
 struct Pose2D {
   double x = 0.0, y = 0.0, yaw = 0.0;
@@ -351,7 +341,7 @@ TEST_P(WheeledRobot, CasterFrictionIsTheCastersOwn) {
   EXPECT_LT(end.x, 0.2 * commandedPose(0.5, 0.0, run.truth.time.back()).x) << "the caster did not drag";
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, WheeledRobot, ::testing::ValuesIn(backends()),
+INSTANTIATE_TEST_SUITE_P(Backends, WheeledRobot, ::testing::ValuesIn(servoloop::testing::physicsBackends()),
                          [](const auto& info) { return info.param; });
 
 }  // namespace
