@@ -25,7 +25,6 @@ const char* toString(FaultKind kind) noexcept {
     case FaultKind::update_returned_error: return "update() returned ReturnType::error";
     case FaultKind::non_finite_command: return "a command was not finite";
     case FaultKind::stopping_threw: return "stopping() threw";
-    case FaultKind::hardware_switch_threw: return "RobotHW::doSwitch threw";
   }
   return "unknown fault";
 }

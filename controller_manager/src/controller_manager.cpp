@@ -51,8 +51,7 @@ ControllerManager::ControllerManager(hardware_interface::RobotHW* robot_hw,
       factory_(std::move(factory)),
       parameters_(std::move(parameters)),
       context_template_(std::move(context_template)),
-      update_rate_hz_(update_rate_hz),
-      hardware_fault_(std::make_unique<detail::FaultRecord>()) {
+      update_rate_hz_(update_rate_hz) {
   asymmetric_list_fence_ = asymmetric_fence::available();
   if (robot_hw_ == nullptr) throw Error("ControllerManager: the RobotHW pointer is null");
   if (!factory_) throw Error("ControllerManager: the controller factory is null");
@@ -405,13 +404,6 @@ std::vector<ControllerFault> ControllerManager::processFaultsLocked() {
     entry->last_fault = message;
     faults.push_back(ControllerFault{entry->name, record.kind, std::move(message)});
     record.pending.store(false, std::memory_order_release);
-  }
-  if (hardware_fault_->pending.load(std::memory_order_acquire)) {
-    std::string message = std::string("the hardware's doSwitch threw during a controller switch: ") +
-                          hardware_fault_->what.data();
-    logger().error("{}", message);
-    faults.push_back(ControllerFault{"", FaultKind::hardware_switch_threw, std::move(message)});
-    hardware_fault_->pending.store(false, std::memory_order_release);
   }
   return faults;
 }

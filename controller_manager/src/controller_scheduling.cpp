@@ -2,6 +2,7 @@
 // loop's thread: no allocation, no locks, no logging, nothing thrown out of it.
 // Faults are written to preallocated records that processFaults() reports.
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 
@@ -139,7 +140,26 @@ void ControllerManager::executeSwitch(const Time& time) noexcept {
     switch_plan_.aborted = true;  // a fallback took over since the plan was made
     return;
   }
-  // Stop list first.
+  // The hardware's mode switch first: when it cannot carry it out, nothing
+  // changes (no controller stops or starts) and the request fails.
+  const char* what = "returned an error";
+  const char* detail = "";
+  ReturnType modes = ReturnType::error;
+  try {
+    modes = robot_hw_->doSwitch(switch_plan_.start_infos, switch_plan_.stop_infos);
+  } catch (const std::exception& e) {
+    what = "threw: ";
+    detail = e.what();
+  } catch (...) {
+    what = "threw an exception not derived from std::exception";
+  }
+  if (modes != ReturnType::ok) {
+    // Copied here, without allocating: an exception's message dies with it.
+    std::snprintf(switch_plan_.hardware_error.data(), switch_plan_.hardware_error.size(), "%s%s", what, detail);
+    switch_plan_.hardware_refused = true;
+    return;
+  }
+  // Then the stop list.
   for (detail::ControllerEntry* entry : switch_plan_.stop) {
     try {
       entry->controller->stopRequest(time);
@@ -148,15 +168,6 @@ void ControllerManager::executeSwitch(const Time& time) noexcept {
     } catch (...) {
       contain(*entry, FaultKind::stopping_threw, "an exception not derived from std::exception");
     }
-  }
-  // Then the hardware's mode switch.
-  try {
-    robot_hw_->doSwitch(switch_plan_.start_infos, switch_plan_.stop_infos);
-  } catch (const std::exception& e) {
-    hardware_fault_->publish(FaultKind::hardware_switch_threw, e.what());
-  } catch (...) {
-    hardware_fault_->publish(FaultKind::hardware_switch_threw,
-                             "an exception not derived from std::exception");
   }
   // Then the start list. Their first update comes in the next cycle.
   for (std::size_t i = 0; i < switch_plan_.start.size(); ++i) {

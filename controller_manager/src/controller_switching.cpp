@@ -76,8 +76,16 @@ bool ControllerManager::switchPending() const {
   return phase == SwitchPhase::pending || phase == SwitchPhase::executing;
 }
 
+ServiceResult ControllerManager::finishSwitch() {
+  std::lock_guard<std::mutex> lock(services_mutex_);
+  if (switch_phase_.load(std::memory_order_acquire) != SwitchPhase::done) return ServiceResult::success();
+  return completeSwitchLocked(/*announce=*/false);
+}
+
 void ControllerManager::finishDoneSwitchLocked() {
-  if (switch_phase_.load() == SwitchPhase::done) switch_phase_.store(SwitchPhase::idle);
+  if (switch_phase_.load(std::memory_order_acquire) == SwitchPhase::done) {
+    completeSwitchLocked(/*announce=*/false);  // a failure is logged
+  }
 }
 
 ServiceResult ControllerManager::prepareSwitchLocked(const SwitchRequest& request,
@@ -176,6 +184,7 @@ ServiceResult ControllerManager::prepareSwitchLocked(const SwitchRequest& reques
   switch_plan_.start_failed.assign(switch_plan_.start.size(), 0);
   switch_plan_.fallback_epoch = fallback_epoch;
   switch_plan_.aborted = false;
+  switch_plan_.hardware_refused = false;
   switch_phase_.store(SwitchPhase::pending, std::memory_order_release);
   return ServiceResult::success();
 }
@@ -195,7 +204,17 @@ ServiceResult ControllerManager::waitForSwitchLocked(double timeout_s) {
     }
     std::this_thread::sleep_for(std::chrono::microseconds(100));
   }
+  return completeSwitchLocked(/*announce=*/true);
+}
 
+ServiceResult ControllerManager::completeSwitchLocked(bool announce) {
+  if (switch_plan_.hardware_refused) {
+    const std::string why = switch_plan_.hardware_error.data();
+    switch_phase_.store(SwitchPhase::idle);
+    return fail("switch controllers: the hardware could not change its command modes for start [" +
+                joinNames(switch_plan_.start) + "], stop [" + joinNames(switch_plan_.stop) + "] (RobotHW::doSwitch " +
+                why + "); nothing was switched: the running controllers run on");
+  }
   const std::vector<ControllerFault> faults = processFaultsLocked();
   if (switch_plan_.aborted) {
     switch_phase_.store(SwitchPhase::idle);
@@ -211,8 +230,10 @@ ServiceResult ControllerManager::waitForSwitchLocked(double timeout_s) {
     const detail::ControllerEntry* entry = switch_plan_.start[i];
     failed_to_start += (failed_to_start.empty() ? "" : "; ") + entry->last_fault;
   }
-  logger().info("switched controllers: started [{}], stopped [{}]", joinNames(switch_plan_.start),
-                joinNames(switch_plan_.stop));
+  if (announce) {
+    logger().info("switched controllers: started [{}], stopped [{}]", joinNames(switch_plan_.start),
+                  joinNames(switch_plan_.stop));
+  }
   switch_phase_.store(SwitchPhase::idle);
   if (!failed_to_start.empty()) {
     return fail("switch controllers: the switch was carried out, but " + failed_to_start);

@@ -51,7 +51,15 @@ Duration chooseWallPeriod(const WallClockLoop::Options& options, const Controlle
 WallClockLoop::WallClockLoop(hardware_interface::RobotHW& hw, ControllerManager& manager, Options options)
     : ControlLoop(hw, manager, options, chooseWallPeriod(options, manager)),
       period_ns_(std::llround(controlPeriod().seconds * kNsPerSecond)),
-      origin_ns_(loop_clock::nowNs()) {}
+      simulated_(options.step_simulation ? dynamic_cast<hardware_interface::SimulatedRobotHW*>(&hw) : nullptr) {
+  if (simulated_ != nullptr && std::abs(simulated_->timeStep().seconds - controlPeriod().seconds) >
+                                   1e-9 * controlPeriod().seconds) {
+    throw ConfigError(fmt::format(
+        "WallClockLoop: a simulated robot on the wall clock is stepped once per cycle, but its time step {} s "
+        "is not the cycle period {} s; set the time step to 1 / the update rate ({} Hz)",
+        simulated_->timeStep().seconds, controlPeriod().seconds, 1.0 / controlPeriod().seconds));
+  }
+}
 
 void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool>* external_stop) {
   const std::int64_t run_start_ns = loop_clock::nowNs();
@@ -65,6 +73,7 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   while (deadline_ns < run_end_ns && !shouldStop(external_stop)) {
     loop_clock::sleepUntilNs(deadline_ns);
     const std::int64_t start_ns = loop_clock::nowNs();
+    if (origin_ns_ < 0) origin_ns_ = start_ns;
     const Time time(static_cast<double>(start_ns - origin_ns_) / kNsPerSecond);
     const Duration period(previous_start_ns < 0 ? controlPeriod().seconds
                                                 : static_cast<double>(start_ns - previous_start_ns) / kNsPerSecond);
@@ -74,6 +83,15 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
     readHardware(time, period, cycles_);
     updateControllers(time, period);
     writeHardware(time, period, cycles_);
+    if (simulated_ != nullptr) {
+      ReturnType stepped = ReturnType::error;
+      try {
+        stepped = simulated_->step();
+      } catch (...) {
+        // step() must not throw; counted and reported as an error of step().
+      }
+      recordHardwareResult(HardwareCall::step, stepped, time, cycles_);
+    }
     finishCycle();
     ++cycles_;
     control_time_s_ += period.seconds;

@@ -24,6 +24,8 @@ bool RobotHW::prepareSwitch(const std::vector<ControllerInfo>&,
   return true;
 }
 
-void RobotHW::doSwitch(const std::vector<ControllerInfo>&, const std::vector<ControllerInfo>&) {}
+ReturnType RobotHW::doSwitch(const std::vector<ControllerInfo>&, const std::vector<ControllerInfo>&) {
+  return ReturnType::ok;
+}
 
 }  // namespace servoloop::hardware_interface

@@ -134,7 +134,14 @@ class Parser {
     WorldSettings world;
     if (!node.IsDefined() || node.IsNull()) return world;
     requireMap(node, "world", "{backend: bullet, time_step: 0.001}");
-    checkKeys(node, "world", {"backend", "time_step", "gravity", "ground_plane", "real_time_factor"});
+    checkKeys(node, "world", {"backend", "time_step", "gravity", "ground_plane", "real_time_factor", "clock"});
+    if (node["clock"]) {
+      const std::string clock = string(node["clock"], "world.clock");
+      if (clock != "sim" && clock != "wall") {
+        fail(node["clock"], "world.clock", "expected 'sim' (lockstep with the physics) or 'wall' (paced by the wall clock, as hardware), got '" + clock + "'");
+      }
+      world.wall_clock = clock == "wall";
+    }
     if (node["backend"]) world.backend = string(node["backend"], "world.backend");
     if (node["time_step"]) {
       world.time_step_s = number(node["time_step"], "world.time_step");
@@ -173,7 +180,7 @@ class Parser {
     requireMap(node, key, "{urdf: robot.urdf, controllers: [joint_state_controller]}");
     checkKeys(node, key,
               {"urdf", "model", "namespace", "params", "controllers", "stopped_controllers", "fixed_base", "pose",
-               "self_collide", "xacro_args"});
+               "self_collide", "xacro_args", "hardware"});
     RobotSpec robot;
     if (!node["urdf"]) fail(node, key, "missing 'urdf': give the robot description, e.g. urdf: robot.urdf");
     robot.urdf = existingFile(node["urdf"], key + ".urdf", "URDF file");
@@ -218,6 +225,20 @@ class Parser {
       std::array<double, 6> values{};
       for (std::size_t i = 0; i < pose.size(); ++i) values[i] = number(pose[i], fmt::format("{}.pose[{}]", key, i));
       robot.pose = values;
+    }
+    if (const YAML::Node hardware = node["hardware"]; hardware.IsDefined() && !hardware.IsNull()) {
+      const std::string where = key + ".hardware";
+      requireMap(hardware, where, "{type: my_robot_hw/MyRobotHW, port: /dev/ttyUSB0}");
+      if (!hardware["type"]) {
+        fail(hardware, where, "missing 'type': the hardware plugin's type (kind robot_hw), e.g. {type: my_robot_hw/MyRobotHW}");
+      }
+      robot.hardware_type = string(hardware["type"], where + ".type");
+      YAML::Node params(YAML::NodeType::Map);
+      for (const auto& kv : hardware) {
+        if (kv.first.as<std::string>() != "type") params[kv.first] = kv.second;
+      }
+      robot.hardware_params_yaml = YAML::Dump(params);
+      robot.hardware_source = fmt::format("{}:{}", source_, hardware.Mark().line + 1);
     }
     return robot;
   }

@@ -26,6 +26,7 @@ bool topicUnder(const std::string& topic, const std::string& ns) {
 
 Node::Node(LaunchFile launch, NodeOptions options) : launch_(std::move(launch)), options_(std::move(options)) {
   if (options_.backend) launch_.world.backend = *options_.backend;
+  if (options_.wall_clock) launch_.world.wall_clock = *options_.wall_clock;
   real_time_factor_ = options_.real_time_factor.value_or(
       launch_.world.real_time_factor.value_or(options_.duration_s ? 0.0 : 1.0));
   if (options_.duration_s && !(*options_.duration_s >= 0.0)) {

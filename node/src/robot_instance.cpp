@@ -23,6 +23,7 @@
 #include "servoloop/hardware_interface/simulatable_urdf.hpp"
 #include "servoloop/hardware_interface/xacro.hpp"
 #include "servoloop/node/ground_truth_publisher.hpp"
+#include "servoloop/controller_manager/wall_clock_loop.hpp"
 
 namespace servoloop::node {
 namespace {
@@ -65,7 +66,9 @@ void writeSpawnSettings(params::ParameterStore& store, const std::string& ns, co
 }  // namespace
 
 RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
-    : urdf_path_(spec.urdf), backend_name_(world.world.backend), real_time_factor_(world.real_time_factor) {
+    : urdf_path_(spec.urdf),
+      backend_name_(spec.hardware_type.empty() ? world.world.backend : spec.hardware_type),
+      real_time_factor_(world.real_time_factor) {
   if (!world.plugins || world.parameters == nullptr) {
     throw Error("RobotInstance: the world's plugin loader and parameter store must be set");
   }
@@ -76,21 +79,35 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   model_ = parseRobotModel(xml, spec.urdf.string());
   robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
   namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);
-  writeWorldSettings(store, namespace_, world.world);
+  const bool hardware_robot = !spec.hardware_type.empty();
+  if (hardware_robot) {
+    // The plugin's parameters, where it reads them: <ns>/hardware.
+    store.loadString(spec.hardware_params_yaml, spec.hardware_source, params::resolveName(namespace_, "hardware"));
+  } else {
+    writeWorldSettings(store, namespace_, world.world);
+  }
   writeSpawnSettings(store, namespace_, spec);
 
-  // The simulated hardware, from its backend plugin.
+  // The hardware: a simulation backend, or the launch file's hardware plugin.
   try {
     backend_ = world.plugins->create<hardware_interface::RobotHW>(backend_name_);
   } catch (const Error& e) {
-    throw ConfigError(fmt::format("backend '{}': {}; choose another with --backend or world.backend", backend_name_, e.what()));
+    throw ConfigError(hardware_robot
+                          ? fmt::format("hardware '{}' ({}): {}; name a robot_hw plugin (`servoloop control "
+                                        "list-types --kind robot_hw` lists them; --plugin-dir or "
+                                        "SERVOLOOP_PLUGIN_PATH add folders)",
+                                        backend_name_, spec.hardware_source, e.what())
+                          : fmt::format("backend '{}': {}; choose another with --backend or world.backend",
+                                        backend_name_, e.what()));
   }
-  sim_hw_ = dynamic_cast<hardware_interface::SimulatedRobotHW*>(backend_.get());
-  if (sim_hw_ == nullptr) {
+  hw_ = backend_.get();
+  sim_hw_ = dynamic_cast<hardware_interface::SimulatedRobotHW*>(hw_);
+  if (sim_hw_ == nullptr && !hardware_robot) {
     throw ConfigError(fmt::format(
         "backend '{}' is a robot_hw plugin but not a simulator (it does not implement SimulatedRobotHW); "
-        "`servoloop launch` needs a simulation backend such as bullet or mock",
-        backend_name_));
+        "a world's backend must simulate (bullet, mujoco, mock); to drive hardware, name the plugin in the "
+        "robot's `hardware: {{type: {}}}`",
+        backend_name_, backend_name_));
   }
   hardware_interface::HardwareInfo info;
   info.urdf_xml = xml;
@@ -101,7 +118,7 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   // with backend_ when this constructor unwinds; its message is copied into
   // an exception of the node's own while the library is still loaded.
   try {
-    sim_hw_->init(info);
+    hw_->init(info);
   } catch (const ConfigError& e) {
     throw ConfigError(fmt::format("backend '{}': {}", backend_name_, e.what()));
   } catch (const std::exception& e) {
@@ -122,6 +139,11 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   context.actions = actions_.get();
   context.parameters = &store;
   context.robot_model = model_;
+  if (!(world.update_rate_hz > 0.0) && sim_hw_ == nullptr) {
+    throw ConfigError(fmt::format("robot '{}': hardware '{}' runs at the controller manager's rate, and none is "
+                                  "given; set controller_manager: {{update_rate: 1000}} (Hz)",
+                                  namespace_, backend_name_));
+  }
   const double update_rate_hz =
       world.update_rate_hz > 0.0 ? world.update_rate_hz : 1.0 / sim_hw_->timeStep().seconds;
   params::ParameterStore* store_ptr = &store;
@@ -131,25 +153,43 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
     return store_ptr->has(name) ? store_ptr->node(name) : YAML::Node();
   };
   manager_ = std::make_unique<controller_manager::ControllerManager>(
-      sim_hw_, std::make_shared<controller_manager::PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
+      hw_, std::make_shared<controller_manager::PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
+  createLoop(hardware_robot, hardware_robot || world.world.wall_clock, update_rate_hz);
+  loadControllers(spec, store);
+}
 
-  controller_manager::SimulationLoop::Options options;
-  options.topic_bus = bus_.get();
-  if (GroundTruthPublisher::applies(*sim_hw_)) {
+void RobotInstance::createLoop(bool hardware_robot, bool wall_clock, double update_rate_hz) {
+  controller_manager::LoopCommonOptions common;
+  common.topic_bus = bus_.get();
+  if (sim_hw_ != nullptr && GroundTruthPublisher::applies(*sim_hw_)) {
     const std::string topic = params::resolveName(namespace_, "ground_truth/odom");
     ground_truth_ = std::make_unique<GroundTruthPublisher>(*sim_hw_, *bus_, topic, model_->getRoot()->name);
-    options.cycle_hook = ground_truth_.get();
+    common.cycle_hook = ground_truth_.get();
     logger().info("robot '{}': floating base; its ground truth is published on {} (nav_msgs/Odometry, {} Hz)",
                   namespace_, topic, GroundTruthPublisher::kDefaultRateHz);
   }
-  options.real_time_factor = real_time_factor_;
   try {
-    loop_ = std::make_unique<controller_manager::SimulationLoop>(*sim_hw_, *manager_, options);
+    if (wall_clock) {
+      controller_manager::WallClockLoop::Options options;
+      static_cast<controller_manager::LoopCommonOptions&>(options) = common;
+      options.step_simulation = true;  // a simulated robot standing in for hardware
+      loop_ = std::make_unique<controller_manager::WallClockLoop>(*hw_, *manager_, options);
+      logger().info("robot '{}': '{}' runs on the wall clock at {} Hz", namespace_, backend_name_, update_rate_hz);
+    } else {
+      controller_manager::SimulationLoop::Options options;
+      static_cast<controller_manager::LoopCommonOptions&>(options) = common;
+      options.real_time_factor = real_time_factor_;
+      auto loop = std::make_unique<controller_manager::SimulationLoop>(*sim_hw_, *manager_, options);
+      sim_loop_ = loop.get();
+      loop_ = std::move(loop);
+    }
   } catch (const ConfigError& e) {
-    throw ConfigError(fmt::format("robot '{}': controller_manager.update_rate {} Hz with world.time_step {} s: {}",
-                                  namespace_, update_rate_hz, sim_hw_->timeStep().seconds, e.what()));
+    throw ConfigError(hardware_robot
+                          ? fmt::format("robot '{}': controller_manager.update_rate {} Hz: {}", namespace_,
+                                        update_rate_hz, e.what())
+                          : fmt::format("robot '{}': controller_manager.update_rate {} Hz with world.time_step {} s: {}",
+                                        namespace_, update_rate_hz, sim_hw_->timeStep().seconds, e.what()));
   }
-  loadControllers(spec, store);
 }
 
 RobotInstance::~RobotInstance() {
@@ -230,7 +270,7 @@ void RobotInstance::startLaunchControllers() {
   if (by_divisor.empty()) return;
 
   const Duration period = loop_->controlPeriod();
-  if (sim_hw_->read(Time(0.0), loop_->physicsStep()) != ReturnType::ok) {
+  if (hw_->read(Time(0.0), sim_loop_ != nullptr ? sim_loop_->physicsStep() : period) != ReturnType::ok) {
     logger().warn("robot '{}': reading the hardware before starting the controllers failed", namespace_);
   }
   for (std::uint32_t cycles_before = by_divisor.begin()->first; cycles_before >= 1; --cycles_before) {
@@ -243,14 +283,24 @@ void RobotInstance::startLaunchControllers() {
       // update; ours follows in the next one.
       if (manager_->switchPending()) manager_->update(time, period);
       if (const controller_manager::ServiceResult result = manager_->requestSwitch(request); !result) {
-        logger().error("robot '{}': starting controllers failed: {}", namespace_, result.message);
-        std::string names;
-        for (const std::string& name : group->second) names += (names.empty() ? "'" : ", '") + name + "'";
-        launch_failures_.push_back("controller(s) " + names + " did not start: " + result.message);
+        reportLaunchStartFailure(group->second, result.message);
+      } else {
+        manager_->update(time, period);
+        if (const controller_manager::ServiceResult done = manager_->finishSwitch(); !done) {
+          reportLaunchStartFailure(group->second, done.message);
+        }
+        continue;
       }
     }
     manager_->update(time, period);
   }
+}
+
+void RobotInstance::reportLaunchStartFailure(const std::vector<std::string>& controllers, const std::string& why) {
+  logger().error("robot '{}': starting controllers failed: {}", namespace_, why);
+  std::string names;
+  for (const std::string& name : controllers) names += (names.empty() ? "'" : ", '") + name + "'";
+  launch_failures_.push_back("controller(s) " + names + " did not start: " + why);
 }
 
 void RobotInstance::addTimedPublication(const TimedPublication& publication) {
@@ -261,35 +311,75 @@ void RobotInstance::addTimedPublication(const TimedPublication& publication) {
 }
 
 std::uint64_t RobotInstance::stepsAt(double time_s) const {
-  const double steps = std::ceil(time_s / loop_->physicsStep().seconds - 1e-9);
+  const double steps = std::ceil(time_s / sim_loop_->physicsStep().seconds - 1e-9);
   return steps <= 0.0 ? 0 : static_cast<std::uint64_t>(steps);
+}
+
+void RobotInstance::publish(const TimedPublication& publication) {
+  try {
+    servoloop::node::publishJson(*bus_, publication.topic, publication.message, publication.type);
+    logger().debug("published {} on '{}' at t = {} s",
+                   publication.message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                   publication.topic, publication.time_s);
+  } catch (const std::exception& e) {
+    logger().error("timed publication on '{}' at t = {} s failed: {}", publication.topic, publication.time_s,
+                   e.what());
+  }
 }
 
 void RobotInstance::publishDue(std::uint64_t steps_taken) {
   while (next_publication_ < publications_.size() && stepsAt(publications_[next_publication_].time_s) <= steps_taken) {
-    const TimedPublication& publication = publications_[next_publication_++];
-    bus_->setTime(Time(stepsToSeconds(steps_taken, loop_->physicsStep().seconds)));
-    try {
-      servoloop::node::publishJson(*bus_, publication.topic, publication.message, publication.type);
-      logger().debug("published {} on '{}' at t = {} s",
-                     publication.message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-                     publication.topic, publication.time_s);
-    } catch (const std::exception& e) {
-      logger().error("timed publication on '{}' at t = {} s failed: {}", publication.topic, publication.time_s,
-                     e.what());
+    bus_->setTime(Time(stepsToSeconds(steps_taken, sim_loop_->physicsStep().seconds)));
+    publish(publications_[next_publication_++]);
+  }
+}
+
+void RobotInstance::publishDueAt(double time_s) {
+  while (next_publication_ < publications_.size() && publications_[next_publication_].time_s <= time_s) {
+    publish(publications_[next_publication_++]);
+  }
+}
+
+// On the wall clock the loop runs in pieces that end at the next timed
+// publication (or the duration); each piece starts its own deadline grid
+// right away, so the pause is the microseconds a publish takes.
+void RobotInstance::driveWallClockLoop(std::optional<double> duration_s) {
+  const double end_s = duration_s ? *duration_s : std::numeric_limits<double>::infinity();
+  const double period_s = loop_->controlPeriod().seconds;
+  while (!stop_requested_.load()) {
+    const double now_s = simTime();
+    publishDueAt(now_s);
+    if (now_s >= end_s - 0.5 * period_s || loop_->hardwareAskedToStop()) break;
+    double target_s = end_s;
+    if (next_publication_ < publications_.size()) target_s = std::min(target_s, publications_[next_publication_].time_s);
+    if (std::isinf(target_s)) {
+      loop_->run(stop_requested_);
+    } else {
+      loop_->runFor(Duration(std::max(target_s - now_s, period_s)));
     }
   }
 }
 
 void RobotInstance::driveLoop(std::optional<double> duration_s) {
+  if (sim_loop_ == nullptr) {
+    driveWallClockLoop(duration_s);
+  } else {
+    driveSimulationLoop(duration_s);
+  }
+  bus_->flush();
+  loop_done_.store(true);
+  if (on_finished_) on_finished_();
+}
+
+void RobotInstance::driveSimulationLoop(std::optional<double> duration_s) {
   constexpr std::uint64_t kForever = std::numeric_limits<std::uint64_t>::max();
-  const double dt = loop_->physicsStep().seconds;
+  const double dt = sim_loop_->physicsStep().seconds;
   const bool free_running = real_time_factor_ <= 0.0;
   const std::uint64_t end_steps = duration_s ? stepsAt(*duration_s) : kForever;
   const auto flush_steps = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
 
   while (!stop_requested_.load()) {
-    const std::uint64_t taken = loop_->stepsTaken();
+    const std::uint64_t taken = sim_loop_->stepsTaken();
     publishDue(taken);
     if (taken >= end_steps || loop_->hardwareAskedToStop()) break;
 
@@ -306,9 +396,6 @@ void RobotInstance::driveLoop(std::optional<double> duration_s) {
     }
     if (free_running) bus_->flush();
   }
-  bus_->flush();
-  loop_done_.store(true);
-  if (on_finished_) on_finished_();
 }
 
 void RobotInstance::start(std::optional<double> duration_s) {
@@ -366,12 +453,13 @@ void RobotInstance::shutdownControllers() {
 }
 
 double RobotInstance::simTime() const {
-  return stepsToSeconds(loop_->stepsTaken(), loop_->physicsStep().seconds);
+  if (sim_loop_ == nullptr) return loop_->statistics().snapshot().sim_time_s;
+  return stepsToSeconds(sim_loop_->stepsTaken(), sim_loop_->physicsStep().seconds);
 }
 
 std::vector<JointReading> RobotInstance::joints() const {
   std::vector<JointReading> readings;
-  auto* state = sim_hw_->get<hardware_interface::JointStateInterface>();
+  auto* state = hw_->get<hardware_interface::JointStateInterface>();
   if (state == nullptr) return readings;
   for (const std::string& name : state->getNames()) {
     const auto handle = state->getHandle(name);
@@ -382,11 +470,11 @@ std::vector<JointReading> RobotInstance::joints() const {
 
 std::vector<std::pair<std::string, std::vector<std::string>>> RobotInstance::jointInterfaces() const {
   std::map<std::string, std::vector<std::string>> by_joint;
-  for (const std::string& iface_name : sim_hw_->getNames()) {
+  for (const std::string& iface_name : hw_->getNames()) {
     const bool joint_interface = iface_name == "JointStateInterface" ||
                                  (iface_name.size() > 14 && iface_name.ends_with("JointInterface"));
     if (!joint_interface) continue;
-    for (const std::string& joint : sim_hw_->getByName(iface_name)->getNames()) by_joint[joint].push_back(iface_name);
+    for (const std::string& joint : hw_->getByName(iface_name)->getNames()) by_joint[joint].push_back(iface_name);
   }
   // JointStateInterface first, the command interfaces after it.
   std::vector<std::pair<std::string, std::vector<std::string>>> joints;

@@ -389,10 +389,11 @@ void SimRobotHW::applyModesFromClaims(const hi::ControllerInfo& controller, bool
   }
 }
 
-void SimRobotHW::doSwitch(const std::vector<hi::ControllerInfo>& start_list,
-                          const std::vector<hi::ControllerInfo>& stop_list) {
+ReturnType SimRobotHW::doSwitch(const std::vector<hi::ControllerInfo>& start_list,
+                                const std::vector<hi::ControllerInfo>& stop_list) {
   for (const hi::ControllerInfo& controller : stop_list) applyModesFromClaims(controller, false);
   for (const hi::ControllerInfo& controller : start_list) applyModesFromClaims(controller, true);
+  return ReturnType::ok;
 }
 
 void SimRobotHW::setJointCommandMode(JointIndex joint, JointCommandMode mode) noexcept {

@@ -1,7 +1,8 @@
 // The client commands against a real node: `servoloop launch` of the seed on
 // the mock backend in real time (serving its socket), then `servoloop plot
 // --topic`, `topic list` and, once it has ended, the "no node" error — each
-// bounded in time, on a private SERVOLOOP_RUN_DIR.
+// bounded in time, on a private SERVOLOOP_RUN_DIR; and control, param and topic
+// commands against a node on the wall clock.
 #include <csignal>
 #include <cmath>
 #include <filesystem>
@@ -100,6 +101,46 @@ TEST(CliLiveNode, PlotOfALiveTopicThenTopicListThenNoNodeAfterSigint) {
     EXPECT_EQ(lineCount(result.err), 1) << result.err;
     EXPECT_THAT(result.err, HasSubstr("error: no servoloop node is running"));
   }
+}
+
+// The same commands against a robot on the wall clock (the mock standing in
+// for hardware, `--clock wall`): the node serves them while its loop keeps
+// its deadlines.
+TEST(CliLiveNode, ClientCommandsAgainstAWallClockNode) {
+  ScopedRunDir run_dir;
+  const fs::path& scratch = run_dir.scratch();
+  CliProcess launch({"launch", kSeedLaunch, "--backend", "mock", "--clock", "wall"}, scratch);
+  ASSERT_TRUE(waitForNode(scratch, 60.0)) << launch.currentOut();
+
+  CliResult list = runCli({"control", "list"}, scratch, 30.0);
+  ASSERT_EQ(list.status, 0) << list.err;
+  EXPECT_THAT(list.out, HasSubstr("joint1_position_controller"));
+  EXPECT_THAT(list.out, HasSubstr("running"));
+
+  const CliResult param = runCli({"param", "get", "/one_DOF_robot/joint1_position_controller/type"}, scratch, 30.0);
+  ASSERT_EQ(param.status, 0) << param.err;
+  EXPECT_THAT(param.out, HasSubstr("effort_controllers/JointPositionController"));
+
+  const CliResult pub = runCli({"topic", "pub", "/one_DOF_robot/joint1_position_controller/command",
+                                "std_msgs/Float64", "0.5"},
+                               scratch, 30.0);
+  ASSERT_EQ(pub.status, 0) << pub.err;
+  const CliResult echo = runCli({"topic", "echo", "-n", "2", "--json", kJointStates}, scratch, 30.0);
+  ASSERT_EQ(echo.status, 0) << echo.err;
+  EXPECT_EQ(lineCount(echo.out), 2) << echo.out;
+  EXPECT_THAT(echo.out, HasSubstr("\"joint1\""));
+
+  const CliResult stop = runCli({"control", "switch", "--stop", "joint1_position_controller"}, scratch, 30.0);
+  ASSERT_EQ(stop.status, 0) << stop.err;
+  list = runCli({"control", "list"}, scratch, 30.0);
+  ASSERT_EQ(list.status, 0) << list.err;
+  EXPECT_THAT(list.out, ::testing::ContainsRegex("joint1_position_controller[^\n]*stopped"));
+
+  launch.signal(SIGINT);
+  const CliResult launched = launch.wait(30.0);
+  ASSERT_FALSE(launched.timed_out);
+  EXPECT_EQ(launched.status, 0) << launched.err;
+  EXPECT_THAT(launched.err, HasSubstr("runs on the wall clock at 1000 Hz"));
 }
 
 }  // namespace

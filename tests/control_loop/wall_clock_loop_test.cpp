@@ -41,6 +41,35 @@ TEST(WallClockLoop, RejectsAMissingOrDisagreeingPeriod) {
   EXPECT_THROW(WallClockLoop(f.hw, f.manager, options), ConfigError);
 }
 
+// step_simulation: a simulated robot standing in for hardware is stepped once
+// per cycle, after write; its time step must be the period.
+TEST(WallClockLoop, StepsASimulatedRobotOncePerCycleWhenAsked) {
+  LoopFixture f(0.001, 1000.0);
+  RecordingHook hook(f.recorder);
+  WallClockLoop::Options options;
+  options.cycle_hook = &hook;
+  options.step_simulation = true;
+  WallClockLoop loop(f.hw, f.manager, options);
+  f.requestStart();
+  loop.runFor(Duration(0.02));
+  const LoopStatisticsSnapshot stats = loop.statistics().snapshot();
+  EXPECT_GE(stats.cycles, 1u);
+  EXPECT_EQ(f.hw.steps, stats.cycles);
+  const std::vector<testing::Event> events = f.recorder->events();
+  ASSERT_GE(events.size(), 5u);  // the first cycle: read, hook, write, step (the controller starts in it)
+  EXPECT_EQ(events[2].kind, EventKind::write);
+  EXPECT_EQ(events[3].kind, EventKind::step);
+  EXPECT_EQ(events[4].kind, EventKind::read);
+
+  LoopFixture coarse(0.001, 500.0);  // 2 ms cycles, 1 ms physics step
+  try {
+    WallClockLoop mismatched(coarse.hw, coarse.manager, options);
+    FAIL() << "a time step other than the period was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("not the cycle period 0.002 s"), std::string::npos) << e.what();
+  }
+}
+
 TEST(WallClockLoop, EachCycleIsReadUpdateWriteWithIncreasingTime) {
   LoopFixture f(0.001, 1000.0);
   RecordingHook hook(f.recorder);

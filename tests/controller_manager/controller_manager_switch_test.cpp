@@ -53,12 +53,14 @@ TEST_F(SwitchTest, StartingRunsInTheSwitchCycleAndTheFirstUpdateComesInTheNext) 
   EXPECT_EQ(eventLog(), (std::vector<std::string>{"doSwitch", "starting:a", "update:a"}));
 }
 
-TEST_F(SwitchTest, StopListFirstThenHardwareThenStartList) {
+// As in ros_control: the hardware changes its modes first, so that when it
+// cannot, nothing else has changed.
+TEST_F(SwitchTest, HardwareFirstThenStopListThenStartList) {
   ASSERT_TRUE(f.switchNow({"a"}, {}));
   f.cycle();
   eventLog().clear();
   ASSERT_TRUE(f.switchNow({"a_too"}, {"a"}));
-  EXPECT_EQ(eventLog(), (std::vector<std::string>{"stopping:a", "doSwitch", "starting:a_too"}));
+  EXPECT_EQ(eventLog(), (std::vector<std::string>{"doSwitch", "stopping:a", "starting:a_too"}));
   EXPECT_EQ(f.hw.do_switch_start_count, 1u);
   EXPECT_EQ(f.hw.do_switch_stop_count, 1u);
   ASSERT_EQ(f.hw.last_prepare_start.size(), 1u);
@@ -69,6 +71,72 @@ TEST_F(SwitchTest, StopListFirstThenHardwareThenStartList) {
   EXPECT_EQ(f.hw.last_prepare_stop[0].name, "a");
   EXPECT_EQ(stateOf("a"), ControllerState::stopped);
   EXPECT_EQ(stateOf("a_too"), ControllerState::running);
+}
+
+// A hardware that cannot change its command modes (doSwitch returns an error
+// or throws) aborts the whole switch: the running controller runs on, nothing
+// stops or starts, and the switch fails naming why.
+TEST_F(SwitchTest, AFailedModeSwitchAbortsTheWholeSwitch) {
+  for (const bool throws : {false, true}) {
+    SCOPED_TRACE(throws ? "doSwitch throws" : "doSwitch returns an error");
+    ManagerFixture g(kYaml);
+    ASSERT_TRUE(g.manager.loadController("a"));
+    ASSERT_TRUE(g.manager.loadController("a_too"));
+    ASSERT_TRUE(g.switchNow({"a"}, {}));
+    ASSERT_TRUE(g.manager.finishSwitch());
+    g.cycle();
+    EXPECT_DOUBLE_EQ(g.hw.effort_command[0], 1.0);
+
+    g.hw.do_switch_result = ReturnType::error;
+    g.hw.do_switch_throws = throws;
+    eventLog().clear();
+    ASSERT_TRUE(g.switchNow({"a_too"}, {"a"}));  // accepted by prepareSwitch, carried out in the cycle
+    EXPECT_FALSE(g.manager.switchPending());
+    const ServiceResult result = g.manager.finishSwitch();
+    EXPECT_FALSE(result);
+    EXPECT_TRUE(contains(result.message, "could not change its command modes for start [a_too], stop [a]"))
+        << result.message;
+    EXPECT_TRUE(contains(result.message, throws ? "RobotHW::doSwitch threw: drive 3 did not answer the mode change"
+                                                : "RobotHW::doSwitch returned an error"))
+        << result.message;
+    EXPECT_TRUE(contains(result.message, "nothing was switched")) << result.message;
+    // No stopping(), no starting(): a updates on in the same cycle.
+    EXPECT_EQ(eventLog(), (std::vector<std::string>{"doSwitch", "update:a"}));
+    EXPECT_EQ(g.manager.getController("a")->state(), ControllerState::running);
+    EXPECT_EQ(g.manager.getController("a_too")->state(), ControllerState::initialized);
+    g.cycle();
+    EXPECT_DOUBLE_EQ(g.hw.effort_command[0], 1.0);  // a still commands
+
+    // The hardware recovers: the same switch goes through.
+    g.hw.do_switch_result = ReturnType::ok;
+    g.hw.do_switch_throws = false;
+    ASSERT_TRUE(g.switchNow({"a_too"}, {"a"}));
+    EXPECT_TRUE(g.manager.finishSwitch());
+    g.cycle();
+    EXPECT_EQ(g.manager.getController("a_too")->state(), ControllerState::running);
+    EXPECT_DOUBLE_EQ(g.hw.effort_command[0], 3.0);
+  }
+}
+
+// The blocking switch (what `servoloop control switch` and the spawner use)
+// returns the same failure while the loop runs on another thread.
+TEST_F(SwitchTest, ABlockingSwitchReportsTheFailedModeSwitch) {
+  ASSERT_TRUE(f.switchNow({"a"}, {}));
+  f.hw.do_switch_result = ReturnType::error;
+  std::atomic<bool> stop{false};
+  std::thread loop([&] {
+    while (!stop.load()) {
+      f.cycle();
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  });
+  const ServiceResult result = f.manager.switchController({"a_too"}, {"a"}, SwitchStrictness::STRICT);
+  stop.store(true);
+  loop.join();
+  EXPECT_FALSE(result);
+  EXPECT_TRUE(contains(result.message, "RobotHW::doSwitch returned an error")) << result.message;
+  EXPECT_EQ(stateOf("a"), ControllerState::running);
+  EXPECT_EQ(stateOf("a_too"), ControllerState::initialized);
 }
 
 TEST_F(SwitchTest, StrictFailsOnAnUnknownNameBestEffortDropsIt) {

@@ -76,12 +76,14 @@ class TestRobotHW : public hi::RobotHW {
     last_prepare_stop = stop;
     return accept_switch;
   }
-  void doSwitch(const std::vector<hi::ControllerInfo>& start,
-                const std::vector<hi::ControllerInfo>& stop) override {
+  ReturnType doSwitch(const std::vector<hi::ControllerInfo>& start,
+                      const std::vector<hi::ControllerInfo>& stop) override {
     ++do_switch_calls;
     if (record_events) logEvent("doSwitch");
     do_switch_start_count = start.size();
     do_switch_stop_count = stop.size();
+    if (do_switch_throws) throw std::runtime_error("drive 3 did not answer the mode change");
+    return do_switch_result;
   }
 
   double position[kJoints] = {0.25, -0.5, 1.0};
@@ -92,6 +94,8 @@ class TestRobotHW : public hi::RobotHW {
   double position_command[kJoints] = {0.0, 0.0, 0.0};
 
   bool accept_switch = true;
+  ReturnType do_switch_result = ReturnType::ok;  // what doSwitch returns
+  bool do_switch_throws = false;
   bool record_events = true;
   int prepare_calls = 0;
   std::atomic<int> do_switch_calls{0};

@@ -36,6 +36,7 @@ struct LaunchOptions {
   std::string backend;
   std::optional<double> duration_s;
   std::optional<double> real_time_factor;
+  std::string clock;  // "", "sim" or "wall"
   std::vector<std::string> publications;
   std::vector<std::string> recordings;
   std::string plot;
@@ -126,6 +127,7 @@ void runLaunch(const LaunchOptions& options) {
   node_options.duration_s = options.duration_s;
   node_options.real_time_factor = options.real_time_factor;
   if (!options.backend.empty()) node_options.backend = options.backend;
+  if (!options.clock.empty()) node_options.wall_clock = options.clock == "wall";
   // A batch run serves no socket unless asked: it would otherwise collide
   // with an interactive node of the same robot namespace.
   node_options.serve_ipc = !options.duration_s || options.ipc;
@@ -190,7 +192,12 @@ void addLaunchCommand(CLI::App& root) {
       ->type_name("NAME:=VALUE");
   launch->add_option("--backend", options->backend, "Simulation backend (bullet, mock, ...); overrides world.backend")
       ->type_name("NAME");
-  launch->add_option("--duration", options->duration_s, "Simulated seconds to run, then exit with a summary")
+  launch->add_option("--clock", options->clock,
+                     "sim: simulated robots run in lockstep with their physics (default); wall: on the wall clock, "
+                     "as hardware does (overrides world.clock)")
+      ->type_name("sim|wall")
+      ->check(CLI::IsMember({"sim", "wall"}));
+  launch->add_option("--duration", options->duration_s, "Seconds to run (simulated; wall seconds on the wall clock), then exit with a summary")
       ->type_name("SECONDS")
       ->check(numberWithin(0.0, kMaxDurationS, "simulated seconds"));
   launch->add_option("--rtf", options->real_time_factor,

@@ -14,6 +14,7 @@
 // Errors. Every service returns a ServiceResult: ok, or false with a message
 // naming the controller, the parameter and the fix. The same message is logged
 // with servoloop::logger().error. Services do not throw for bad requests.
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -113,8 +114,15 @@ class ControllerManager {
   // Validates like switchController and hands the switch to the real-time
   // thread without waiting (timeout_s is ignored). For callers that run
   // update() themselves: request, then call update(), then check
-  // switchPending(). Fails if another switch is still pending.
+  // switchPending(), then finishSwitch(). Fails if another switch is still pending.
   ServiceResult requestSwitch(const SwitchRequest& request);
+  // Non-real-time. The outcome of the switch requestSwitch handed over, once
+  // the real-time thread has carried it out (switchPending() false): what
+  // switchController would have returned (a hardware that could not change
+  // its modes, a controller whose starting() failed). Success when there is
+  // no outcome waiting. A switch nobody finishes is finished, and a failure
+  // logged, by the next switch request.
+  ServiceResult finishSwitch();
   // True while a requested switch waits for (or is being carried out by) the
   // real-time thread.
   bool switchPending() const;
@@ -169,12 +177,16 @@ class ControllerManager {
     // hold resources the plan gives away, so the plan is not carried out.
     std::uint64_t fallback_epoch = 0;
     bool aborted = false;  // set by the real-time thread
+    bool hardware_refused = false;  // RobotHW::doSwitch failed (real-time thread): nothing switched
+    std::array<char, 256> hardware_error{};  // why, truncated (real-time thread)
   };
 
   // Non-real-time helpers; the caller holds services_mutex_.
   detail::ControllerEntry* findEntry(const std::string& name) const;
   ServiceResult prepareSwitchLocked(const SwitchRequest& request, bool* nothing_to_do);
   ServiceResult waitForSwitchLocked(double timeout_s);
+  // After the real-time thread set done; `announce`: log a switch that worked.
+  ServiceResult completeSwitchLocked(bool announce);
   void finishDoneSwitchLocked();
   ServiceResult unloadLocked(const std::string& name);
   void publishRealtimeList(std::vector<detail::ControllerEntry*> list);
@@ -216,7 +228,6 @@ class ControllerManager {
   std::atomic<SwitchPhase> switch_phase_{SwitchPhase::idle};
   SwitchPlan switch_plan_;
 
-  std::unique_ptr<detail::FaultRecord> hardware_fault_;
   std::uint64_t cycle_ = 0;  // real-time thread only
   // Fallback starts so far (real-time thread writes; switches compare).
   std::atomic<std::uint64_t> fallback_starts_{0};

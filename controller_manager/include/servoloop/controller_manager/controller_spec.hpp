@@ -32,7 +32,6 @@ enum class FaultKind : std::uint8_t {
   update_returned_error,  // update() returned ReturnType::error
   non_finite_command,     // a claimed command was NaN or infinite after starting()/update()
   stopping_threw,         // stopping() threw
-  hardware_switch_threw,  // RobotHW::doSwitch threw (controller is empty)
 };
 
 const char* toString(FaultKind kind) noexcept;
@@ -40,7 +39,7 @@ const char* toString(FaultKind kind) noexcept;
 // A fault the real-time thread contained: the controller was stopped, its
 // claimed commands put to safe values, and it was marked failed.
 struct ControllerFault {
-  std::string controller;  // empty for hardware_switch_threw
+  std::string controller;
   FaultKind kind = FaultKind::update_threw;
   std::string message;  // the whole sentence, as logged
 };

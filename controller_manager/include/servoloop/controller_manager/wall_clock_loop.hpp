@@ -2,8 +2,9 @@
 // The control loop for real hardware: cycles at a fixed period on the
 // monotonic clock, each one
 //
-//   t = monotonic time since the loop was built
+//   t = monotonic time since the first cycle of the loop's first run
 //   hw.read(t, period)  →  manager.update(t, period), cycle hook  →  hw.write(t, period)
+//   (→ hw.step() for a simulated robot standing in for hardware, see below)
 //
 // where period is the wall time since the previous cycle started (the nominal
 // period for a run's first cycle). Cycles start at absolute deadlines
@@ -16,16 +17,23 @@
 //
 // The thread's scheduling (SCHED_FIFO, CPU affinity, mlockall) is the
 // caller's business: set it on the thread before calling run().
+//
+// With Options::step_simulation, a SimulatedRobotHW (the mock backend on
+// `--clock wall`) stands in for hardware: it is stepped once per cycle, after
+// write(), so its time step must be the cycle period (ConfigError otherwise).
 #include <atomic>
 #include <cstdint>
 
 #include "servoloop/controller_manager/control_loop.hpp"
+#include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 
 namespace servoloop::controller_manager {
 
 struct WallClockLoopOptions : LoopCommonOptions {
   // The cycle period. 0 (default): 1 / the manager's update rate.
   Duration period{0.0};
+  // Step the hardware once per cycle when it is a SimulatedRobotHW (see above).
+  bool step_simulation = false;
 };
 
 class WallClockLoop final : public ControlLoop {
@@ -34,8 +42,9 @@ class WallClockLoop final : public ControlLoop {
 
   // Non-real-time. hw and manager must outlive the loop; the manager must be
   // built on hw. Throws servoloop::ConfigError when neither a period nor a
-  // manager update rate is given, the period is not positive and finite, or it
-  // disagrees with the manager's update rate.
+  // manager update rate is given, the period is not positive and finite, it
+  // disagrees with the manager's update rate, or (step_simulation) hw is
+  // simulated with a time step other than the period.
   WallClockLoop(hardware_interface::RobotHW& hw, ControllerManager& manager, Options options = {});
 
   // Runs until stop_requested, requestStop(), or a hardware stop.
@@ -47,7 +56,8 @@ class WallClockLoop final : public ControlLoop {
   void runCycles(std::int64_t run_length_ns, const std::atomic<bool>* external_stop);
 
   std::int64_t period_ns_ = 0;
-  std::int64_t origin_ns_ = 0;  // monotonic time of construction: control time 0
+  std::int64_t origin_ns_ = -1;  // monotonic time of the first cycle: control time 0 (-1 before)
+  hardware_interface::SimulatedRobotHW* simulated_ = nullptr;  // stepped each cycle (step_simulation)
 
   // Real-time thread only.
   std::uint64_t cycles_ = 0;

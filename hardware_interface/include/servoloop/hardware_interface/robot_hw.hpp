@@ -38,9 +38,15 @@ class RobotHW : public InterfaceManager {
   virtual bool prepareSwitch(const std::vector<ControllerInfo>& start_list,
                              const std::vector<ControllerInfo>& stop_list);
 
-  // Real-time, fast. Carries out a switch prepareSwitch accepted.
-  virtual void doSwitch(const std::vector<ControllerInfo>& start_list,
-                        const std::vector<ControllerInfo>& stop_list);
+  // Real-time, fast. Carries out a switch prepareSwitch accepted: puts the
+  // joints of start_list's claims into the modes they ask for. The manager
+  // calls it before any controller stops or starts; ReturnType::error (or a
+  // throw, which it must not) says the hardware could not change its modes,
+  // and the manager then aborts the whole switch: nothing stops or starts,
+  // the running controllers run on, and the switch request fails naming it.
+  // The hardware should then be in the modes it had before.
+  virtual ReturnType doSwitch(const std::vector<ControllerInfo>& start_list,
+                              const std::vector<ControllerInfo>& stop_list);
 };
 
 }  // namespace servoloop::hardware_interface

@@ -37,6 +37,10 @@ struct WorldSettings {
   bool ground_plane = false;
   // Simulated seconds per wall second; unset: 0 with a --duration, 1 without.
   std::optional<double> real_time_factor;
+  // world.clock: wall (or `launch --clock wall`): simulated robots run on the
+  // wall clock like hardware (WallClockLoop, stepped once per cycle); sim
+  // (default): in lockstep with their physics (SimulationLoop).
+  bool wall_clock = false;
 };
 
 struct ControllerManagerSettings {
@@ -67,6 +71,13 @@ struct RobotSpec {
   std::optional<bool> fixed_base;
   std::optional<std::array<double, 6>> pose;
   std::optional<bool> self_collide;
+  // `hardware: {type: <plugin type>, ...}`: a hardware plugin (kind robot_hw)
+  // drives this robot instead of the world's simulation backend, on the wall
+  // clock at the manager's update rate. The other keys are the plugin's
+  // parameters, loaded under <namespace>/hardware (HardwareInfo::parameters).
+  std::string hardware_type;         // "" = simulated by the world's backend
+  std::string hardware_params_yaml;  // the mapping without `type`, as YAML text
+  std::string hardware_source;       // "launch.yaml:12", for errors in it
 };
 
 // A message published once, at simulated time time_s.

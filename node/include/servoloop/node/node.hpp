@@ -47,6 +47,8 @@ struct NodeOptions {
   std::optional<double> real_time_factor;
   // Overrides the launch file's world.backend.
   std::optional<std::string> backend;
+  // Overrides the launch file's world.clock (true: wall).
+  std::optional<bool> wall_clock;
   // Serve the IPC sockets (one per robot namespace; default.sock when the
   // world has no robot). Off for in-process tests that need no socket.
   bool serve_ipc = true;

@@ -1,7 +1,13 @@
 #pragma once
-// One robot of a running node: its simulated hardware (a backend plugin), its
-// topic bus, its controller manager and the real-time thread that runs its
-// SimulationLoop.
+// One robot of a running node: its hardware (a simulation backend plugin, or
+// a hardware plugin named by the launch file's `hardware:`), its topic bus,
+// its controller manager and the real-time thread that runs its loop: a
+// SimulationLoop in lockstep with the physics, or a WallClockLoop for
+// hardware (and for a simulated robot on the wall clock, world.clock: wall).
+//
+// On the wall clock, time is wall time since the loop's first cycle: timed
+// publications and --duration count it, and controllers get the measured
+// period. What follows about simulated time holds for the SimulationLoop.
 //
 // Threads. The robot's loop thread is its real-time thread. It runs the loop
 // in segments (SimulationLoop::runFor) and between two segments, with no
@@ -45,6 +51,7 @@
 #include "servoloop/controller_manager/plugin_controller_factory.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/plugin/plugin_loader.hpp"
+#include "servoloop/controller_manager/control_loop.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
 #include "servoloop/realtime/action_registry.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
@@ -108,12 +115,15 @@ class RobotInstance {
   controller_manager::ControllerManager& manager() { return *manager_; }
   realtime::TopicBus& topics() { return *bus_; }
   realtime::ActionRegistry& actions() { return *actions_; }
-  hardware_interface::SimulatedRobotHW& hardware() { return *sim_hw_; }
-  controller_manager::SimulationLoop& loop() { return *loop_; }
+  hardware_interface::RobotHW& hardware() { return *hw_; }
+  controller_manager::ControlLoop& loop() { return *loop_; }
+  // True when the robot runs on the wall clock (hardware, or world.clock: wall).
+  bool wallClock() const { return sim_loop_ == nullptr; }
   const std::shared_ptr<const urdf::ModelInterface>& model() const { return model_; }
   const std::string& backendName() const { return backend_name_; }
 
-  // Any thread: simulated time the loop has advanced, s.
+  // Any thread: control time the loop has advanced, s (simulated time, or
+  // wall time on the wall clock).
   double simTime() const;
   // Joint state from the joint state interface. Exact once the loop has
   // stopped; while it runs, values may be one cycle apart.
@@ -128,11 +138,17 @@ class RobotInstance {
 
  private:
   void driveLoop(std::optional<double> duration_s);
+  void driveSimulationLoop(std::optional<double> duration_s);
+  void driveWallClockLoop(std::optional<double> duration_s);
   std::uint64_t stepsAt(double time_s) const;
   void publishDue(std::uint64_t steps_taken);
+  void publishDueAt(double time_s);
+  void publish(const TimedPublication& publication);
+  void createLoop(bool hardware_robot, bool wall_clock, double update_rate_hz);
   void loadControllers(const RobotSpec& spec, const params::ParameterStore& store);
   void hintWhereParametersAre(const std::string& name, const params::ParameterStore& store) const;
   void startLaunchControllers();
+  void reportLaunchStartFailure(const std::vector<std::string>& controllers, const std::string& why);
 
   std::string namespace_;
   std::string robot_name_;
@@ -143,13 +159,15 @@ class RobotInstance {
 
   // Destruction order matters: loop, manager (controllers), bus, backend.
   plugin::PluginPtr<hardware_interface::RobotHW> backend_;
-  hardware_interface::SimulatedRobotHW* sim_hw_ = nullptr;
+  hardware_interface::RobotHW* hw_ = nullptr;
+  hardware_interface::SimulatedRobotHW* sim_hw_ = nullptr;  // null for hardware
   std::unique_ptr<realtime::TopicBus> bus_;
   std::unique_ptr<realtime::ActionRegistry> actions_;
   // Floating bases only; the loop calls it, so it outlives loop_.
   std::unique_ptr<GroundTruthPublisher> ground_truth_;
   std::unique_ptr<controller_manager::ControllerManager> manager_;
-  std::unique_ptr<controller_manager::SimulationLoop> loop_;
+  std::unique_ptr<controller_manager::ControlLoop> loop_;
+  controller_manager::SimulationLoop* sim_loop_ = nullptr;  // loop_, in lockstep; null on the wall clock
 
   // Loaded controllers of spec.controllers, started by the loop thread before
   // its first physics step.

@@ -75,9 +75,10 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
                      const std::vector<hardware_interface::ControllerInfo>& stop_list) override;
   // Real-time. The joints of stopped controllers go to mode none (zero
   // effort), then those of started controllers to the mode of the joint
-  // interface they claim (EffortJointInterface → effort, ...).
-  void doSwitch(const std::vector<hardware_interface::ControllerInfo>& start_list,
-                const std::vector<hardware_interface::ControllerInfo>& stop_list) override;
+  // interface they claim (EffortJointInterface → effort, ...). Always ok:
+  // prepareSwitch refused what the simulation cannot do.
+  ReturnType doSwitch(const std::vector<hardware_interface::ControllerInfo>& start_list,
+                      const std::vector<hardware_interface::ControllerInfo>& stop_list) override;
 
   Duration timeStep() const override;
   // Real-time. Hands the applied commands to the engine and steps it once.

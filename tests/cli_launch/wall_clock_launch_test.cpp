@@ -1,0 +1,103 @@
+// `servoloop launch` on the wall clock, run as a child process: the seed's
+// robot on the mock backend with `--clock wall`, and with the mock named as the
+// robot's hardware plugin (`hardware: {type: mock}`), as a hardware robot runs.
+// Time is wall time: the run lasts its duration in wall seconds, the loop
+// keeps its 1 kHz deadlines (cycles near 1000 per second, real-time factor
+// near 1), controllers see the measured period, and the robot moves as it
+// does in simulated time.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "child_process.hpp"
+#include "csv_columns.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kOneDof = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
+
+class WallClockLaunch : public ::testing::Test {
+ protected:
+  servoloop::testing::ProcessResult run(const std::string& args) {
+    auto result = servoloop::testing::runShell(
+        std::string("exec '") + SERVOLOOP_CLI_EXE + "' " + args,
+        {dir_, dir_, {{"SERVOLOOP_PLUGIN_PATH", std::nullopt}, {"SERVOLOOP_RUN_DIR", dir_.string()}}}, 300.0);
+    EXPECT_FALSE(result.timed_out) << args;
+    return result;
+  }
+
+  // The run's summary, and the joint and its recorded states checked: the
+  // position controller took joint1 from 0 toward the 1.0 rad command (held
+  // near the URDF's 0.5 rad/s velocity limit: 0.4 rad in 0.8 s), and the
+  // joint states came at 50 Hz of wall time.
+  json checkRun(const servoloop::testing::ProcessResult& result, double duration_s) {
+    EXPECT_EQ(result.status, 0) << result.err;
+    const json summary = json::parse(result.out);
+    const json& robot = summary["robots"][0];
+    EXPECT_EQ(robot["backend"], "mock");
+    // Wall time: at least the duration; control time advances with it.
+    EXPECT_GE(summary["wall_time"].get<double>(), duration_s - 0.01);
+    EXPECT_NEAR(summary["sim_time"].get<double>(), duration_s, 0.05);
+    EXPECT_NEAR(summary["real_time_factor"].get<double>(), 1.0, 0.1);
+    // One cycle per millisecond of wall time, fewer when the machine made the
+    // loop skip deadlines (each skip is an overrun).
+    const auto cycles = robot["loop"]["cycles"].get<double>();
+    const auto overruns = robot["loop"]["overruns"].get<double>();
+    EXPECT_LE(cycles, duration_s * 1000.0 + 1.0);
+    EXPECT_GE(cycles + overruns * 50.0, duration_s * 1000.0 * 0.9) << "the loop kept its deadlines";
+    const double position = robot["joints"][0]["position"].get<double>();
+    EXPECT_GT(position, 0.1);
+    EXPECT_LT(position, 1.0);
+
+    const auto states = servoloop::testing::readCsvColumns(dir_ / "js.csv");
+    const std::vector<double>& time = states.at("time");
+    EXPECT_GE(time.size(), static_cast<std::size_t>(duration_s * 50 * 0.8));
+    for (std::size_t i = 1; i < time.size(); ++i) {
+      EXPECT_GT(time[i], time[i - 1]);
+      EXPECT_NEAR(time[i] - time[i - 1], 0.02, 0.012) << "at " << time[i] << " s";
+    }
+    return summary;
+  }
+
+  servoloop::testing::TempDir temp_{"servoloop-wall-clock"};
+  fs::path dir_ = temp_.path();
+};
+
+TEST_F(WallClockLaunch, MockBackendOnTheWallClock) {
+  const auto result = run("launch '" + (kOneDof / "one_dof_w_jnt_ctl.launch.yaml").string() +
+                          "' --backend mock --clock wall --duration 1 --json"
+                          " --pub /one_DOF_robot/joint1_position_controller/command:=1.0@0.2"
+                          " --record /one_DOF_robot/joint_states=js.csv");
+  checkRun(result, 1.0);
+  EXPECT_NE(result.err.find("runs on the wall clock at 1000 Hz"), std::string::npos) << result.err;
+}
+
+// The launch file names the hardware plugin; its other keys reach the plugin
+// under <ns>/hardware (the mock ignores them).
+TEST_F(WallClockLaunch, HardwarePluginNamedInTheLaunchFile) {
+  std::ofstream(dir_ / "hw.launch.yaml")
+      << "controller_manager: {update_rate: 1000}\n"
+         "robots:\n"
+         "  - urdf: '" << (kOneDof / "minimal_robot_description_w_jnt_ctl.urdf").string() << "'\n"
+         "    model: one_DOF_robot\n"
+         "    params: ['" << (kOneDof / "control_config" / "one_dof_ctl_params.yaml").string() << "']\n"
+         "    hardware: {type: mock, port: /dev/null, gains: [1, 2]}\n"
+         "    controllers: [joint_state_controller, joint1_position_controller]\n"
+         "publish:\n"
+         "  - {topic: /one_DOF_robot/joint1_position_controller/command, value: 1.0, time: 0.2}\n"
+         "record:\n"
+         "  - {topic: /one_DOF_robot/joint_states, file: js.csv}\n";
+  const auto result = run("launch hw.launch.yaml --duration 1 --json");
+  checkRun(result, 1.0);
+}
+
+}  // namespace
