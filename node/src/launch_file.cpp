@@ -3,6 +3,8 @@
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/roslaunch_xml.hpp"
 
+#include <sched.h>
+
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -180,7 +182,7 @@ class Parser {
     requireMap(node, key, "{urdf: robot.urdf, controllers: [joint_state_controller]}");
     checkKeys(node, key,
               {"urdf", "model", "namespace", "params", "controllers", "stopped_controllers", "fixed_base", "pose",
-               "self_collide", "xacro_args", "hardware"});
+               "self_collide", "xacro_args", "hardware", "realtime"});
     RobotSpec robot;
     if (!node["urdf"]) fail(node, key, "missing 'urdf': give the robot description, e.g. urdf: robot.urdf");
     robot.urdf = existingFile(node["urdf"], key + ".urdf", "URDF file");
@@ -226,6 +228,7 @@ class Parser {
       for (std::size_t i = 0; i < pose.size(); ++i) values[i] = number(pose[i], fmt::format("{}.pose[{}]", key, i));
       robot.pose = values;
     }
+    if (node["realtime"] && !node["realtime"].IsNull()) robot.realtime = realtime(node["realtime"], key + ".realtime");
     if (const YAML::Node hardware = node["hardware"]; hardware.IsDefined() && !hardware.IsNull()) {
       const std::string where = key + ".hardware";
       requireMap(hardware, where, "{type: my_robot_hw/MyRobotHW, port: /dev/ttyUSB0}");
@@ -241,6 +244,35 @@ class Parser {
       robot.hardware_source = fmt::format("{}:{}", source_, hardware.Mark().line + 1);
     }
     return robot;
+  }
+
+  RealtimeSettings realtime(const YAML::Node& node, const std::string& key) const {
+    requireMap(node, key, "{priority: 80, cpu_affinity: [1], lock_memory: true}");
+    checkKeys(node, key, {"priority", "cpu_affinity", "lock_memory"});
+    RealtimeSettings settings;
+    const auto whole = [&](const YAML::Node& value, const std::string& where, double low, double high,
+                           const std::string& what) {
+      const double x = number(value, where);
+      if (x != std::floor(x) || x < low || x > high) {
+        fail(value, where, fmt::format("expected {}, a whole number from {} to {}, got {}", what, low, high, x));
+      }
+      return static_cast<int>(x);
+    };
+    if (node["priority"]) settings.priority = whole(node["priority"], key + ".priority", 1, 99, "a SCHED_FIFO priority");
+    if (const YAML::Node cpus = node["cpu_affinity"]; cpus.IsDefined() && !cpus.IsNull()) {
+      if (cpus.IsScalar()) {
+        settings.cpu_affinity.push_back(whole(cpus, key + ".cpu_affinity", 0, CPU_SETSIZE - 1, "a CPU number"));
+      } else if (cpus.IsSequence() && cpus.size() > 0) {
+        for (std::size_t i = 0; i < cpus.size(); ++i) {
+          settings.cpu_affinity.push_back(
+              whole(cpus[i], fmt::format("{}.cpu_affinity[{}]", key, i), 0, CPU_SETSIZE - 1, "a CPU number"));
+        }
+      } else {
+        fail(cpus, key + ".cpu_affinity", "expected a list of CPU numbers, e.g. [1], got " + describe(cpus));
+      }
+    }
+    if (node["lock_memory"]) settings.lock_memory = boolean(node["lock_memory"], key + ".lock_memory");
+    return settings;
   }
 
   // "file.yaml" (loaded at /) or {file: file.yaml, ns: /robot} (loaded under ns).
@@ -339,7 +371,8 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   if (root.IsNull() || !root.IsDefined()) return launch;
   params::checkYamlDocument(root, source_name);
   parser.requireMap(root, "", "world: {backend: bullet} and robots: [...]");
-  parser.checkKeys(root, "", {"world", "controller_manager", "robots", "publish", "record", "plot"});
+  parser.checkKeys(root, "", {"world", "controller_manager", "realtime", "robots", "publish", "record", "plot"});
+  if (root["realtime"] && !root["realtime"].IsNull()) launch.realtime = parser.realtime(root["realtime"], "realtime");
   launch.world = parser.world(root["world"]);
   launch.controller_manager = parser.controllerManager(root["controller_manager"]);
   launch.robots = parser.list(root["robots"], "robots", &Parser::robot);

@@ -102,6 +102,7 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
   world.world = launch_.world;
   world.update_rate_hz = launch_.controller_manager.update_rate_hz;
   world.real_time_factor = real_time_factor_;
+  world.realtime = launch_.realtime;
   auto robot = std::make_unique<RobotInstance>(spec, world);
   robot->setFinishedCallback([this] {
     {

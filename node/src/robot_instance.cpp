@@ -68,7 +68,8 @@ void writeSpawnSettings(params::ParameterStore& store, const std::string& ns, co
 RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
     : urdf_path_(spec.urdf),
       backend_name_(spec.hardware_type.empty() ? world.world.backend : spec.hardware_type),
-      real_time_factor_(world.real_time_factor) {
+      real_time_factor_(world.real_time_factor),
+      realtime_(spec.realtime ? *spec.realtime : world.realtime) {
   if (!world.plugins || world.parameters == nullptr) {
     throw Error("RobotInstance: the world's plugin loader and parameter store must be set");
   }
@@ -408,6 +409,8 @@ void RobotInstance::start(std::optional<double> duration_s) {
   loop_thread_ = std::thread([this, duration_s, started = std::move(launch_controllers_started)]() mutable {
     bool started_set = false;
     try {
+      // Scheduling, affinity and locked memory first: everything after runs as the loop will.
+      if (!realtime_.empty()) applyRealtimeSettings(realtime_, fmt::format("robot '{}'", namespace_));
       // Before any publication: a controller's starting() forgets commands
       // published before it.
       startLaunchControllers();

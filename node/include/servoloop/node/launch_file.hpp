@@ -27,6 +27,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "servoloop/node/realtime_settings.hpp"
+
 namespace servoloop::node {
 
 // The simulated world every robot of the launch file is spawned into.
@@ -78,6 +80,8 @@ struct RobotSpec {
   std::string hardware_type;         // "" = simulated by the world's backend
   std::string hardware_params_yaml;  // the mapping without `type`, as YAML text
   std::string hardware_source;       // "launch.yaml:12", for errors in it
+  // The robot's own `realtime:` settings; unset: the launch file's.
+  std::optional<RealtimeSettings> realtime;
 };
 
 // A message published once, at simulated time time_s.
@@ -98,6 +102,7 @@ struct LaunchFile {
   std::filesystem::path source;  // the launch file itself ("" when parsed from text)
   WorldSettings world;
   ControllerManagerSettings controller_manager;
+  RealtimeSettings realtime;  // `realtime:` for every robot's loop thread (realtime_settings.hpp)
   std::vector<RobotSpec> robots;
   std::vector<TimedPublication> publish;
   std::vector<RecordSpec> record;

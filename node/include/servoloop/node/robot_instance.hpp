@@ -67,6 +67,7 @@ struct RobotWorld {
   WorldSettings world;                    // backend, physics step, gravity, ground plane
   double update_rate_hz = 0.0;            // controller manager rate; 0: 1 / time step
   double real_time_factor = 0.0;          // 0: free-running
+  RealtimeSettings realtime;              // the launch file's; a robot's own win
 };
 
 struct JointReading {
@@ -155,6 +156,7 @@ class RobotInstance {
   std::filesystem::path urdf_path_;
   std::string backend_name_;
   double real_time_factor_ = 0.0;
+  RealtimeSettings realtime_;  // applied on the loop thread before its first cycle
   std::shared_ptr<const urdf::ModelInterface> model_;
 
   // Destruction order matters: loop, manager (controllers), bus, backend.
