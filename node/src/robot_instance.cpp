@@ -328,17 +328,25 @@ void RobotInstance::publish(const TimedPublication& publication) {
   }
 }
 
+// Each published message is delivered (flush) before the loop goes on, so
+// subscribers that hand work to the real-time side from their callback (a
+// trajectory controller building its trajectory) have done so by the next
+// cycle, whenever the delivery thread would have woken up.
 void RobotInstance::publishDue(std::uint64_t steps_taken) {
+  const std::size_t before = next_publication_;
   while (next_publication_ < publications_.size() && stepsAt(publications_[next_publication_].time_s) <= steps_taken) {
     bus_->setTime(Time(stepsToSeconds(steps_taken, sim_loop_->physicsStep().seconds)));
     publish(publications_[next_publication_++]);
   }
+  if (next_publication_ != before) bus_->flush();
 }
 
 void RobotInstance::publishDueAt(double time_s) {
+  const std::size_t before = next_publication_;
   while (next_publication_ < publications_.size() && publications_[next_publication_].time_s <= time_s) {
     publish(publications_[next_publication_++]);
   }
+  if (next_publication_ != before) bus_->flush();
 }
 
 // On the wall clock the loop runs in pieces that end at the next timed

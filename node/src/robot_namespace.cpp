@@ -5,6 +5,7 @@
 #include <tinyxml2.h>
 
 #include "servoloop/params/parameter_store.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/xml_error_text.hpp"
 
@@ -50,13 +51,26 @@ std::string urdfRobotNamespace(const std::string& urdf_xml, const std::string& s
 std::string resolveRobotNamespace(const std::string& urdf_xml, const std::string& source_name,
                                   const std::string& launch_namespace, const std::string& robot_name) {
   std::string chosen = urdfRobotNamespace(urdf_xml, source_name);
-  if (chosen.empty()) chosen = launch_namespace;
-  if (chosen.empty()) chosen = "/" + robot_name;
-  try {
-    return params::resolveName("/", chosen);
-  } catch (const Error& e) {
-    throw ConfigError(source_name + ": robot namespace '" + chosen + "': " + e.what());
+  std::string origin = "<robotNamespace> of its gazebo_ros_control plugin";
+  if (chosen.empty()) {
+    chosen = launch_namespace;
+    origin = "the launch file's namespace";
   }
+  if (chosen.empty()) {
+    chosen = "/" + robot_name;
+    origin = "its model name '" + robot_name + "'";
+  }
+  std::string resolved;
+  try {
+    resolved = params::resolveName("/", chosen);
+    // It prefixes every topic of the robot: it follows the topic name rules.
+    if (resolved != "/") realtime::TopicBus::normalizeTopicName(resolved);
+  } catch (const Error& e) {
+    throw ConfigError(source_name + ": robot namespace '" + chosen + "' (from " + origin + "): " + e.what() +
+                      "; give the robot a namespace that is a ROS name (launch file: namespace: /my_robot; "
+                      "spawn-model: -N /my_robot)");
+  }
+  return resolved;
 }
 
 }  // namespace servoloop::node

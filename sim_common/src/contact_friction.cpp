@@ -17,7 +17,9 @@ namespace {
 std::optional<double> readCoefficient(const tinyxml2::XMLElement& gazebo, const char* tag, const std::string& where) {
   const tinyxml2::XMLElement* element = gazebo.FirstChildElement(tag);
   if (element == nullptr) return std::nullopt;
+  // <mu1>0.8</mu1>, or the older form Gazebo also reads, <mu1 value="0.8"/>.
   const char* text = element->GetText();
+  if (text == nullptr) text = element->Attribute("value");
   const std::string written = text == nullptr ? std::string() : std::string(text);
   const std::size_t first = written.find_first_not_of(" \t\r\n");
   const std::size_t last = written.find_last_not_of(" \t\r\n");

@@ -192,6 +192,43 @@ publish:
   EXPECT_NEAR(joint(result, "finger_a_slide")["position"].get<double>(), kFingerLimit, 2e-3) << result.err;
 }
 
+// An effort limit of 0 leaves a joint that nothing drives, through any
+// interface (the start-up warning says so): the hanger's swing under a
+// position controller commanded to 1 rad stays hanging at 0; without the
+// limit the position motor takes it to 1 rad.
+TEST_P(FeatureRun, AnEffortLimitOfZeroDrivesNothing) {
+  std::ifstream in(kAssets / "hanger.urdf");
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string limited = [&] {
+    std::string text = urdf;
+    text.insert(text.find("<dynamics damping"), "<limit effort=\"0\" velocity=\"10\"/>\n    ");
+    return text;
+  }();
+  const fs::path params = write("hold.yaml", R"(hanger:
+  hold: {type: position_controllers/JointPositionController, joint: swing}
+)");
+  const auto run = [&](const std::string& name, const std::string& text) {
+    const fs::path file = write(name + ".launch.yaml", R"(robots:
+  - urdf: ')" + write(name + ".urdf", text).string() + R"('
+    namespace: /hanger
+    fixed_base: true
+    pose: [0, 0, 2, 0, 0, 0]
+    params: [')" + params.string() + R"(']
+    controllers: [hold]
+publish:
+  - {topic: /hanger/hold/command, value: 1.0}
+)");
+    return launch(file, "--duration 2");
+  };
+  const CliResult held = run("free", urdf);
+  ASSERT_EQ(held.status, 0) << held.err;
+  EXPECT_NEAR(joint(held, "swing")["position"].get<double>(), 1.0, 1e-3);
+  const CliResult stuck = run("zero_effort", limited);
+  ASSERT_EQ(stuck.status, 0) << stuck.err;
+  EXPECT_NEAR(joint(stuck, "swing")["position"].get<double>(), 0.0, 1e-3);
+  EXPECT_NE(stuck.err.find("has an effort limit of 0"), std::string::npos) << stuck.err;
+}
+
 // A controller file loaded at "/" while the robot has its own namespace: the
 // error says where the controller's type was found and how to load it there.
 TEST_P(FeatureRun, ControllersLoadedOutsideTheNamespaceAreFoundForTheError) {

@@ -142,6 +142,38 @@ TEST(TrajectoryTracking, SeedRobotFollowsAMinimumJerkMoveWithinItsBound) {
   }
 }
 
+// A trajectory published by the launch file at t = 0 starts at t = 0, in
+// every run: its state recordings are identical, stamp for stamp (the
+// publication is delivered to the controller before the loop goes on).
+TEST(TrajectoryTracking, ATimedTrajectoryStartsAtItsTimeInEveryRun) {
+  const std::string urdf = (kRobots / "one_dof" / "minimal_robot_description_w_jnt_ctl.urdf").string();
+  const std::string launch_yaml = "world: {time_step: 0.001, gravity: [0, 0, -9.81]}\n"
+                                  "robots:\n  - urdf: " + urdf + "\n"
+                                  "    params: [controllers.yaml]\n    controllers: [arm_controller]\n" +
+                                  trajectoryPublish("/one_DOF_robot", {"joint1"}, {0.5}, 0.2, 0.0);
+  const std::string params = "one_DOF_robot:\n  arm_controller:\n    type: effort_controllers/JointTrajectoryController\n"
+                             "    joints: [joint1]\n    gains: {joint1: {p: 200, d: 20}}\n"
+                             "    state_publish_rate: 1000\n";
+  const std::string backend = servoloop::testing::physicsBackends().front();
+  std::vector<std::vector<double>> starts;
+  for (int run = 0; run < 5; ++run) {
+    servoloop::testing::TempDir dir("servoloop-jtc-start");
+    const LaunchRun result = launch(dir.path(), backend, "/one_DOF_robot", launch_yaml, params, 0.03);
+    const auto& time = result.state.at("time");
+    const auto& from_start = result.state.at("desired.time_from_start");
+    ASSERT_FALSE(time.empty());
+    // The trajectory's start: the state's time minus its time from start, once it runs.
+    std::vector<double> start;
+    for (std::size_t r = 0; r < time.size(); ++r) {
+      if (from_start[r] > 0.0) start.push_back(time[r] - from_start[r]);
+    }
+    ASSERT_FALSE(start.empty());
+    for (const double t : start) EXPECT_NEAR(t, 0.0, 1e-9) << "run " << run;
+    starts.push_back(start);
+  }
+  for (const auto& start : starts) EXPECT_EQ(start.size(), starts.front().size());
+}
+
 // The chain (robots/chain/chain.urdf): six 0.5 kg plates, 0.25 m long, centre
 // of mass 0.125 m below each joint, iyy 0.01 kg·m² there, damping 0.5, planar
 // about y. Positive q swings the chain towards −x.

@@ -55,6 +55,14 @@ TEST(ContactFriction, EachLinkGetsItsOwn) {
   EXPECT_EQ(linkFriction(friction, "base"), 1.0);
 }
 
+// Gazebo's older form, as PR2's description writes it.
+TEST(ContactFriction, TheValueAttributeFormIsRead) {
+  const auto friction = frictionOf("<gazebo reference='wheel'><mu1 value='100.0'/><mu2 value=' 50 '/></gazebo>");
+  EXPECT_EQ(linkFriction(friction, "wheel"), 50.0);
+  EXPECT_TRUE(errorOf("<gazebo reference='wheel'><mu1 value='much'/></gazebo>").find("<mu1> 'much'") !=
+              std::string::npos);
+}
+
 // Isotropic contacts: the smaller coefficient; one given alone meets the
 // other's default (1).
 TEST(ContactFriction, DifferingValuesTakeTheSmaller) {

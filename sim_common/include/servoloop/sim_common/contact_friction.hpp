@@ -6,6 +6,9 @@
 //     <mu2>1.0</mu2>   <!-- second direction -->
 //   </gazebo>
 //
+// (or in the older form Gazebo also reads, <mu1 value="1.0"/>, as PR2's and
+// pybullet's racecar descriptions have it).
+//
 // A link without <mu1>/<mu2> has Gazebo's default, 1. servoloop's contacts are
 // isotropic (Gazebo's first direction is arbitrary unless <fdir1> is given),
 // so a link whose mu1 and mu2 differ takes the smaller of the two, with a note.

@@ -48,8 +48,9 @@ struct EngineJointConfig {
   std::string name;
   // Bound on the effort the engine's velocity/position motor may use (N·m or
   // N): the smaller of the joint's effort limit and what its actuators can
-  // deliver through the transmission; +infinity when neither is given.
-  double motor_effort_limit = 0.0;
+  // deliver through the transmission; +infinity when neither is given; 0 for
+  // an effort limit of 0 (the joint cannot be driven, as with effort commands).
+  double motor_effort_limit = std::numeric_limits<double>::infinity();
   // Rotor inertia of the joint's actuators reflected to the joint (n²·J for a
   // reduction n), added to the joint's own inertia (kg·m² or kg). 0: none.
   double reflected_rotor_inertia = 0.0;
@@ -57,10 +58,10 @@ struct EngineJointConfig {
   double initial_position = 0.0;
 };
 
-// Non-real-time. The bound an engine's motor works with: motor_effort_limit,
-// or +infinity when it is not > 0 (no limit given).
+// Non-real-time. The bound an engine's motor works with: motor_effort_limit
+// (+infinity: none), or 0 when it is negative or not a number.
 inline double motorEffortBound(const EngineJointConfig& joint) noexcept {
-  return joint.motor_effort_limit > 0.0 ? joint.motor_effort_limit : std::numeric_limits<double>::infinity();
+  return joint.motor_effort_limit >= 0.0 ? joint.motor_effort_limit : 0.0;
 }
 
 // The root link of a floating robot, ground truth: the pose of its frame in
