@@ -7,25 +7,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "thrown_message.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/core/errors.hpp"
 
 namespace servoloop::node {
 namespace {
 
+using servoloop::testing::thrownMessage;
+
 using nlohmann::json;
 using ::testing::HasSubstr;
-
-template <class Fn>
-std::string errorOf(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected servoloop::Error";
-  return "";
-}
 
 sensor_msgs::JointState threeJoints() {
   sensor_msgs::JointState msg;
@@ -135,20 +127,20 @@ TEST(Messages, JointTrajectoryJsonRoundTripAndErrors) {
   EXPECT_EQ(again.joint_names, msg.joint_names);
   EXPECT_EQ(again.points[1].positions, msg.points[1].positions);
 
-  EXPECT_EQ(errorOf([] {
+  EXPECT_EQ(thrownMessage([] {
               messageFromJson<trajectory_msgs::JointTrajectory>(
                   json::parse(R"({"points": [{"positions": [1]}, {"positions": ["x"]}]})"));
             }),
             "trajectory_msgs/JointTrajectory: field 'points[1].positions[0]': expected a number, got string \"x\"");
-  EXPECT_EQ(errorOf([] {
+  EXPECT_EQ(thrownMessage([] {
               messageFromJson<trajectory_msgs::JointTrajectory>(json::parse(R"({"points": [{"position": [1]}]})"));
             }),
             "trajectory_msgs/JointTrajectory: unknown field 'points[0].position'; the fields are: positions, "
             "velocities, accelerations, effort, time_from_start");
-  EXPECT_THAT(errorOf([] { messageFromJson<trajectory_msgs::JointTrajectory>(json::parse(R"({"points": [3]})")); }),
+  EXPECT_THAT(thrownMessage([] { messageFromJson<trajectory_msgs::JointTrajectory>(json::parse(R"({"points": [3]})")); }),
               HasSubstr("field 'points[0]': expected an object with fields positions"));
   // A command must be finite, wherever the NaN hides.
-  EXPECT_EQ(errorOf([] {
+  EXPECT_EQ(thrownMessage([] {
               requireFiniteCommand("trajectory_msgs/JointTrajectory",
                                    json::parse(R"({"points": [{"positions": [1, null]}]})"));
             }),
@@ -183,9 +175,9 @@ TEST(Messages, TwistTfAndOdometryCovariance) {
   EXPECT_EQ(twist.linear.x, 0.5);
   EXPECT_EQ(twist.angular.z, -1.0);
   EXPECT_EQ(twist.linear.y, 0.0);
-  EXPECT_EQ(errorOf([] { requireFiniteCommand("geometry_msgs/Twist", json::parse(R"({"angular": {"z": null}})")); }),
+  EXPECT_EQ(thrownMessage([] { requireFiniteCommand("geometry_msgs/Twist", json::parse(R"({"angular": {"z": null}})")); }),
             "geometry_msgs/Twist: angular.z is nan; a command must be a finite number");
-  EXPECT_THAT(errorOf([] { messageFromJson<geometry_msgs::Twist>(json::parse(R"({"linear": {"w": 1}})")); }),
+  EXPECT_THAT(thrownMessage([] { messageFromJson<geometry_msgs::Twist>(json::parse(R"({"linear": {"w": 1}})")); }),
               HasSubstr("linear.w"));
 
   tf2_msgs::TFMessage tf;
@@ -207,7 +199,7 @@ TEST(Messages, TwistTfAndOdometryCovariance) {
   const auto odom_again = messageFromJson<nav_msgs::Odometry>(odom_json);
   EXPECT_EQ(odom_again.pose_covariance[0], 0.25);
   EXPECT_EQ(odom_again.twist_covariance[35], 0.5);
-  EXPECT_THAT(errorOf([] { messageFromJson<nav_msgs::Odometry>(json::parse(R"({"pose": {"covariance": [1, 2]}})")); }),
+  EXPECT_THAT(thrownMessage([] { messageFromJson<nav_msgs::Odometry>(json::parse(R"({"pose": {"covariance": [1, 2]}})")); }),
               HasSubstr("pose.covariance': expected a list of 36 numbers"));
 }
 
@@ -219,29 +211,29 @@ TEST(Messages, NanSurvivesJsonTextAsNull) {
 }
 
 TEST(Messages, MalformedJsonNamesTheField) {
-  EXPECT_EQ(errorOf([] { messageFromJson<std_msgs::Float64>(json::parse(R"({"data": "abc"})")); }),
+  EXPECT_EQ(thrownMessage([] { messageFromJson<std_msgs::Float64>(json::parse(R"({"data": "abc"})")); }),
             "std_msgs/Float64: field 'data': expected a number, got string \"abc\"");
-  EXPECT_EQ(errorOf([] { messageFromJson<std_msgs::Float64>(json::parse(R"({"dta": 1.0})")); }),
+  EXPECT_EQ(thrownMessage([] { messageFromJson<std_msgs::Float64>(json::parse(R"({"dta": 1.0})")); }),
             "std_msgs/Float64: unknown field 'dta'; the fields are: data");
-  EXPECT_THAT(errorOf([] { messageFromJson<std_msgs::Float64>(json::parse(R"("one")")); }),
+  EXPECT_THAT(thrownMessage([] { messageFromJson<std_msgs::Float64>(json::parse(R"("one")")); }),
               HasSubstr("std_msgs/Float64: expected an object with fields data, got string \"one\""));
-  EXPECT_EQ(errorOf([] {
+  EXPECT_EQ(thrownMessage([] {
               messageFromJson<sensor_msgs::JointState>(
                   json::parse(R"({"name": ["a", "b"], "position": [1.0, "x"]})"));
             }),
             "sensor_msgs/JointState: field 'position[1]': expected a number, got string \"x\"");
-  EXPECT_EQ(errorOf([] { messageFromJson<sensor_msgs::JointState>(json::parse(R"({"name": ["a", 2]})")); }),
+  EXPECT_EQ(thrownMessage([] { messageFromJson<sensor_msgs::JointState>(json::parse(R"({"name": ["a", 2]})")); }),
             "sensor_msgs/JointState: field 'name[1]': expected a string, got 2");
-  EXPECT_THAT(errorOf([] {
+  EXPECT_THAT(thrownMessage([] {
                 messageFromJson<sensor_msgs::JointState>(
                     json::parse(R"({"name": ["a", "b", "c"], "position": [1.0, 2.0]})"));
               }),
               HasSubstr("field 'position' has 2 entries but 'name' has 3"));
-  EXPECT_EQ(errorOf([] {
+  EXPECT_EQ(thrownMessage([] {
               messageFromJson<control_msgs::JointControllerState>(json::parse(R"({"antiwindup": "yes"})"));
             }),
             "control_msgs/JointControllerState: field 'antiwindup': expected true or false, got string \"yes\"");
-  EXPECT_EQ(errorOf([] { messageFromJson<std_msgs::Float64MultiArray>(json::parse(R"({"data": 1.0})")); }),
+  EXPECT_EQ(thrownMessage([] { messageFromJson<std_msgs::Float64MultiArray>(json::parse(R"({"data": 1.0})")); }),
             "std_msgs/Float64MultiArray: field 'data': expected a list of numbers, got 1.0");
 }
 
@@ -254,7 +246,7 @@ TEST(Messages, YamlTextParsesLikeRostopicPub) {
   EXPECT_EQ(parseMessageText("{name: [j1], flag: true, label: \"7\"}"),
             json::parse(R"({"name": ["j1"], "flag": true, "label": "7"})"));
   EXPECT_EQ(messageFromJson<std_msgs::Float64>(parseMessageText("data: 3")).data, 3.0);
-  const std::string error = errorOf([] { parseMessageText("data: [1,", "topic pub"); });
+  const std::string error = thrownMessage([] { parseMessageText("data: [1,", "topic pub"); });
   EXPECT_THAT(error, HasSubstr("topic pub: cannot read 'data: [1,'"));
   EXPECT_THAT(error, HasSubstr("line 1"));
 }

@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "thrown_message.hpp"
 #include "servoloop/params/parameter_store.hpp"
 
 #include "servoloop/core/text_file.hpp"
@@ -18,23 +19,13 @@
 namespace servoloop::params {
 namespace {
 
+using servoloop::testing::thrownMessage;
+
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
 const std::string kSeedParams = std::string(SERVOLOOP_SEED_DIR) + "/control_config/one_dof_ctl_params.yaml";
 constexpr const char* kPid = "/one_DOF_robot/joint1_position_controller/pid";
-
-// The message of the exception fn throws as E (fails the test if none).
-template <class E, class Fn>
-std::string messageOf(Fn&& fn) {
-  try {
-    fn();
-  } catch (const E& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an exception";
-  return "";
-}
 
 // A file in this test program's own temporary folder.
 std::string writeTempFile(const std::string& name, const std::string& content) {
@@ -89,31 +80,31 @@ TEST(ParameterStore, LoadsUnderANamespaceAndResolvesRelativeNames) {
   EXPECT_EQ(resolveName("/one_DOF_robot/", "/other/x"), "/other/x");
   EXPECT_EQ(resolveName("/", "a//b/"), "/a/b");
   EXPECT_EQ(resolveName("", ""), "/");
-  EXPECT_THAT(messageOf<Error>([] { resolveName("/ns", "~private"); }), HasSubstr("'~' names are not supported"));
+  EXPECT_THAT(thrownMessage<Error>([] { resolveName("/ns", "~private"); }), HasSubstr("'~' names are not supported"));
 }
 
 TEST(ParameterStore, TypeErrorsNameKeyExpectedAndActualTypes) {
   ParameterStore params;
   params.loadFile(kSeedParams);
 
-  const std::string rate_as_string = messageOf<ParameterTypeError>(
+  const std::string rate_as_string = thrownMessage<ParameterTypeError>(
       [&] { params.get<std::string>("/one_DOF_robot/joint_state_controller/publish_rate"); });
   EXPECT_THAT(rate_as_string, HasSubstr("'/one_DOF_robot/joint_state_controller/publish_rate'"));
   EXPECT_THAT(rate_as_string, HasSubstr("is int 50, expected string"));
   EXPECT_THAT(rate_as_string, HasSubstr("one_dof_ctl_params.yaml:5:19"));
 
   // A double is not an int, as for rosparam.
-  const std::string p_as_int = messageOf<ParameterTypeError>([&] { params.get<int>(std::string(kPid) + "/p"); });
+  const std::string p_as_int = thrownMessage<ParameterTypeError>([&] { params.get<int>(std::string(kPid) + "/p"); });
   EXPECT_THAT(p_as_int, HasSubstr("'/one_DOF_robot/joint1_position_controller/pid/p'"));
   EXPECT_THAT(p_as_int, HasSubstr("is double 10.0, expected int"));
 
-  const std::string type_as_double = messageOf<ParameterTypeError>(
+  const std::string type_as_double = thrownMessage<ParameterTypeError>(
       [&] { params.get<double>("/one_DOF_robot/joint1_position_controller/type"); });
   EXPECT_THAT(type_as_double,
               HasSubstr("is string \"effort_controllers/JointPositionController\", expected double"));
 
   const std::string pid_as_list =
-      messageOf<ParameterTypeError>([&] { params.get<std::vector<double>>(kPid); });
+      thrownMessage<ParameterTypeError>([&] { params.get<std::vector<double>>(kPid); });
   EXPECT_THAT(pid_as_list, HasSubstr("is map"));
   EXPECT_THAT(pid_as_list, HasSubstr("expected list of double"));
 
@@ -124,13 +115,13 @@ TEST(ParameterStore, MissingNameSaysWhatTheNamespaceHas) {
   ParameterStore params;
   params.loadFile(kSeedParams);
   const std::string message =
-      messageOf<ParameterNotFoundError>([&] { params.get<double>(std::string(kPid) + "/pp"); });
+      thrownMessage<ParameterNotFoundError>([&] { params.get<double>(std::string(kPid) + "/pp"); });
   EXPECT_THAT(message, HasSubstr("parameter '/one_DOF_robot/joint1_position_controller/pid/pp' not found"));
   EXPECT_THAT(message, HasSubstr("'/one_DOF_robot/joint1_position_controller/pid' has: d, i, i_clamp_max, "
                                  "i_clamp_min, p"));
 
   const std::string deep =
-      messageOf<ParameterNotFoundError>([&] { params.get<double>("/one_DOF_robot/nope/pid/p"); });
+      thrownMessage<ParameterNotFoundError>([&] { params.get<double>("/one_DOF_robot/nope/pid/p"); });
   EXPECT_THAT(deep, HasSubstr("'/one_DOF_robot' has: joint1_position_controller, joint_state_controller"));
 
   EXPECT_EQ(params.get(std::string(kPid) + "/pp", 2.5), 2.5);
@@ -154,20 +145,20 @@ TEST(ParameterStore, MalformedYamlNamesFileAndLine) {
                                          "    gains: [1.0, 2.0\n"
                                          "    joint: j1\n");
   ParameterStore params;
-  const std::string message = messageOf<ConfigError>([&] { params.loadFile(path); });
+  const std::string message = thrownMessage<ConfigError>([&] { params.loadFile(path); });
   EXPECT_THAT(message, HasSubstr(path + ":4:"));
   EXPECT_THAT(message, HasSubstr("invalid YAML"));
   EXPECT_THAT(message, HasSubstr("closed brackets"));
   std::filesystem::remove(path);
 
-  const std::string missing = messageOf<ConfigError>([&] { params.loadFile("/no/such/dir/params.yaml"); });
+  const std::string missing = thrownMessage<ConfigError>([&] { params.loadFile("/no/such/dir/params.yaml"); });
   EXPECT_THAT(missing, HasSubstr("/no/such/dir/params.yaml: parameter file not found"));
   EXPECT_THAT(missing, HasSubstr("check the path"));
 
   // A device is refused before a byte is read (/dev/zero would never end).
-  const std::string device = messageOf<ConfigError>([&] { params.loadFile("/dev/zero"); });
+  const std::string device = thrownMessage<ConfigError>([&] { params.loadFile("/dev/zero"); });
   EXPECT_THAT(device, HasSubstr("/dev/zero: is not a regular file (a device, FIFO or socket)"));
-  const std::string folder = messageOf<ConfigError>([&] { params.loadFile("/tmp"); });
+  const std::string folder = thrownMessage<ConfigError>([&] { params.loadFile("/tmp"); });
   EXPECT_THAT(folder, HasSubstr("/tmp: is a folder, not a parameter file"));
   // Nine lines whose aliases stand for 10^9 values.
   std::string bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n";
@@ -177,13 +168,13 @@ TEST(ParameterStore, MalformedYamlNamesFileAndLine) {
     bomb += "]\n";
   }
   const std::string bomb_file = writeTempFile("bomb.yaml", bomb);
-  const std::string bombed = messageOf<ConfigError>([&] { params.loadFile(bomb_file); });
+  const std::string bombed = thrownMessage<ConfigError>([&] { params.loadFile(bomb_file); });
   EXPECT_THAT(bombed, HasSubstr(bomb_file + ": the YAML holds more than 1000000 values once its aliases"));
   EXPECT_FALSE(params.has("/a")) << "nothing of the refused file is loaded";
 
   // A key twice in one map: ROS would take the last, yaml-cpp the first.
   const std::string twice =
-      messageOf<ConfigError>([&] { params.loadString("ctrl:\n  pid: {p: 10, d: 1, p: 20}\n", "dup.yaml"); });
+      thrownMessage<ConfigError>([&] { params.loadString("ctrl:\n  pid: {p: 10, d: 1, p: 20}\n", "dup.yaml"); });
   EXPECT_THAT(twice, HasSubstr("dup.yaml:2:"));
   EXPECT_THAT(twice, HasSubstr("key 'p' appears twice in one map (first at line 2)"));
   EXPECT_FALSE(params.has("/ctrl"));
@@ -193,10 +184,10 @@ TEST(ParameterStore, MalformedYamlNamesFileAndLine) {
   const std::string big = big_dir.file("huge.yaml");
   servoloop::testing::writeFile(big, "a: 1\n");
   std::filesystem::resize_file(big, kMaxTextFileBytes + (std::uintmax_t{1} << 20));
-  const std::string huge = messageOf<ConfigError>([&] { params.loadFile(big); });
+  const std::string huge = thrownMessage<ConfigError>([&] { params.loadFile(big); });
   EXPECT_THAT(huge, HasSubstr(big + ": parameter file of 65 MiB; the limit is 64 MiB"));
 
-  const std::string top_list = messageOf<ConfigError>([&] { params.loadString("- 1\n- 2\n", "list.yaml"); });
+  const std::string top_list = thrownMessage<ConfigError>([&] { params.loadString("- 1\n- 2\n", "list.yaml"); });
   EXPECT_THAT(top_list, HasSubstr("list.yaml: the top level is a list, expected a map"));
 
   EXPECT_NO_THROW(params.loadString("", "empty.yaml"));
@@ -226,7 +217,7 @@ TEST(ParameterStore, ScalarsAreTypedLikeYaml) {
   EXPECT_EQ(params.get<double>("e"), -0.0025);
   EXPECT_EQ(params.get<double>("f"), std::numeric_limits<double>::infinity());
   EXPECT_EQ(params.get<std::vector<double>>("g"), (std::vector<double>{1.0, 2.5, -3.0}));
-  EXPECT_THAT(messageOf<ParameterTypeError>([&] { params.get<std::vector<int>>("g"); }),
+  EXPECT_THAT(thrownMessage<ParameterTypeError>([&] { params.get<std::vector<int>>("g"); }),
               HasSubstr("'/g[1]'"));
   EXPECT_EQ(params.get<std::vector<std::string>>("h"), (std::vector<std::string>{"joint1", "joint2"}));
   EXPECT_EQ(params.get<int>("i"), 16);

@@ -7,12 +7,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "thrown_message.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/node/action_json.hpp"
 #include "servoloop/realtime/action_registry.hpp"
 
 namespace servoloop::realtime {
 namespace {
+
+using servoloop::testing::thrownMessage;
 
 using ::testing::HasSubstr;
 
@@ -35,17 +38,6 @@ class RecordingServer : public ActionServer {
   control_msgs::FollowJointTrajectoryGoal last_goal;
   int goals = 0;
 };
-
-template <class Fn>
-std::string errorOf(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected servoloop::Error";
-  return "";
-}
 
 constexpr const char* kType = "control_msgs/FollowJointTrajectory";
 
@@ -71,15 +63,15 @@ TEST(ActionRegistry, ServesListsSendsAndWithdraws) {
     EXPECT_EQ(node::resultJson(kType, *goal)["error_code"], 7);
     EXPECT_TRUE(node::feedbackJson(kType, *goal).is_null());
 
-    EXPECT_THAT(errorOf([&] { (void)registry.add("/arm/follow_joint_trajectory", kType, server); }),
+    EXPECT_THAT(thrownMessage([&] { (void)registry.add("/arm/follow_joint_trajectory", kType, server); }),
                 HasSubstr("already served"));
-    EXPECT_THAT(errorOf([&] { registry.sendGoal("/arm/follow_joint_trajectory", "other_msgs/Other", nullptr); }),
+    EXPECT_THAT(thrownMessage([&] { registry.sendGoal("/arm/follow_joint_trajectory", "other_msgs/Other", nullptr); }),
                 HasSubstr("is of type control_msgs/FollowJointTrajectory"));
-    EXPECT_THAT(errorOf([&] { registry.sendGoal("/arm/nothing", kType, nullptr); }),
+    EXPECT_THAT(thrownMessage([&] { registry.sendGoal("/arm/nothing", kType, nullptr); }),
                 HasSubstr("actions are: /arm/follow_joint_trajectory"));
   }
   EXPECT_TRUE(registry.list().empty());  // the registration went: so did the action
-  EXPECT_THAT(errorOf([&] { registry.sendGoal("/arm/follow_joint_trajectory", kType, nullptr); }),
+  EXPECT_THAT(thrownMessage([&] { registry.sendGoal("/arm/follow_joint_trajectory", kType, nullptr); }),
               HasSubstr("serves no action"));
 }
 
@@ -97,13 +89,13 @@ TEST(ActionRegistry, GoalJsonErrorsNameTheField) {
   ActionRegistry registry;
   ActionRegistration registration = registry.add("/a", kType, std::make_shared<RecordingServer>());
   const auto send = [&](const nlohmann::json& goal) { node::sendGoalJson(registry, "/a", kType, goal); };
-  EXPECT_THAT(errorOf([&] { send({{"trajectry", nlohmann::json::object()}}); }), HasSubstr("field 'trajectry'"));
-  EXPECT_THAT(errorOf([&] { send({{"goal_tolerance", {{{"position", 0.1}}}}}); }),
+  EXPECT_THAT(thrownMessage([&] { send({{"trajectry", nlohmann::json::object()}}); }), HasSubstr("field 'trajectry'"));
+  EXPECT_THAT(thrownMessage([&] { send({{"goal_tolerance", {{{"position", 0.1}}}}}); }),
               HasSubstr("goal_tolerance[0].name"));
-  EXPECT_THAT(errorOf([&] { send({{"goal_time_tolerance", nullptr}}); }), HasSubstr("goal_time_tolerance"));
-  EXPECT_THAT(errorOf([&] { send({{"trajectory", {{"points", {{{"positions", {nullptr}}}}}}}}); }),
+  EXPECT_THAT(thrownMessage([&] { send({{"goal_time_tolerance", nullptr}}); }), HasSubstr("goal_time_tolerance"));
+  EXPECT_THAT(thrownMessage([&] { send({{"trajectory", {{"points", {{{"positions", {nullptr}}}}}}}}); }),
               HasSubstr("points[0].positions[0] is nan"));
-  EXPECT_THAT(errorOf([&] { node::sendGoalJson(registry, "/a", "x_msgs/X", nlohmann::json::object()); }),
+  EXPECT_THAT(thrownMessage([&] { node::sendGoalJson(registry, "/a", "x_msgs/X", nlohmann::json::object()); }),
               HasSubstr("unknown action type 'x_msgs/X'"));
 }
 

@@ -11,26 +11,18 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "thrown_message.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 
 namespace servoloop::realtime {
 namespace {
 
+using servoloop::testing::thrownMessage;
+
 using nlohmann::json;
 using ::testing::HasSubstr;
 using namespace std::chrono_literals;
-
-template <class Fn>
-std::string errorOf(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected servoloop::Error";
-  return "";
-}
 
 sensor_msgs::JointState jointStatePrototype() {
   sensor_msgs::JointState msg;
@@ -44,7 +36,7 @@ sensor_msgs::JointState jointStatePrototype() {
 TEST(TopicBus, TopicTypeIsFixedByFirstUse) {
   TopicBus bus;
   auto publisher = bus.advertise<std_msgs::Float64>("/robot/ctrl/command");
-  const std::string message = errorOf([&] {
+  const std::string message = thrownMessage([&] {
     auto subscription = bus.subscribe<std_msgs::Float64MultiArray>("/robot/ctrl/command", [](const auto&) {});
   });
   EXPECT_EQ(message,
@@ -53,7 +45,7 @@ TEST(TopicBus, TopicTypeIsFixedByFirstUse) {
   EXPECT_THROW(bus.publish("/robot/ctrl/command", sensor_msgs::JointState{}), Error);
   EXPECT_THROW(bus.commandInput<control_msgs::JointControllerState>("/robot/ctrl/command"), Error);
   EXPECT_THROW(bus.advertise<std_msgs::Float64MultiArray>("robot/ctrl/command"), Error);
-  EXPECT_THAT(errorOf([&] { servoloop::node::publishJson(bus, "/robot/ctrl/command", json{{"data", 1}}, "sensor_msgs/JointState"); }),
+  EXPECT_THAT(thrownMessage([&] { servoloop::node::publishJson(bus, "/robot/ctrl/command", json{{"data", 1}}, "sensor_msgs/JointState"); }),
               HasSubstr("carries std_msgs/Float64, not sensor_msgs/JointState"));
   EXPECT_NO_THROW(bus.commandInput<std_msgs::Float64>("/robot/ctrl/command"));
   EXPECT_EQ(bus.typeOf("/robot/ctrl/command"), "std_msgs/Float64");
@@ -62,7 +54,7 @@ TEST(TopicBus, TopicTypeIsFixedByFirstUse) {
 TEST(TopicBus, TopicNamesFollowRosRules) {
   EXPECT_EQ(TopicBus::normalizeTopicName("one_DOF_robot/joint_states"), "/one_DOF_robot/joint_states");
   EXPECT_EQ(TopicBus::normalizeTopicName("//a//b/"), "/a/b");
-  EXPECT_THAT(errorOf([] { TopicBus::normalizeTopicName("/robot/1st"); }), HasSubstr("'/robot/1st'"));
+  EXPECT_THAT(thrownMessage([] { TopicBus::normalizeTopicName("/robot/1st"); }), HasSubstr("'/robot/1st'"));
   EXPECT_THROW(TopicBus::normalizeTopicName("/a b"), Error);
   EXPECT_THROW(TopicBus::normalizeTopicName("/"), Error);
 }
@@ -231,7 +223,7 @@ TEST(TopicBus, JsonSubscriberMayComeBeforeTheTopicIsTyped) {
   });
   ASSERT_EQ(bus.list().size(), 1u);
   EXPECT_EQ(bus.list()[0].type, "");
-  EXPECT_THAT(errorOf([&] { servoloop::node::publishJson(bus, "/robot/late", json{{"data", 1.0}}); }), HasSubstr("has no type yet"));
+  EXPECT_THAT(thrownMessage([&] { servoloop::node::publishJson(bus, "/robot/late", json{{"data", 1.0}}); }), HasSubstr("has no type yet"));
 
   auto publisher = bus.advertise<std_msgs::Float64>("/robot/late");
   EXPECT_EQ(bus.typeOf("/robot/late"), "std_msgs/Float64");
@@ -250,12 +242,12 @@ TEST(TopicBus, PublishJsonChecksTheMessageAndNamesTopicAndField) {
   ASSERT_NE(input.latest(), nullptr);
   EXPECT_EQ(input.latest()->data, (std::vector<double>{1.0, 2.0, 3.0}));
 
-  EXPECT_EQ(errorOf([&] { servoloop::node::publishJson(bus, "/robot/group/command", json::parse(R"({"data": [1, "x"]})")); }),
+  EXPECT_EQ(thrownMessage([&] { servoloop::node::publishJson(bus, "/robot/group/command", json::parse(R"({"data": [1, "x"]})")); }),
             "topic '/robot/group/command': std_msgs/Float64MultiArray: field 'data[1]': expected a number, got "
             "string \"x\"");
-  EXPECT_THAT(errorOf([&] { servoloop::node::publishJson(bus, "/robot/unknown", json{{"data", 1}}); }),
+  EXPECT_THAT(thrownMessage([&] { servoloop::node::publishJson(bus, "/robot/unknown", json{{"data", 1}}); }),
               HasSubstr("no topic '/robot/unknown'"));
-  EXPECT_THAT(errorOf([&] { servoloop::node::publishJson(bus, "/robot/new", json{{"data", 1}}, "std_msgs/Float32"); }),
+  EXPECT_THAT(thrownMessage([&] { servoloop::node::publishJson(bus, "/robot/new", json{{"data", 1}}, "std_msgs/Float32"); }),
               HasSubstr("unknown message type 'std_msgs/Float32'"));
 
   // With a known type name the topic is created.
@@ -295,7 +287,7 @@ TEST(TopicBus, ListCountsPublishersAndSubscribers) {
   EXPECT_EQ(topics[1].publishers, 1u);
   EXPECT_EQ(topics[1].subscribers, 1u);
   EXPECT_TRUE(bus.hasTopic("b/state"));
-  EXPECT_THAT(errorOf([&] { bus.typeOf("/c"); }), HasSubstr("topics are: /a/command, /b/state"));
+  EXPECT_THAT(thrownMessage([&] { bus.typeOf("/c"); }), HasSubstr("topics are: /a/command, /b/state"));
 }
 
 TEST(TopicBus, UnsubscribedCallbacksAreNotCalledAndClosedPublishersStillDeliver) {

@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "thrown_message.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/sim_common/sim_settings.hpp"
@@ -15,17 +16,9 @@
 namespace servoloop::sim_common {
 namespace {
 
-using ::testing::HasSubstr;
+using servoloop::testing::thrownMessage;
 
-std::string configErrorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const ConfigError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "expected servoloop::ConfigError";
-  return "";
-}
+using ::testing::HasSubstr;
 
 class SimSettingsTest : public ::testing::Test {
  protected:
@@ -33,7 +26,7 @@ class SimSettingsTest : public ::testing::Test {
     return parseSimSettings(YAML::Load(yaml), *model_, "/robot");
   }
   std::string errorOf(const std::string& yaml) {
-    return configErrorOf([&] { parse(yaml); });
+    return thrownMessage<ConfigError>([&] { parse(yaml); });
   }
 
   std::shared_ptr<const urdf::ModelInterface> model_ = parseRobotModel(
@@ -175,7 +168,7 @@ TEST(ActuatorParametersTest, DefaultsAndValues) {
 
 TEST(ActuatorParametersTest, ErrorsNameTheActuatorAndKey) {
   const auto errorOf = [](const std::string& yaml) {
-    return configErrorOf([&] { parseActuatorParameters(YAML::Load(yaml), {"motor1"}, "/robot"); });
+    return thrownMessage<ConfigError>([&] { parseActuatorParameters(YAML::Load(yaml), {"motor1"}, "/robot"); });
   };
   const std::string unknown = errorOf("actuators: {motor9: {max_effort: 1}}");
   EXPECT_THAT(unknown, HasSubstr("/robot/actuators/motor9: the robot has no actuator 'motor9' (actuators: motor1"));
