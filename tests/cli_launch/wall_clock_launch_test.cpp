@@ -58,12 +58,19 @@ class WallClockLaunch : public ::testing::Test {
     EXPECT_GT(position, 0.1);
     EXPECT_LT(position, 1.0);
 
+    // Joint states at 50 Hz of wall time: 20 ms apart on average. Each is
+    // stamped with its cycle's start, which a busy machine delays by some
+    // milliseconds now and then, so single intervals vary around 20 ms.
     const auto states = servoloop::testing::readCsvColumns(dir_ / "js.csv");
     const std::vector<double>& time = states.at("time");
     EXPECT_GE(time.size(), static_cast<std::size_t>(duration_s * 50 * 0.8));
     for (std::size_t i = 1; i < time.size(); ++i) {
       EXPECT_GT(time[i], time[i - 1]);
-      EXPECT_NEAR(time[i] - time[i - 1], 0.02, 0.012) << "at " << time[i] << " s";
+      EXPECT_LT(time[i] - time[i - 1], 0.1) << "at " << time[i] << " s";
+    }
+    if (time.size() > 10) {
+      const double mean = (time.back() - time.front()) / static_cast<double>(time.size() - 1);
+      EXPECT_NEAR(mean, 0.02, 0.004);
     }
     return summary;
   }
