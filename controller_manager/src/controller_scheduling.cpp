@@ -142,20 +142,20 @@ void ControllerManager::executeSwitch(const Time& time) noexcept {
   }
   // The hardware's mode switch first: when it cannot carry it out, nothing
   // changes (no controller stops or starts) and the request fails.
-  const char* what = "returned an error";
-  const char* detail = "";
+  // Why it failed is copied into the plan without allocating, an exception's
+  // message inside its catch block (it dies with the exception).
+  char* why = switch_plan_.hardware_error.data();
+  const std::size_t why_size = switch_plan_.hardware_error.size();
+  std::snprintf(why, why_size, "%s", "returned an error");
   ReturnType modes = ReturnType::error;
   try {
     modes = robot_hw_->doSwitch(switch_plan_.start_infos, switch_plan_.stop_infos);
   } catch (const std::exception& e) {
-    what = "threw: ";
-    detail = e.what();
+    std::snprintf(why, why_size, "threw: %s", e.what());
   } catch (...) {
-    what = "threw an exception not derived from std::exception";
+    std::snprintf(why, why_size, "%s", "threw an exception not derived from std::exception");
   }
   if (modes != ReturnType::ok) {
-    // Copied here, without allocating: an exception's message dies with it.
-    std::snprintf(switch_plan_.hardware_error.data(), switch_plan_.hardware_error.size(), "%s%s", what, detail);
     switch_plan_.hardware_refused = true;
     return;
   }
