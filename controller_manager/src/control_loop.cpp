@@ -2,6 +2,7 @@
 #include "servoloop/controller_manager/control_loop.hpp"
 
 #include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/safety_supervisor.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/core/logging.hpp"
 
@@ -19,10 +20,26 @@ bool ControlLoop::logHardwareErrorReport() {
   return true;
 }
 
+namespace {
+// What a controller stopped for a hardware failure is told (fixed text: the
+// real-time thread formats nothing).
+const char* protectiveStopCause(HardwareCall call) noexcept {
+  switch (call) {
+    case HardwareCall::read: return "its read() returned an error (protective stop)";
+    case HardwareCall::write: return "its write() returned an error (protective stop)";
+    case HardwareCall::step: return "its step() returned an error (protective stop)";
+  }
+  return "protective stop";
+}
+}  // namespace
+
 void ControlLoop::recordFailure(HardwareCall call, ReturnType result, Time time,
                                 std::uint64_t cycle) noexcept {
   if (hardware_errors_.record(call, result, time, cycle)) statistics_.recordHardwareError();
   if (result == ReturnType::deactivate) deactivate_this_cycle_ = true;
+  if (options_.safety != nullptr && options_.safety->hardwareFailed(call, result, time)) {
+    manager_.containHardwareFailure(time, protectiveStopCause(call));
+  }
 }
 
 ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t cycle) noexcept {
@@ -34,6 +51,7 @@ ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t c
     // other joints) under control. It is reported as an error of this call.
   }
   recordHardwareResult(HardwareCall::read, result, time, cycle);
+  if (options_.safety != nullptr) options_.safety->pollHardwareInput();
   return result;
 }
 
@@ -55,13 +73,19 @@ void ControlLoop::setBusTime(Time time) noexcept {
 void ControlLoop::updateControllers(Time time, Duration period) noexcept {
   manager_.update(time, period);
   if (options_.cycle_hook != nullptr) options_.cycle_hook->afterUpdate(time, period);
+  if (options_.safety != nullptr) options_.safety->overrideCommands();
 }
 
-void ControlLoop::finishCycle() noexcept {
+void ControlLoop::finishCycle(Time time) noexcept {
   hardware_errors_.endCycle();
   const bool too_many_failures = options_.stop_after_failed_cycles > 0 &&
                                  hardware_errors_.consecutiveFailedCycles() >= options_.stop_after_failed_cycles;
-  if (deactivate_this_cycle_ || too_many_failures) hardware_stop_.store(true, std::memory_order_release);
+  if (deactivate_this_cycle_ || too_many_failures) {
+    if (options_.safety != nullptr && options_.safety->hardwareStopped(time)) {
+      manager_.containHardwareFailure(time, "it stopped the control loop (fault)");
+    }
+    hardware_stop_.store(true, std::memory_order_release);
+  }
   deactivate_this_cycle_ = false;
 }
 

@@ -25,6 +25,7 @@ const char* toString(FaultKind kind) noexcept {
     case FaultKind::update_returned_error: return "update() returned ReturnType::error";
     case FaultKind::non_finite_command: return "a command was not finite";
     case FaultKind::stopping_threw: return "stopping() threw";
+    case FaultKind::hardware_failed: return "the hardware failed";
   }
   return "unknown fault";
 }

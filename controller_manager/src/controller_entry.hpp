@@ -48,9 +48,11 @@ struct ControllerEntry {
   // plus k·rate.divisor.
   std::uint64_t next_update_cycle = 0;
   Time last_update_time;          // control time of starting() or the last update()
+  bool stopped_by_hardware_failure = false;  // scratch of containHardwareFailure
 
   FaultRecord fault;
   std::string last_fault;  // non-real-time: the last drained fault's message
+  FaultKind last_fault_kind = FaultKind::update_threw;  // non-real-time: its kind
 };
 
 }  // namespace servoloop::controller_manager::detail

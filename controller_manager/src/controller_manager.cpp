@@ -310,7 +310,7 @@ std::vector<ControllerSpec> ControllerManager::listControllers() {
   for (const auto& entry : entries_) {
     specs.push_back(ControllerSpec{entry->name, entry->type, entry->controller->state(),
                                    entry->info.claimed_resources, entry->rate.rate_hz,
-                                   entry->rate.divisor, entry->last_fault});
+                                   entry->rate.divisor, entry->last_fault, entry->last_fault_kind});
   }
   return specs;
 }
@@ -402,6 +402,7 @@ std::vector<ControllerFault> ControllerManager::processFaultsLocked() {
     }
     logger().error("{}", message);
     entry->last_fault = message;
+    entry->last_fault_kind = record.kind;
     faults.push_back(ControllerFault{entry->name, record.kind, std::move(message)});
     record.pending.store(false, std::memory_order_release);
   }

@@ -135,6 +135,38 @@ void ControllerManager::update(const Time& time, const Duration& /*period*/) noe
   realtime_reading_list_.store(-1, std::memory_order_release);
 }
 
+std::size_t ControllerManager::containHardwareFailure(const Time& time, const char* why) noexcept {
+  std::size_t stopped = 0;
+  const int list_index = enterRealtimeList();
+  const auto& list = realtime_lists_[list_index];
+  // Stop them all first, then start fallbacks: a fallback started for one
+  // controller must not be taken for a controller that was running.
+  for (detail::ControllerEntry* entry : list) {
+    entry->stopped_by_hardware_failure =
+        entry->controller->isRunning() && !entry->controller->claimedCommands().empty();
+    if (entry->stopped_by_hardware_failure) {
+      entry->controller->abortRequest();
+      ++stopped;
+    }
+  }
+  bool any_fallback = false;
+  for (detail::ControllerEntry* entry : list) any_fallback |= entry->stopped_by_hardware_failure && !entry->fallbacks.empty();
+  if (any_fallback) fallback_starts_.fetch_add(1, std::memory_order_acq_rel);  // odd: see containInUpdate
+  for (detail::ControllerEntry* entry : list) {
+    if (!entry->stopped_by_hardware_failure) continue;
+    entry->stopped_by_hardware_failure = false;
+    bool started = false;
+    for (detail::ControllerEntry* fallback : entry->fallbacks) {
+      if (fallback->controller->isRunning()) continue;
+      started = startNow(*fallback, time) || started;
+    }
+    entry->fault.publish(FaultKind::hardware_failed, why, ControllerBase::kAllCommandsFinite, 0.0, started);
+  }
+  if (any_fallback) fallback_starts_.fetch_add(1, std::memory_order_acq_rel);
+  realtime_reading_list_.store(-1, std::memory_order_release);
+  return stopped;
+}
+
 void ControllerManager::executeSwitch(const Time& time) noexcept {
   if (fallback_starts_.load(std::memory_order_acquire) != switch_plan_.fallback_epoch) {
     switch_plan_.aborted = true;  // a fallback took over since the plan was made

@@ -132,7 +132,7 @@ ReturnType SimulationLoop::runCycle(bool* control_updated) noexcept {
   } else {
     syncHardwareStep();  // a failed step may or may not have advanced the time
   }
-  finishCycle();
+  finishCycle(time);
 
   // error wins over deactivate, deactivate over ok.
   if (read_result == ReturnType::error || write_result == ReturnType::error || step_result == ReturnType::error) {

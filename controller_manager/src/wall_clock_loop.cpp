@@ -92,7 +92,7 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
       }
       recordHardwareResult(HardwareCall::step, stepped, time, cycles_);
     }
-    finishCycle();
+    finishCycle(time);
     ++cycles_;
     control_time_s_ += period.seconds;
 

@@ -30,6 +30,7 @@ inline const std::map<std::string_view, std::vector<std::string_view>>& fieldTab
   static const std::map<std::string_view, std::vector<std::string_view>> table = {
       {std_msgs::Float64::kTypeName, {"data"}},
       {std_msgs::Float64MultiArray::kTypeName, {"data"}},
+      {std_msgs::Bool::kTypeName, {"data"}},
       {sensor_msgs::JointState::kTypeName, {"stamp", "name", "position", "velocity", "effort"}},
       {control_msgs::JointControllerState::kTypeName,
        {"stamp", "set_point", "process_value", "process_value_dot", "error", "time_step", "command", "p", "i",

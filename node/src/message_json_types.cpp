@@ -14,6 +14,7 @@ using namespace detail;
 json toJson(const std_msgs::Float64& msg) { return json{{"data", msg.data}}; }
 
 json toJson(const std_msgs::Float64MultiArray& msg) { return json{{"data", numberList(msg.data)}}; }
+json toJson(const std_msgs::Bool& msg) { return json{{"data", msg.data}}; }
 
 json toJson(const sensor_msgs::JointState& msg) {
   return json{{"stamp", msg.stamp},
@@ -109,6 +110,15 @@ void fromJson(const json& value, std_msgs::Float64& out) {
   }
   FieldReader reader(std_msgs::Float64::kTypeName, value);
   reader.number("data", out.data);
+}
+
+void fromJson(const json& value, std_msgs::Bool& out) {
+  if (value.is_boolean()) {  // `topic pub /estop std_msgs/Bool true`
+    out.data = value.get<bool>();
+    return;
+  }
+  FieldReader reader(std_msgs::Bool::kTypeName, value);
+  reader.boolean("data", out.data);
 }
 
 void fromJson(const json& value, std_msgs::Float64MultiArray& out) {

@@ -183,6 +183,10 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
       if (robot.finished()) {
         throw Error("robot '" + robot.robotNamespace() + "': its control loop has ended, so no switch can be carried out");
       }
+      if (robot.safety().state() == controller_manager::SafetyState::fault) {
+        throw Error("robot '" + robot.robotNamespace() + "': " + robot.safety().reason() +
+                    "; no switch can be carried out until then");
+      }
       throwIfFailed(robot.manager().switchController(switch_request));
       return json(nullptr);
     });
@@ -194,6 +198,21 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
       return json(nullptr);
     });
   }
+  if (op == "control.safety") return controlSafety(robot);
+  if (op == "control.estop") {
+    const auto engage = request.find("engage");
+    if (engage == request.end() || !engage->is_boolean()) {
+      throw Error("'control.estop' needs a field 'engage': true (engage the emergency stop) or false (release it)");
+    }
+    throwIfFailed(robot.setEmergencyStop(engage->get<bool>(), controller_manager::EmergencyStopSource::command));
+    return controlSafety(robot);
+  }
+  if (op == "control.recover") {
+    return deferToWorker(request, connection, [&robot] {
+      throwIfFailed(robot.recover());
+      return controlSafety(robot);
+    });
+  }
   if (op == "topic.list") return topicList(robot);
   if (op == "topic.pub") return topicPub(robot, request);
   if (op == "topic.subscribe") return topicSubscribe(robot, request, connection);
@@ -203,7 +222,8 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   if (op == "action.status") return actionStatus(request, connection);
   if (op == "action.cancel") return actionCancel(request, connection);
   throw Error("unknown op '" + op +
-              "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries}, "
+              "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries,"
+              "safety,estop,recover}, "
               "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, "
               "action.{list,send,status,cancel}, model.spawn, world.shutdown");
 }
@@ -218,6 +238,16 @@ json NodeOperations::ping() {
     reply["loop"] = {{"cycles", loop.cycles}, {"overruns", loop.overruns}};
   }
   return reply;
+}
+
+json NodeOperations::controlSafety(RobotInstance& robot) {
+  const controller_manager::SafetySupervisor& safety = robot.safety();
+  return {{"state", controller_manager::toString(safety.state())},
+          {"emergency_stop", safety.emergencyStopLatched()},
+          {"hardware_emergency_input", safety.hardwareEmergencyInput()},
+          {"reason", safety.reason()},
+          {"protective_stops", safety.protectiveStops()},
+          {"emergency_stops", safety.emergencyStops()}};
 }
 
 json NodeOperations::controlList(RobotInstance& robot) {

@@ -8,7 +8,9 @@
 #include <future>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
+#include <chrono>
 
 #include <spdlog/fmt/fmt.h>
 
@@ -24,6 +26,7 @@
 #include "servoloop/hardware_interface/xacro.hpp"
 #include "servoloop/node/ground_truth_publisher.hpp"
 #include "servoloop/controller_manager/wall_clock_loop.hpp"
+#include "servoloop/realtime/messages.hpp"
 
 namespace servoloop::node {
 namespace {
@@ -155,6 +158,13 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   };
   manager_ = std::make_unique<controller_manager::ControllerManager>(
       hw_, std::make_shared<controller_manager::PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
+  safety_ = std::make_unique<controller_manager::SafetySupervisor>(*hw_);
+  estop_subscription_ = bus_->subscribe<std_msgs::Bool>(
+      params::resolveName(namespace_, "estop"), [this](const std_msgs::Bool& msg) {
+        const controller_manager::ServiceResult done =
+            setEmergencyStop(msg.data, controller_manager::EmergencyStopSource::topic);
+        if (!done) logger().error("robot '{}': estop topic: {}", namespace_, done.message);
+      });
   createLoop(hardware_robot, hardware_robot || world.world.wall_clock, update_rate_hz);
   loadControllers(spec, store);
 }
@@ -162,6 +172,7 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
 void RobotInstance::createLoop(bool hardware_robot, bool wall_clock, double update_rate_hz) {
   controller_manager::LoopCommonOptions common;
   common.topic_bus = bus_.get();
+  common.safety = safety_.get();
   if (sim_hw_ != nullptr && GroundTruthPublisher::applies(*sim_hw_)) {
     const std::string topic = params::resolveName(namespace_, "ground_truth/odom");
     ground_truth_ = std::make_unique<GroundTruthPublisher>(*sim_hw_, *bus_, topic, model_->getRoot()->name);
@@ -369,11 +380,18 @@ void RobotInstance::driveWallClockLoop(std::optional<double> duration_s) {
   }
 }
 
+// A run with a duration ends when the hardware stops the loop; an open-ended
+// one (a node serving clients) waits in fault for `control recover`.
 void RobotInstance::driveLoop(std::optional<double> duration_s) {
-  if (sim_loop_ == nullptr) {
-    driveWallClockLoop(duration_s);
-  } else {
-    driveSimulationLoop(duration_s);
+  for (;;) {
+    if (sim_loop_ == nullptr) {
+      driveWallClockLoop(duration_s);
+    } else {
+      driveSimulationLoop(duration_s);
+    }
+    if (duration_s || stop_requested_.load() || !loop_->hardwareAskedToStop()) break;
+    bus_->flush();
+    if (!waitForRecovery()) break;
   }
   bus_->flush();
   loop_done_.store(true);
@@ -437,7 +455,11 @@ void RobotInstance::start(std::optional<double> duration_s) {
 
 void RobotInstance::stop() {
   std::lock_guard lock(lifecycle_mutex_);
-  stop_requested_.store(true);
+  {
+    std::lock_guard recovery(recovery_mutex_);
+    stop_requested_.store(true);
+  }
+  recovery_wake_.notify_all();
   if (loop_) loop_->requestStop();
   if (loop_thread_.joinable()) loop_thread_.join();
   loop_done_.store(true);
@@ -495,6 +517,148 @@ std::vector<std::pair<std::string, std::vector<std::string>>> RobotInstance::joi
     joints.emplace_back(joint, std::move(interfaces));
   }
   return joints;
+}
+
+}  // namespace servoloop::node
+
+namespace servoloop::node {
+
+// --- Safety: emergency stop and recovery ---
+
+controller_manager::ServiceResult RobotInstance::setEmergencyStop(bool engaged,
+                                                                  controller_manager::EmergencyStopSource source) {
+  if (engaged) {
+    const bool was_latched = safety_->emergencyStopLatched();
+    safety_->engageEmergencyStop(source);
+    if (!was_latched) {
+      logger().warn("robot '{}': emergency stop engaged by {}: effort and velocity commands are 0, position "
+                    "commands hold; release with `servoloop control estop off`",
+                    namespace_, controller_manager::toString(source));
+    }
+    return controller_manager::ServiceResult::success();
+  }
+  std::string why;
+  if (!safety_->releaseEmergencyStop(&why)) {
+    return controller_manager::ServiceResult::failure(fmt::format("robot '{}': the emergency stop stays engaged: {}", namespace_, why));
+  }
+  logger().info("robot '{}': emergency stop released; the robot is {}", namespace_,
+                controller_manager::toString(safety_->state()));
+  return controller_manager::ServiceResult::success();
+}
+
+// Loop thread, after the hardware stopped the loop. False when the robot is
+// being stopped instead.
+bool RobotInstance::waitForRecovery() {
+  logger().error("robot '{}': {}", namespace_, safety_->reason());
+  std::unique_lock lock(recovery_mutex_);
+  recovery_wake_.wait(lock, [this] { return recovery_requested_ || stop_requested_.load(); });
+  if (stop_requested_.load()) return false;
+  recovery_requested_ = false;
+  loop_->clearHardwareStop();
+  resumed_ = true;
+  lock.unlock();
+  recovery_wake_.notify_all();
+  return true;
+}
+
+bool RobotInstance::waitForCycles(std::uint64_t cycles, double timeout_s) const {
+  const std::uint64_t target = loop_->statistics().snapshot().cycles + cycles;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (loop_->statistics().snapshot().cycles < target) {
+    if (finished() || std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+
+// The controllers a protective stop or fault stopped, started again in one
+// switch that stops whatever runs on their resources now (their fallbacks).
+controller_manager::ServiceResult RobotInstance::restartStoppedControllers(std::vector<std::string>* restarted) {
+  const std::vector<controller_manager::ControllerSpec> controllers = manager_->listControllers();
+  std::vector<std::string> restart;
+  std::set<std::string> resources;
+  for (const controller_manager::ControllerSpec& controller : controllers) {
+    if (controller.state != controller_manager::ControllerState::failed || controller.last_fault.empty() ||
+        controller.last_fault_kind != controller_manager::FaultKind::hardware_failed) {
+      continue;
+    }
+    restart.push_back(controller.name);
+    for (const auto& claim : controller.claimed_resources) resources.insert(claim.resources.begin(), claim.resources.end());
+  }
+  if (restart.empty()) return controller_manager::ServiceResult::success();
+  *restarted = restart;
+  controller_manager::SwitchRequest request;
+  request.start_controllers = restart;
+  request.strictness = controller_manager::SwitchStrictness::STRICT;
+  for (const controller_manager::ControllerSpec& controller : controllers) {
+    if (controller.state != controller_manager::ControllerState::running) continue;
+    for (const auto& claim : controller.claimed_resources) {
+      const bool shares = std::any_of(claim.resources.begin(), claim.resources.end(),
+                                      [&](const std::string& r) { return resources.count(r) != 0; });
+      if (shares) {
+        request.stop_controllers.push_back(controller.name);
+        break;
+      }
+    }
+  }
+  return manager_->switchController(request);
+}
+
+controller_manager::ServiceResult RobotInstance::recover() {
+  using controller_manager::SafetyState;
+  using controller_manager::ServiceResult;
+  if (safety_->emergencyStopLatched()) {
+    return ServiceResult::failure(fmt::format(
+        "robot '{}': the emergency stop is engaged; release it first with `servoloop control estop off`", namespace_));
+  }
+  const SafetyState before = safety_->state();
+  if (before == SafetyState::running) return ServiceResult::success();
+  if (before == SafetyState::fault && (finished() || !loop_thread_.joinable())) {
+    return ServiceResult::failure(fmt::format(
+        "robot '{}': its control loop has ended (the run had a duration), so it cannot be recovered; launch again",
+        namespace_));
+  }
+  manager_->processFaults();  // the stopped controllers' faults, drained and recorded
+  safety_->clearStop();
+  if (before == SafetyState::fault) {
+    std::unique_lock lock(recovery_mutex_);
+    resumed_ = false;
+    recovery_requested_ = true;
+    recovery_wake_.notify_all();
+    const bool resumed =
+        recovery_wake_.wait_for(lock, std::chrono::seconds(10), [this] { return resumed_ || stop_requested_.load(); });
+    if (!resumed || stop_requested_.load()) {
+      return ServiceResult::failure(fmt::format("robot '{}': its control loop did not run again", namespace_));
+    }
+  }
+  // The hardware must work for a few cycles before any controller drives it
+  // again, and go on working once they do.
+  constexpr std::uint64_t kCyclesToConfirm = 5;
+  const auto failedAgain = [&] {
+    waitForCycles(kCyclesToConfirm, 5.0);
+    return safety_->state() != SafetyState::running;
+  };
+  if (failedAgain()) {
+    return ServiceResult::failure(
+        fmt::format("robot '{}': the hardware failed again at once: {}", namespace_, safety_->reason()));
+  }
+  std::vector<std::string> restarted;
+  const ServiceResult started = restartStoppedControllers(&restarted);
+  if (!started) {
+    return ServiceResult::failure(fmt::format("robot '{}': recovered, but the stopped controllers did not start: {}",
+                                              namespace_, started.message));
+  }
+  if (failedAgain()) {
+    // A failure in the very cycle they started missed them: stop them again.
+    controller_manager::SwitchRequest stop;
+    stop.stop_controllers = restarted;
+    stop.strictness = controller_manager::SwitchStrictness::BEST_EFFORT;
+    manager_->switchController(stop);
+    return ServiceResult::failure(
+        fmt::format("robot '{}': the hardware failed again at once: {}", namespace_, safety_->reason()));
+  }
+  logger().info("robot '{}': recovered from {}; the robot is running", namespace_, controller_manager::toString(before));
+  return ServiceResult::success();
 }
 
 }  // namespace servoloop::node

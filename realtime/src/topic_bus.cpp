@@ -33,6 +33,7 @@ std::string topicNames(const std::map<std::string, std::shared_ptr<detail::Topic
 std::string knownTypesText() {
   std::string text;
   for (std::string_view type : {std_msgs::Float64::kTypeName, std_msgs::Float64MultiArray::kTypeName,
+                                std_msgs::Bool::kTypeName,
                                 sensor_msgs::JointState::kTypeName, control_msgs::JointControllerState::kTypeName,
                                 nav_msgs::Odometry::kTypeName, trajectory_msgs::JointTrajectory::kTypeName,
                                 control_msgs::JointTrajectoryControllerState::kTypeName,
@@ -66,6 +67,7 @@ BusCore::BusCore() : clock(std::make_shared<TopicClock>()) {}
 TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view type_name) {
   if (type_name == std_msgs::Float64::kTypeName) return typedTopicLocked<std_msgs::Float64>(name);
   if (type_name == std_msgs::Float64MultiArray::kTypeName) return typedTopicLocked<std_msgs::Float64MultiArray>(name);
+  if (type_name == std_msgs::Bool::kTypeName) return typedTopicLocked<std_msgs::Bool>(name);
   if (type_name == sensor_msgs::JointState::kTypeName) return typedTopicLocked<sensor_msgs::JointState>(name);
   if (type_name == control_msgs::JointControllerState::kTypeName) {
     return typedTopicLocked<control_msgs::JointControllerState>(name);
@@ -243,6 +245,7 @@ std::size_t TopicBus::flush() {
 
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64MultiArray, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Bool, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::JointState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, )

@@ -5,6 +5,7 @@
 
 #include "alloc_counter.hpp"
 #include "control_loop_test_support.hpp"
+#include "servoloop/controller_manager/safety_supervisor.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 
@@ -41,6 +42,43 @@ TEST(ControlLoopAllocation, HundredThousandSimulationCyclesAllocateNothing) {
   EXPECT_EQ(f.controller()->updates, kCycles / 2);
   EXPECT_EQ(loop.statistics().snapshot().hardware_errors, 10u);
   EXPECT_TRUE(f.controller()->isRunning());
+}
+
+// With the safety layer: an emergency stop engaged and released every 1000
+// cycles, the hardware input polled every cycle, and a read error's
+// protective stop containing the controller, all allocation-free.
+TEST(ControlLoopAllocation, SafetyTransitionsAllocateNothing) {
+  constexpr std::uint64_t kChunks = 50;
+  constexpr std::uint64_t kCyclesPerChunk = 1000;
+  testing::LoopFixture f(0.001, 500.0);
+  f.recorder->enabled = false;
+  SafetySupervisor safety(f.hw);
+  SimulationLoop::Options options;
+  options.safety = &safety;
+  SimulationLoop loop(f.hw, f.manager, options);
+  f.requestStart();
+  loop.cycleOnce();
+  ASSERT_TRUE(f.controller()->isRunning());
+  f.hw.read_script.from = 40000;
+  f.hw.read_script.until = 40001;
+
+  std::size_t allocations = 0;
+  {
+    AllocationCounter counter;  // this (the loop's) thread only
+    for (std::uint64_t chunk = 0; chunk < kChunks; ++chunk) {
+      if (chunk % 2 == 0) {
+        safety.engageEmergencyStop(EmergencyStopSource::command);
+      } else {
+        safety.releaseEmergencyStop(nullptr);
+      }
+      loop.runFor(Duration(static_cast<double>(kCyclesPerChunk) * 0.001));
+    }
+    allocations = counter.allocations();
+  }
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_EQ(safety.emergencyStops(), kChunks / 2);
+  EXPECT_EQ(safety.protectiveStops(), 1u);
+  EXPECT_EQ(f.controller()->state(), ControllerState::failed);
 }
 
 }  // namespace

@@ -48,8 +48,8 @@ TEST(Messages, TypeNames) {
   EXPECT_EQ(knownMessageTypes(),
             (std::vector<std::string>{"control_msgs/JointControllerState",
                                       "control_msgs/JointTrajectoryControllerState", "geometry_msgs/Twist",
-                                      "nav_msgs/Odometry", "sensor_msgs/JointState", "std_msgs/Float64",
-                                      "std_msgs/Float64MultiArray", "tf2_msgs/TFMessage",
+                                      "nav_msgs/Odometry", "sensor_msgs/JointState", "std_msgs/Bool",
+                                      "std_msgs/Float64", "std_msgs/Float64MultiArray", "tf2_msgs/TFMessage",
                                       "trajectory_msgs/JointTrajectory"}));
   EXPECT_TRUE(isKnownMessageType("std_msgs/Float64"));
   EXPECT_FALSE(isKnownMessageType("std_msgs/Float32"));
@@ -62,6 +62,17 @@ TEST(Messages, Float64JsonRoundTrip) {
   EXPECT_EQ(messageFromJson<std_msgs::Float64>(json::parse(R"({"data": 2})")).data, 2.0);
   EXPECT_EQ(messageFromJson<std_msgs::Float64>(json(3.5)).data, 3.5);
   EXPECT_EQ(messageFromJson<std_msgs::Float64>(json::object()).data, 0.0);
+}
+
+TEST(Messages, BoolJson) {
+  EXPECT_EQ(std_msgs::Bool::kTypeName, "std_msgs/Bool");
+  EXPECT_EQ(toJson(std_msgs::Bool{true}), json::parse(R"({"data": true})"));
+  EXPECT_TRUE(messageFromJson<std_msgs::Bool>(json::parse(R"({"data": true})")).data);
+  EXPECT_TRUE(messageFromJson<std_msgs::Bool>(json(true)).data);  // `topic pub /estop std_msgs/Bool true`
+  EXPECT_FALSE(messageFromJson<std_msgs::Bool>(json::object()).data);
+  // A number is not a switch: ROS's Bool takes true or false only.
+  EXPECT_THROW(messageFromJson<std_msgs::Bool>(json::parse(R"({"data": 1})")), Error);
+  EXPECT_THROW(messageFromJson<std_msgs::Bool>(json::parse(R"({"on": true})")), Error);
 }
 
 TEST(Messages, Float64MultiArrayJsonRoundTrip) {

@@ -1,6 +1,7 @@
 // `servoloop control list|list-joints|load|unload|start|stop|switch|reload-libraries`:
 // the controller manager commands that talk to a running node (ros_control's
-// `controller_manager` script). `control list-types` lives in control_command.cpp.
+// `controller_manager` script), and the safety commands `control safety|estop|recover`.
+// `control list-types` lives in control_command.cpp.
 #include <algorithm>
 #include <iostream>
 #include <memory>
@@ -31,6 +32,7 @@ struct ControlOptions {
   bool start_asap = false;
   double timeout_s = 0.0;
   bool force_kill = false;
+  std::string estop;  // "on" or "off"
 };
 
 std::string stringField(const nlohmann::json& object, const char* key) {
@@ -128,6 +130,32 @@ void runReloadLibraries(const ControlOptions& options) {
   std::cout << "Reloaded controller libraries\n";
 }
 
+// "state: emergency_stop", then why, as `control safety` prints it.
+void printSafety(const nlohmann::json& safety, bool json) {
+  if (json) {
+    std::cout << safety.dump(2) << "\n";
+    return;
+  }
+  std::cout << "state: " << stringField(safety, "state") << "\n";
+  const std::string reason = stringField(safety, "reason");
+  if (!reason.empty()) std::cout << reason << "\n";
+}
+
+void runSafety(const ControlOptions& options) {
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
+  printSafety(client.call("control.safety"), options.json);
+}
+
+void runEstop(const ControlOptions& options) {
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
+  printSafety(client.call("control.estop", {{"engage", options.estop == "on"}}), options.json);
+}
+
+void runRecover(const ControlOptions& options) {
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
+  printSafety(client.call("control.recover", nlohmann::json::object(), kSwitchCallTimeoutS), options.json);
+}
+
 CLI::App* addClientSubcommand(CLI::App& control, const std::string& name,
                               const std::string& description, ControlOptions& options) {
   CLI::App* command = control.add_subcommand(name, description);
@@ -220,6 +248,36 @@ void addControlClientCommands(CLI::App& root) {
     reload->add_flag("--force-kill", options->force_kill,
                      "Stop and unload every controller first");
     reload->callback([options] { runReloadLibraries(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* safety = addClientSubcommand(
+        control, "safety", "Show the robot's safety state (running, protective_stop, emergency_stop, fault) and why",
+        *options);
+    safety->add_flag("--json", options->json, "Print {state, emergency_stop, reason, ...} as JSON");
+    safety->callback([options] { runSafety(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* estop = addClientSubcommand(
+        control, "estop",
+        "Engage (on) or release (off) the emergency stop: effort and velocity commands 0, position commands hold",
+        *options);
+    estop->add_option("state", options->estop, "on or off")
+        ->required()
+        ->check(CLI::IsMember({"on", "off"}))
+        ->type_name("on|off");
+    estop->add_flag("--json", options->json, "Print the safety state after it as JSON");
+    estop->callback([options] { runEstop(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* recover = addClientSubcommand(
+        control, "recover",
+        "Leave a protective stop or fault: run the loop again and restart the controllers the stop stopped",
+        *options);
+    recover->add_flag("--json", options->json, "Print the safety state after it as JSON");
+    recover->callback([options] { runRecover(*options); });
   }
 }
 

@@ -37,6 +37,7 @@ class TopicBus;  // servoloop/realtime/topic_bus.hpp
 namespace servoloop::controller_manager {
 
 class ControllerManager;  // controller_manager.hpp
+class SafetySupervisor;   // safety_supervisor.hpp
 
 // What a node plugs into the loop to do its own real-time work each control
 // cycle (e.g. publish the loop's clock, poll an emergency-stop input).
@@ -60,6 +61,14 @@ struct LoopCommonOptions {
   // Stop the loop after this many cycles in a row with a hardware error;
   // 0 (default): never stop for errors, only count and report them.
   std::uint64_t stop_after_failed_cycles = 0;
+  // The robot's safety states (safety_supervisor.hpp); may be null (no
+  // safety layer: errors are only counted and reported). When set, a
+  // hardware error puts the robot in protective stop and has the manager
+  // stop its commanding controllers in that cycle, the hardware's
+  // emergency-stop input is polled after every read(), an emergency stop
+  // overrides the commands after every update, and a hardware stop of the
+  // loop is a fault. Must outlive the loop.
+  SafetySupervisor* safety = nullptr;
 };
 
 class ControlLoop {
@@ -117,11 +126,13 @@ class ControlLoop {
   }
   // Sets the topic bus clock (if any) to time.
   void setBusTime(Time time) noexcept;
-  // ControllerManager::update, then the cycle hook.
+  // ControllerManager::update, then the cycle hook, then the safety
+  // supervisor's emergency-stop override.
   void updateControllers(Time time, Duration period) noexcept;
-  // Closes the cycle's error episode bookkeeping; sets hardwareAskedToStop()
-  // when the hardware said deactivate or failed too often in a row.
-  void finishCycle() noexcept;
+  // Closes the cycle (control time `time`): error episode bookkeeping; sets
+  // hardwareAskedToStop() when the hardware said deactivate or failed too
+  // often in a row (with a safety supervisor: a fault).
+  void finishCycle(Time time) noexcept;
   // True when the run should end before the next cycle.
   bool shouldStop(const std::atomic<bool>* external_stop) const noexcept;
   // Clears a consumed stop request at the end of a run.

@@ -161,6 +161,15 @@ class ControllerManager {
   // controller gets its own).
   void update(const Time& time, const Duration& period) noexcept;
 
+  // Real-time, on the thread that calls update() (between two updates). The
+  // robot's hardware failed (a protective stop, safety_supervisor.hpp): every
+  // running controller that claims a command is stopped with safe outputs and
+  // marked failed with FaultKind::hardware_failed and `why` (copied,
+  // truncated), and its fallback controllers are started, as for a fault in
+  // update(). Controllers that claim no command (state broadcasters) run on.
+  // Returns how many controllers were stopped.
+  std::size_t containHardwareFailure(const Time& time, const char* why) noexcept;
+
  private:
   enum class SwitchPhase : std::uint8_t { idle, pending, executing, done };
 

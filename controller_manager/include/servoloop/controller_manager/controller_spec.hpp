@@ -10,6 +10,18 @@
 
 namespace servoloop::controller_manager {
 
+// Why the real-time thread stopped a controller.
+enum class FaultKind : std::uint8_t {
+  starting_threw,         // starting() threw
+  update_threw,           // update() threw
+  update_returned_error,  // update() returned ReturnType::error
+  non_finite_command,     // a claimed command was NaN or infinite after starting()/update()
+  stopping_threw,         // stopping() threw
+  hardware_failed,        // the robot's hardware failed (protective stop, safety_supervisor.hpp)
+};
+
+const char* toString(FaultKind kind) noexcept;
+
 // One loaded controller, as listControllers reports it.
 struct ControllerSpec {
   std::string name;  // e.g. "joint1_position_controller"
@@ -24,17 +36,9 @@ struct ControllerSpec {
   std::uint32_t update_divisor = 1;
   // Why it was last stopped for a fault; empty if it never was.
   std::string last_fault;
+  // The kind of that fault (meaningful when last_fault is not empty).
+  FaultKind last_fault_kind = FaultKind::update_threw;
 };
-
-enum class FaultKind : std::uint8_t {
-  starting_threw,         // starting() threw
-  update_threw,           // update() threw
-  update_returned_error,  // update() returned ReturnType::error
-  non_finite_command,     // a claimed command was NaN or infinite after starting()/update()
-  stopping_threw,         // stopping() threw
-};
-
-const char* toString(FaultKind kind) noexcept;
 
 // A fault the real-time thread contained: the controller was stopped, its
 // claimed commands put to safe values, and it was marked failed.

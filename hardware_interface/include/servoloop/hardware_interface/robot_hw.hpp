@@ -47,6 +47,13 @@ class RobotHW : public InterfaceManager {
   // The hardware should then be in the modes it had before.
   virtual ReturnType doSwitch(const std::vector<ControllerInfo>& start_list,
                               const std::vector<ControllerInfo>& stop_list);
+
+  // Real-time, fast, must not throw. True while the hardware's own
+  // emergency-stop input (a button, a safety relay, a drive's STO line) is
+  // active. The loop polls it after every read(); while it is true the robot
+  // is in emergency stop, and a release (`servoloop control estop off`) is
+  // refused. The default: no such input.
+  virtual bool emergencyStopInput() const noexcept { return false; }
 };
 
 }  // namespace servoloop::hardware_interface

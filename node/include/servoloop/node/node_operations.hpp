@@ -55,6 +55,7 @@ class NodeOperations {
   nlohmann::json controlList(RobotInstance& robot);
   nlohmann::json controlListTypes();
   nlohmann::json controlListJoints(RobotInstance& robot);
+  static nlohmann::json controlSafety(RobotInstance& robot);
   nlohmann::json paramOp(const std::string& op, const nlohmann::json& request);
   nlohmann::json topicList(RobotInstance& robot);
   nlohmann::json topicPub(RobotInstance& robot, const nlohmann::json& request);

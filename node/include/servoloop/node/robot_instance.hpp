@@ -33,6 +33,7 @@
 // simulate one robot each, so robots of a world never interact physically.
 // Everything here is non-real-time except what runs on the loop thread.
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -52,6 +53,7 @@
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/controller_manager/control_loop.hpp"
+#include "servoloop/controller_manager/safety_supervisor.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
 #include "servoloop/realtime/action_registry.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
@@ -133,6 +135,21 @@ class RobotInstance {
   // EffortJointInterface, ...).
   std::vector<std::pair<std::string, std::vector<std::string>>> jointInterfaces() const;
 
+  // The robot's safety states (controller_manager/safety_supervisor.hpp).
+  // Its `estop` topic (std_msgs/Bool) engages (true) and releases (false)
+  // the emergency stop.
+  controller_manager::SafetySupervisor& safety() { return *safety_; }
+  // Non-real-time. Engages or releases the emergency stop; a release fails
+  // while the hardware's own input is active.
+  controller_manager::ServiceResult setEmergencyStop(bool engaged, controller_manager::EmergencyStopSource source);
+  // Non-real-time; blocks until done. Leaves protective stop or fault: the
+  // loop runs again (after a fault), the controllers the stop had stopped
+  // are started again (stopping the fallbacks that took their resources),
+  // and the robot must then stay running for a few cycles. Fails, saying
+  // why, while the emergency stop is engaged, when a controller does not
+  // start, or when the hardware fails again at once.
+  controller_manager::ServiceResult recover();
+
   // What the launch asked for and did not happen: controllers that did not
   // load, switches that did not start them. Read after stop().
   const std::vector<std::string>& launchFailures() const { return launch_failures_; }
@@ -150,6 +167,9 @@ class RobotInstance {
   void hintWhereParametersAre(const std::string& name, const params::ParameterStore& store) const;
   void startLaunchControllers();
   void reportLaunchStartFailure(const std::vector<std::string>& controllers, const std::string& why);
+  bool waitForRecovery();
+  controller_manager::ServiceResult restartStoppedControllers(std::vector<std::string>* restarted);
+  bool waitForCycles(std::uint64_t cycles, double timeout_s) const;
 
   std::string namespace_;
   std::string robot_name_;
@@ -167,6 +187,8 @@ class RobotInstance {
   std::unique_ptr<realtime::ActionRegistry> actions_;
   // Floating bases only; the loop calls it, so it outlives loop_.
   std::unique_ptr<GroundTruthPublisher> ground_truth_;
+  std::unique_ptr<controller_manager::SafetySupervisor> safety_;  // on hw_; the loop uses it
+  realtime::Subscription estop_subscription_;                     // <ns>/estop
   std::unique_ptr<controller_manager::ControllerManager> manager_;
   std::unique_ptr<controller_manager::ControlLoop> loop_;
   controller_manager::SimulationLoop* sim_loop_ = nullptr;  // loop_, in lockstep; null on the wall clock
@@ -182,6 +204,11 @@ class RobotInstance {
   std::thread loop_thread_;
   std::atomic<bool> stop_requested_{false};
   std::atomic<bool> loop_done_{false};
+  // A loop stopped by the hardware (fault) waits for recover() or stop().
+  std::mutex recovery_mutex_;
+  std::condition_variable recovery_wake_;
+  bool recovery_requested_ = false;
+  bool resumed_ = false;  // set by the loop thread when it runs again after a fault
   std::function<void()> on_finished_;
   bool controllers_shut_down_ = false;
 };

@@ -20,6 +20,12 @@ struct Float64 {
   double data = 0.0;
 };
 
+// A switch, e.g. a robot's `estop` input (true: engage the emergency stop).
+struct Bool {
+  static constexpr std::string_view kTypeName = "std_msgs/Bool";
+  bool data = false;
+};
+
 // ROS's layout field (dimension labels and strides) is left out: every
 // ros_control user of this type reads `data` only.
 struct Float64MultiArray {

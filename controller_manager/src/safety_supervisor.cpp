@@ -1,0 +1,161 @@
+// SafetySupervisor: latched safety states and the emergency-stop command override.
+#include "servoloop/controller_manager/safety_supervisor.hpp"
+
+#include <spdlog/fmt/fmt.h>
+
+#include "servoloop/hardware_interface/joint_interfaces.hpp"
+
+namespace servoloop::controller_manager {
+
+const char* toString(SafetyState state) noexcept {
+  switch (state) {
+    case SafetyState::running: return "running";
+    case SafetyState::protective_stop: return "protective_stop";
+    case SafetyState::emergency_stop: return "emergency_stop";
+    case SafetyState::fault: return "fault";
+  }
+  return "unknown";
+}
+
+const char* toString(EmergencyStopSource source) noexcept {
+  switch (source) {
+    case EmergencyStopSource::command: return "command";
+    case EmergencyStopSource::topic: return "topic";
+    case EmergencyStopSource::hardware: return "hardware input";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// The command storage of every handle of one command interface. Looking the
+// handles up records claims; they are cleared again, as nobody claimed them.
+template <class Interface>
+void collectCommands(hardware_interface::RobotHW& hw, std::vector<double*>& out) {
+  auto* interface = hw.get<Interface>();
+  if (interface == nullptr) return;
+  for (const std::string& name : interface->getNames()) out.push_back(interface->getHandle(name).getCommandPtr());
+  interface->clearClaims();
+}
+
+}  // namespace
+
+SafetySupervisor::SafetySupervisor(hardware_interface::RobotHW& hw) : hw_(hw) {
+  collectCommands<hardware_interface::EffortJointInterface>(hw, zeroed_commands_);
+  collectCommands<hardware_interface::VelocityJointInterface>(hw, zeroed_commands_);
+  collectCommands<hardware_interface::PositionJointInterface>(hw, position_commands_);
+  held_positions_.assign(position_commands_.size(), 0.0);
+}
+
+SafetyState SafetySupervisor::state() const noexcept {
+  if (fault_.load(std::memory_order_acquire)) return SafetyState::fault;
+  if (estop_latched_.load(std::memory_order_acquire)) return SafetyState::emergency_stop;
+  if (protective_.load(std::memory_order_acquire)) return SafetyState::protective_stop;
+  return SafetyState::running;
+}
+
+void SafetySupervisor::engageEmergencyStop(EmergencyStopSource source) noexcept {
+  if (estop_latched_.load(std::memory_order_acquire)) return;
+  estop_source_.store(source, std::memory_order_relaxed);
+  estop_latched_.store(true, std::memory_order_release);
+  emergency_stops_.fetch_add(1, std::memory_order_relaxed);
+}
+
+bool SafetySupervisor::releaseEmergencyStop(std::string* why) {
+  if (hardware_input_.load(std::memory_order_acquire)) {
+    if (why != nullptr) {
+      *why = "the hardware's own emergency-stop input is still active; release it on the robot (the button, the "
+             "safety relay) first, then run `servoloop control estop off` again";
+    }
+    return false;
+  }
+  estop_latched_.store(false, std::memory_order_release);
+  return true;
+}
+
+void SafetySupervisor::clearStop() noexcept {
+  failed_result_.store(ReturnType::error, std::memory_order_relaxed);
+  fault_.store(false, std::memory_order_release);
+  protective_.store(false, std::memory_order_release);
+}
+
+std::string SafetySupervisor::reason() const {
+  const SafetyState current = state();
+  const auto cause = [this] {
+    const ReturnType result = failed_result_.load(std::memory_order_relaxed);
+    return fmt::format("the hardware's {}() returned {} at t = {:.3f} s", toString(failed_call_.load(std::memory_order_relaxed)),
+                       result == ReturnType::deactivate ? "deactivate" : "an error",
+                       failed_time_s_.load(std::memory_order_relaxed));
+  };
+  switch (current) {
+    case SafetyState::running: return {};
+    case SafetyState::emergency_stop:
+      return fmt::format("emergency stop engaged by {}{}; effort and velocity commands are 0, position commands "
+                         "hold; release with `servoloop control estop off`",
+                         toString(estop_source_.load(std::memory_order_relaxed)),
+                         hardware_input_.load() ? " (the hardware's input is still active)" : "");
+    case SafetyState::protective_stop:
+      return fmt::format("protective stop: {}; the controllers that command the robot were stopped; after fixing "
+                         "the cause run `servoloop control recover`",
+                         cause());
+    case SafetyState::fault:
+      return fmt::format("fault: the control loop stopped because {}; after fixing the cause run `servoloop control "
+                         "recover` to run it again",
+                         cause());
+  }
+  return {};
+}
+
+void SafetySupervisor::pollHardwareInput() noexcept {
+  bool input = false;
+  try {
+    input = hw_.emergencyStopInput();
+  } catch (...) {
+    input = true;  // it must not throw; an input that cannot be read is taken as pressed
+  }
+  hardware_input_.store(input, std::memory_order_release);
+  if (input) engageEmergencyStop(EmergencyStopSource::hardware);
+}
+
+bool SafetySupervisor::hardwareFailed(HardwareCall call, ReturnType result, Time time) noexcept {
+  if (result == ReturnType::ok) return false;
+  if (protective_.load(std::memory_order_relaxed) || fault_.load(std::memory_order_relaxed)) return false;
+  failed_call_.store(call, std::memory_order_relaxed);
+  failed_result_.store(result, std::memory_order_relaxed);
+  failed_time_s_.store(time.seconds, std::memory_order_relaxed);
+  // deactivate stops the loop at the end of the cycle: hardwareStopped() follows.
+  if (result == ReturnType::deactivate) return false;
+  protective_.store(true, std::memory_order_release);
+  protective_stops_.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+bool SafetySupervisor::hardwareStopped(Time time) noexcept {
+  if (fault_.load(std::memory_order_relaxed)) return false;
+  // A deactivate already recorded its call; a stop without one (too many
+  // failed cycles) keeps the error that started the protective stop.
+  const bool already_contained = protective_.load(std::memory_order_relaxed);
+  if (!already_contained && failed_result_.load(std::memory_order_relaxed) != ReturnType::deactivate) {
+    failed_result_.store(ReturnType::deactivate, std::memory_order_relaxed);
+    failed_time_s_.store(time.seconds, std::memory_order_relaxed);
+  }
+  fault_.store(true, std::memory_order_release);
+  return !already_contained;
+}
+
+void SafetySupervisor::latchHeldPositions() noexcept {
+  for (std::size_t i = 0; i < position_commands_.size(); ++i) held_positions_[i] = *position_commands_[i];
+  holding_ = true;
+}
+
+void SafetySupervisor::overrideCommands() noexcept {
+  if (!estop_latched_.load(std::memory_order_acquire)) {
+    holding_ = false;
+    return;
+  }
+  if (!holding_) latchHeldPositions();
+  for (double* command : zeroed_commands_) *command = 0.0;
+  for (std::size_t i = 0; i < position_commands_.size(); ++i) *position_commands_[i] = held_positions_[i];
+}
+
+}  // namespace servoloop::controller_manager

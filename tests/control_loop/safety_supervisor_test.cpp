@@ -1,0 +1,309 @@
+// The safety states on the control loops: each transition of
+// safety_supervisor.hpp with the fake hardware (read, write and step
+// failures, deactivate, the hardware's emergency-stop input), on the
+// simulation loop and on the wall clock, checked against what the hardware
+// was sent.
+#include <gtest/gtest.h>
+
+#include <atomic>
+
+#include "control_loop_test_support.hpp"
+#include "servoloop/controller_manager/safety_supervisor.hpp"
+#include "servoloop/controller_manager/simulation_loop.hpp"
+#include "servoloop/controller_manager/wall_clock_loop.hpp"
+
+namespace servoloop::controller_manager {
+namespace {
+
+using testing::EventKind;
+using testing::LoopFixture;
+
+// The fake robot with an emergency-stop input the test presses.
+class FakeRobotWithEstopInput : public testing::FakeSimulatedRobotHW {
+ public:
+  using FakeSimulatedRobotHW::FakeSimulatedRobotHW;
+  bool emergencyStopInput() const noexcept override { return pressed.load(); }
+  std::atomic<bool> pressed{false};
+};
+
+// The effort each write() sent, in order.
+std::vector<double> writtenEfforts(const testing::EventRecorder& recorder) {
+  std::vector<double> efforts;
+  for (const testing::Event& e : recorder.ofKind(EventKind::write)) efforts.push_back(e.command);
+  return efforts;
+}
+
+struct SafetyLoop {
+  explicit SafetyLoop(LoopFixture& f) : safety(f.hw) {
+    SimulationLoop::Options options;
+    options.safety = &safety;
+    loop = std::make_unique<SimulationLoop>(f.hw, f.manager, options);
+    f.requestStart();
+    loop->cycleOnce();  // carries out the switch
+  }
+  SafetySupervisor safety;
+  std::unique_ptr<SimulationLoop> loop;
+};
+
+TEST(SafetySupervisor, EmergencyStopZeroesEffortWhileTheControllerRunsOnAndReleaseRestoresIt) {
+  LoopFixture f(0.001);
+  SafetyLoop s(f);
+  ASSERT_TRUE(f.controller()->isRunning());
+  EXPECT_EQ(s.safety.state(), SafetyState::running);
+  for (int i = 0; i < 5; ++i) s.loop->cycleOnce();
+
+  s.safety.engageEmergencyStop(EmergencyStopSource::command);
+  EXPECT_EQ(s.safety.state(), SafetyState::emergency_stop);
+  f.recorder->clear();
+  const std::uint64_t updates_before = f.controller()->updates;
+  for (int i = 0; i < 10; ++i) s.loop->cycleOnce();
+  // The controller keeps running (its state goes on), the hardware gets 0.
+  EXPECT_EQ(f.controller()->updates, updates_before + 10);
+  EXPECT_TRUE(f.controller()->isRunning());
+  for (double effort : writtenEfforts(*f.recorder)) EXPECT_EQ(effort, 0.0);
+  EXPECT_EQ(writtenEfforts(*f.recorder).size(), 10u);
+
+  std::string why;
+  ASSERT_TRUE(s.safety.releaseEmergencyStop(&why)) << why;
+  EXPECT_EQ(s.safety.state(), SafetyState::running);
+  f.recorder->clear();
+  s.loop->cycleOnce();
+  EXPECT_EQ(writtenEfforts(*f.recorder), std::vector<double>{2.5});  // the controller's own output again
+  EXPECT_EQ(s.safety.emergencyStops(), 1u);
+}
+
+TEST(SafetySupervisor, ReadErrorIsAProtectiveStopThatStopsTheControllerAndStaysLatched) {
+  LoopFixture f(0.001);
+  SafetyLoop s(f);
+  const std::uint64_t first_failing_read = f.hw.reads + 3;
+  f.hw.read_script.from = first_failing_read;
+  f.hw.read_script.until = first_failing_read + 1;  // one failed read, then the hardware is fine again
+  f.recorder->clear();
+  for (int i = 0; i < 10; ++i) s.loop->cycleOnce();
+
+  EXPECT_EQ(s.safety.state(), SafetyState::protective_stop);
+  EXPECT_EQ(s.safety.protectiveStops(), 1u);
+  EXPECT_EQ(f.controller()->state(), ControllerState::failed);
+  // Written: 2.5 for the three good cycles, then the safe effort 0 from the
+  // failing cycle on, though the hardware works again (the stop is latched).
+  const std::vector<double> efforts = writtenEfforts(*f.recorder);
+  ASSERT_EQ(efforts.size(), 10u);
+  for (std::size_t i = 0; i < efforts.size(); ++i) EXPECT_EQ(efforts[i], i < 3 ? 2.5 : 0.0) << "write " << i;
+  EXPECT_NE(s.safety.reason().find("read() returned an error"), std::string::npos) << s.safety.reason();
+
+  const std::vector<ControllerFault> faults = f.manager.processFaults();
+  ASSERT_EQ(faults.size(), 1u);
+  EXPECT_EQ(faults[0].kind, FaultKind::hardware_failed);
+  EXPECT_NE(faults[0].message.find("the hardware failed: its read() returned an error (protective stop)"), std::string::npos)
+      << faults[0].message;
+  const std::vector<ControllerSpec> specs = f.manager.listControllers();
+  EXPECT_EQ(specs[0].last_fault_kind, FaultKind::hardware_failed);
+
+  // Recovery: the state clears, and the controller can be started again.
+  s.safety.clearStop();
+  EXPECT_EQ(s.safety.state(), SafetyState::running);
+  f.requestStart();
+  s.loop->cycleOnce();
+  EXPECT_TRUE(f.controller()->isRunning());
+  f.recorder->clear();
+  s.loop->cycleOnce();
+  EXPECT_EQ(writtenEfforts(*f.recorder), std::vector<double>{2.5});
+}
+
+TEST(SafetySupervisor, WriteAndStepErrorsAreProtectiveStopsToo) {
+  for (const char* which : {"write", "step"}) {
+    SCOPED_TRACE(which);
+    LoopFixture f(0.001);
+    SafetyLoop s(f);
+    testing::FakeSimulatedRobotHW::Script& script =
+        std::string(which) == "write" ? f.hw.write_script : f.hw.step_script;
+    const std::uint64_t from = (std::string(which) == "write" ? f.hw.writes : f.hw.steps) + 2;
+    script.from = from;
+    script.until = from + 1;
+    for (int i = 0; i < 5; ++i) s.loop->cycleOnce();
+    EXPECT_EQ(s.safety.state(), SafetyState::protective_stop);
+    EXPECT_EQ(f.controller()->state(), ControllerState::failed);
+    EXPECT_NE(s.safety.reason().find(std::string(which) + "() returned an error"), std::string::npos)
+        << s.safety.reason();
+  }
+}
+
+TEST(SafetySupervisor, AProtectiveStopStartsTheFallbackController) {
+  testing::EventRecorder recorder;
+  testing::FakeSimulatedRobotHW hw(0.001, &recorder);
+  auto factory = std::make_shared<InProcessControllerFactory>();
+  factory->add("test/RecordingController", [&recorder] {
+    return ControllerPtr(new testing::RecordingController(&recorder), [](ControllerBase* c) { delete c; });
+  });
+  const YAML::Node params = YAML::Load(
+      "hold: {type: test/RecordingController, joint: joint1, output: 0.5}\n"
+      "ctrl: {type: test/RecordingController, joint: joint1, output: 2.5, fallback_controllers: [hold]}");
+  ControllerManager manager(&hw, factory, ControllerManager::lookupIn(params), LoopFixture::context(), 0.0);
+  ASSERT_TRUE(manager.loadController("hold"));
+  ASSERT_TRUE(manager.loadController("ctrl"));
+  SafetySupervisor safety(hw);
+  SimulationLoop::Options options;
+  options.safety = &safety;
+  SimulationLoop loop(hw, manager, options);
+  ASSERT_TRUE(manager.requestSwitch(SwitchRequest{{"ctrl"}, {}, SwitchStrictness::STRICT, false, 0.0}));
+  loop.cycleOnce();
+  hw.read_script.from = hw.reads;
+  hw.read_script.until = hw.reads + 1;
+  recorder.clear();
+  loop.cycleOnce();  // read fails: ctrl stops, hold starts; its first update is the next cycle
+  loop.cycleOnce();
+  EXPECT_EQ(safety.state(), SafetyState::protective_stop);
+  EXPECT_EQ(manager.getController("ctrl")->state(), ControllerState::failed);
+  EXPECT_TRUE(manager.getController("hold")->isRunning());
+  const std::vector<double> efforts = writtenEfforts(recorder);
+  // The fallback drives the joint from the failing cycle on (at this
+  // manager's rate it updates in the cycle it started).
+  EXPECT_EQ(efforts, (std::vector<double>{0.5, 0.5}));
+  const std::vector<ControllerFault> faults = manager.processFaults();
+  ASSERT_EQ(faults.size(), 1u);
+  EXPECT_NE(faults[0].message.find("fallback controller(s) 'hold' started"), std::string::npos) << faults[0].message;
+}
+
+TEST(SafetySupervisor, DeactivateIsAFaultThatStopsTheLoop) {
+  LoopFixture f(0.001);
+  SafetyLoop s(f);
+  f.hw.write_script.from = f.hw.writes + 2;
+  f.hw.write_script.result = ReturnType::deactivate;
+  s.loop->runFor(Duration(0.05));
+  EXPECT_TRUE(s.loop->hardwareAskedToStop());
+  EXPECT_EQ(s.safety.state(), SafetyState::fault);
+  EXPECT_EQ(f.controller()->state(), ControllerState::failed);
+  EXPECT_NE(s.safety.reason().find("write() returned deactivate"), std::string::npos) << s.safety.reason();
+  s.safety.clearStop();
+  s.loop->clearHardwareStop();
+  EXPECT_EQ(s.safety.state(), SafetyState::running);
+}
+
+TEST(SafetySupervisor, PersistentErrorsEndInAFaultKeepingTheFirstCause) {
+  LoopFixture f(0.001);
+  SafetySupervisor safety(f.hw);
+  SimulationLoop::Options options;
+  options.safety = &safety;
+  options.stop_after_failed_cycles = 5;
+  SimulationLoop loop(f.hw, f.manager, options);
+  f.requestStart();
+  loop.cycleOnce();
+  f.hw.read_script.from = f.hw.reads;
+  loop.runFor(Duration(0.1));
+  EXPECT_TRUE(loop.hardwareAskedToStop());
+  EXPECT_EQ(loop.stepsTaken(), 6u);  // the start-up cycle and five failing ones
+  EXPECT_EQ(safety.state(), SafetyState::fault);
+  EXPECT_NE(safety.reason().find("read() returned an error"), std::string::npos) << safety.reason();
+}
+
+TEST(SafetySupervisor, TheHardwareInputLatchesTheStopAndBlocksItsRelease) {
+  LoopFixture f(0.001);
+  FakeRobotWithEstopInput hw(0.001, f.recorder);
+  SafetySupervisor safety(hw);
+  ControllerManager manager(&hw, f.factory, ControllerManager::lookupIn(f.params), LoopFixture::context(), 0.0);
+  ASSERT_TRUE(manager.loadController("ctrl"));
+  SimulationLoop::Options options;
+  options.safety = &safety;
+  SimulationLoop loop(hw, manager, options);
+  ASSERT_TRUE(manager.requestSwitch(SwitchRequest{{"ctrl"}, {}, SwitchStrictness::STRICT, false, 0.0}));
+  loop.cycleOnce();  // starts ctrl
+  loop.cycleOnce();  // its first update
+  EXPECT_EQ(hw.applied_effort, 2.5);
+
+  hw.pressed = true;
+  loop.cycleOnce();
+  EXPECT_EQ(safety.state(), SafetyState::emergency_stop);
+  EXPECT_EQ(hw.applied_effort, 0.0);
+  std::string why;
+  EXPECT_FALSE(safety.releaseEmergencyStop(&why));
+  EXPECT_NE(why.find("input is still active"), std::string::npos) << why;
+
+  hw.pressed = false;
+  loop.cycleOnce();
+  EXPECT_EQ(safety.state(), SafetyState::emergency_stop);  // latched until released
+  EXPECT_EQ(hw.applied_effort, 0.0);
+  ASSERT_TRUE(safety.releaseEmergencyStop(&why));
+  loop.cycleOnce();
+  EXPECT_EQ(hw.applied_effort, 2.5);
+}
+
+// A robot with one position-commanded joint: the held value.
+class PositionRobot : public hardware_interface::RobotHW {
+ public:
+  PositionRobot() {
+    hardware_interface::JointStateHandle state("joint1", &position, &velocity, &effort);
+    state_interface.registerHandle(state);
+    position_interface.registerHandle(hardware_interface::JointHandle(state, &position_command));
+    velocity_interface.registerHandle(hardware_interface::JointHandle(state, &velocity_command));
+    registerInterface(&state_interface);
+    registerInterface(&position_interface);
+    registerInterface(&velocity_interface);
+  }
+  void init(const hardware_interface::HardwareInfo&) override {}
+  ReturnType read(Time, Duration) override { return ReturnType::ok; }
+  ReturnType write(Time, Duration) override { return ReturnType::ok; }
+  double position = 0.0, velocity = 0.0, effort = 0.0;
+  double position_command = 0.0, velocity_command = 0.0;
+  hardware_interface::JointStateInterface state_interface;
+  hardware_interface::PositionJointInterface position_interface;
+  hardware_interface::VelocityJointInterface velocity_interface;
+};
+
+TEST(SafetySupervisor, EmergencyStopHoldsPositionCommandsAtTheirValueWhenItEngaged) {
+  PositionRobot hw;
+  SafetySupervisor safety(hw);
+  // Building the supervisor claims nothing.
+  EXPECT_TRUE(hw.position_interface.getClaims().empty());
+  hw.position_command = 0.7;
+  hw.velocity_command = 0.3;
+  safety.overrideCommands();  // running: untouched
+  EXPECT_EQ(hw.position_command, 0.7);
+  EXPECT_EQ(hw.velocity_command, 0.3);
+
+  safety.engageEmergencyStop(EmergencyStopSource::topic);
+  safety.overrideCommands();
+  EXPECT_EQ(hw.position_command, 0.7);
+  EXPECT_EQ(hw.velocity_command, 0.0);
+  hw.position_command = 1.9;  // a controller goes on commanding
+  hw.velocity_command = 0.3;
+  safety.overrideCommands();
+  EXPECT_EQ(hw.position_command, 0.7);
+  EXPECT_EQ(hw.velocity_command, 0.0);
+  EXPECT_NE(safety.reason().find("engaged by topic"), std::string::npos) << safety.reason();
+
+  ASSERT_TRUE(safety.releaseEmergencyStop(nullptr));
+  hw.position_command = 1.9;
+  safety.overrideCommands();
+  EXPECT_EQ(hw.position_command, 1.9);
+  // A second stop holds the value of its own moment.
+  safety.engageEmergencyStop(EmergencyStopSource::command);
+  safety.overrideCommands();
+  hw.position_command = -1.0;
+  safety.overrideCommands();
+  EXPECT_EQ(hw.position_command, 1.9);
+}
+
+TEST(SafetySupervisor, OnTheWallClockAReadErrorStopsTheControllerAndTheLoopKeepsItsRate) {
+  LoopFixture f(0.002, 500.0);
+  f.recorder->enabled = false;
+  SafetySupervisor safety(f.hw);
+  WallClockLoop::Options options;
+  options.safety = &safety;
+  options.step_simulation = true;
+  WallClockLoop loop(f.hw, f.manager, options);
+  f.requestStart();
+  f.hw.read_script.from = 20;
+  f.hw.read_script.until = 30;
+  loop.runFor(Duration(0.2));  // 100 cycles
+  const LoopStatisticsSnapshot stats = loop.statistics().snapshot();
+  EXPECT_EQ(safety.state(), SafetyState::protective_stop);
+  EXPECT_EQ(f.controller()->state(), ControllerState::failed);
+  EXPECT_EQ(f.hw.applied_effort, 0.0);
+  EXPECT_EQ(stats.hardware_errors, 10u);
+  // It kept cycling after the stop: all 100 cycles (minus any skipped for overruns) ran.
+  EXPECT_GE(stats.cycles + stats.overruns, 95u);
+  EXPECT_FALSE(loop.hardwareAskedToStop());
+}
+
+}  // namespace
+}  // namespace servoloop::controller_manager

@@ -1,0 +1,295 @@
+// The safety states through the command line, on a running node:
+//   - hardware on the wall clock (servoloop_test/ScriptedHardware, whose
+//     failures the test switches through its control file): emergency stop
+//     by command, topic and the hardware's input; protective stops from read
+//     and write errors and their recovery; a refused mode switch; a stall;
+//     a fault from a hardware that deactivates, and its recovery. After each,
+//     the node still answers and the joint still follows its commands.
+//   - a simulated robot (the seed on bullet): an emergency stop removes the
+//     effort holding the arm against gravity, and the release brings it back.
+#include <csignal>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_client_support.hpp"
+
+namespace servoloop::cli::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using json = nlohmann::json;
+
+const fs::path kOneDof = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
+const char* const kJointStates = "/one_DOF_robot/joint_states";
+constexpr double kWait_s = 30.0;
+
+class SafetyCli : public ::testing::Test {
+ protected:
+  const fs::path& scratch() const { return run_dir_.scratch(); }
+
+  CliResult cli(const std::vector<std::string>& args) { return runCli(args, scratch(), kWait_s); }
+
+  // Polls until `done` holds, up to kWait_s.
+  template <class Condition>
+  bool waitFor(Condition done) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kWait_s);
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (done()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  }
+
+  bool waitForNode() {
+    return waitFor([this] { return cli({"control", "safety"}).status == 0; });
+  }
+
+  json safety() {
+    const CliResult result = cli({"control", "safety", "--json"});
+    EXPECT_EQ(result.status, 0) << result.err;
+    return result.status == 0 ? json::parse(result.out) : json::object();
+  }
+  std::string state() { return safety().value("state", ""); }
+
+  // The next n joint states (one JSON message each).
+  std::vector<json> jointStates(int n) {
+    const CliResult echo = cli({"topic", "echo", "-n", std::to_string(n), "--json", kJointStates});
+    EXPECT_EQ(echo.status, 0) << echo.err;
+    std::vector<json> messages;
+    std::istringstream lines(echo.out);
+    std::string line;
+    while (std::getline(lines, line)) {
+      if (!line.empty()) messages.push_back(json::parse(line));
+    }
+    return messages;
+  }
+  static double position(const json& message) { return message.at("position").at(0).get<double>(); }
+  static double effort(const json& message) { return message.at("effort").at(0).get<double>(); }
+
+  bool positionReaches(double target, double tolerance) {
+    return waitFor([&] {
+      const std::vector<json> states = jointStates(1);
+      return !states.empty() && std::abs(position(states[0]) - target) < tolerance;
+    });
+  }
+
+  std::string controllerState(const std::string& name) {
+    const CliResult list = cli({"control", "list", "--json"});
+    EXPECT_EQ(list.status, 0) << list.err;
+    for (const json& controller : json::parse(list.out)) {
+      if (controller.value("name", "") == name) return controller.value("state", "");
+    }
+    return "";
+  }
+
+  ScopedRunDir run_dir_;
+};
+
+class SafetyOnHardware : public SafetyCli {
+ protected:
+  void SetUp() override {
+    control_file_ = scratch() / "hardware_control";
+    script("");
+    std::ofstream(scratch() / "controllers.yaml")
+        << "one_DOF_robot:\n"
+           "  joint_state_controller: {type: joint_state_controller/JointStateController, publish_rate: 100}\n"
+           "  position_controller: {type: position_controllers/JointPositionController, joint: joint1}\n";
+    std::ofstream(scratch() / "hw.launch.yaml")
+        << "controller_manager: {update_rate: 500}\n"
+           "robots:\n"
+           "  - urdf: '" << (kOneDof / "minimal_robot_description_w_jnt_ctl.urdf").string() << "'\n"
+           "    model: one_DOF_robot\n"
+           "    params: ['" << (scratch() / "controllers.yaml").string() << "']\n"
+           "    hardware: {type: servoloop_test/ScriptedHardware, joints: [joint1], control_file: '"
+        << control_file_.string() << "'}\n"
+           "    controllers: [joint_state_controller, position_controller]\n";
+    node_.emplace(std::vector<std::string>{"launch", (scratch() / "hw.launch.yaml").string(), "--plugin-dir",
+                                           SERVOLOOP_SAFETY_PLUGIN_DIR},
+                  scratch());
+    ASSERT_TRUE(waitForNode()) << node_->currentOut();
+  }
+
+  void TearDown() override {
+    if (!node_) return;
+    node_->signal(SIGINT);
+    const CliResult ended = node_->wait(kWait_s);
+    EXPECT_FALSE(ended.timed_out);
+  }
+
+  // Replaces the hardware's control file (written aside and renamed, so the
+  // plugin never reads half of it).
+  void script(const std::string& lines) {
+    const fs::path aside = control_file_.string() + ".new";
+    std::ofstream(aside) << lines;
+    fs::rename(aside, control_file_);
+  }
+
+  void command(double position) {
+    const CliResult pub = cli({"topic", "pub", "/one_DOF_robot/position_controller/command", "std_msgs/Float64",
+                               std::to_string(position)});
+    ASSERT_EQ(pub.status, 0) << pub.err;
+  }
+
+  fs::path control_file_;
+  std::optional<CliProcess> node_;
+};
+
+TEST_F(SafetyOnHardware, EmergencyStopByCommandTopicAndHardwareInputHoldsThePosition) {
+  EXPECT_EQ(state(), "running");
+  command(0.5);
+  ASSERT_TRUE(positionReaches(0.5, 1e-9));
+
+  // By command: the joint holds while the controller is commanded elsewhere.
+  CliResult estop = cli({"control", "estop", "on"});
+  ASSERT_EQ(estop.status, 0) << estop.err;
+  EXPECT_THAT(estop.out, HasSubstr("state: emergency_stop"));
+  command(1.0);
+  for (const json& message : jointStates(20)) EXPECT_EQ(position(message), 0.5);  // 0.2 s of states
+  EXPECT_EQ(controllerState("position_controller"), "running");
+
+  // Released on the topic: the controller's command goes through.
+  const CliResult release = cli({"topic", "pub", "/one_DOF_robot/estop", "std_msgs/Bool", "false"});
+  ASSERT_EQ(release.status, 0) << release.err;
+  ASSERT_TRUE(positionReaches(1.0, 1e-9));
+  EXPECT_EQ(state(), "running");
+
+  // Engaged on the topic.
+  ASSERT_EQ(cli({"topic", "pub", "/one_DOF_robot/estop", "std_msgs/Bool", "true"}).status, 0);
+  ASSERT_TRUE(waitFor([&] { return state() == "emergency_stop"; }));
+  ASSERT_EQ(cli({"control", "estop", "off"}).status, 0);
+
+  // The hardware's input: latched, and not released while it is active.
+  script("estop\n");
+  ASSERT_TRUE(waitFor([&] { return safety().value("hardware_emergency_input", false); }));
+  EXPECT_EQ(state(), "emergency_stop");
+  EXPECT_THAT(safety().value("reason", ""), HasSubstr("hardware input"));
+  const CliResult refused = cli({"control", "estop", "off"});
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
+  EXPECT_THAT(refused.err, HasSubstr("input is still active"));
+  script("");
+  ASSERT_TRUE(waitFor([&] { return !safety().value("hardware_emergency_input", true); }));
+  EXPECT_EQ(state(), "emergency_stop");  // latched until released
+  ASSERT_EQ(cli({"control", "estop", "off"}).status, 0);
+  command(0.25);
+  ASSERT_TRUE(positionReaches(0.25, 1e-9));
+}
+
+TEST_F(SafetyOnHardware, ReadAndWriteErrorsAreProtectiveStopsRecoveredByCommand) {
+  for (const std::string failure : {"fail_read", "fail_write"}) {
+    SCOPED_TRACE(failure);
+    command(0.5);
+    ASSERT_TRUE(positionReaches(0.5, 1e-9));
+    script(failure + "\n");
+    ASSERT_TRUE(waitFor([&] { return state() == "protective_stop"; }));
+    const std::string call = failure == "fail_read" ? "read()" : "write()";
+    EXPECT_THAT(safety().value("reason", ""), HasSubstr(call + " returned an error"));
+    EXPECT_EQ(controllerState("position_controller"), "failed");
+    EXPECT_EQ(controllerState("joint_state_controller"), "running");  // it commands nothing
+
+    // Recovering while the hardware still fails: refused, still stopped.
+    const CliResult early = cli({"control", "recover"});
+    EXPECT_EQ(early.status, 1);
+    EXPECT_THAT(early.err, HasSubstr("failed again"));
+    EXPECT_EQ(state(), "protective_stop");
+
+    // The stop is latched after the hardware works again, until recover.
+    script("");
+    ASSERT_TRUE(waitFor([&] { return !jointStates(1).empty(); }));
+    EXPECT_EQ(state(), "protective_stop");
+    const CliResult recovered = cli({"control", "recover"});
+    ASSERT_EQ(recovered.status, 0) << recovered.err;
+    EXPECT_THAT(recovered.out, HasSubstr("state: running"));
+    EXPECT_EQ(controllerState("position_controller"), "running");
+    command(-0.3);
+    ASSERT_TRUE(positionReaches(-0.3, 1e-9));
+  }
+}
+
+TEST_F(SafetyOnHardware, ARefusedModeSwitchStartsNothingAndAStallOnlyOverruns) {
+  script("fail_switch\n");
+  ASSERT_TRUE(waitFor([&] {
+    const CliResult stop = cli({"control", "stop", "position_controller"});
+    return stop.status == 1 && stop.err.find("could not change its command modes") != std::string::npos;
+  }));
+  EXPECT_EQ(controllerState("position_controller"), "running");
+  EXPECT_EQ(state(), "running");
+  script("");
+
+  // A read that takes 5 ms at 500 Hz: every cycle overruns, nothing stops.
+  script("stall_ms 5\n");
+  command(0.75);
+  ASSERT_TRUE(positionReaches(0.75, 1e-9));
+  EXPECT_EQ(state(), "running");
+  script("");
+  EXPECT_EQ(cli({"control", "list"}).status, 0);
+}
+
+TEST_F(SafetyOnHardware, AHardwareThatDeactivatesIsAFaultTheNodeSurvivesAndRecovers) {
+  command(0.5);
+  ASSERT_TRUE(positionReaches(0.5, 1e-9));
+  script("deactivate\n");
+  ASSERT_TRUE(waitFor([&] { return state() == "fault"; }));
+  EXPECT_THAT(safety().value("reason", ""), HasSubstr("write() returned deactivate"));
+  // The node serves on; switches wait for the recovery.
+  const CliResult refused = cli({"control", "stop", "position_controller"});
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_THAT(refused.err, HasSubstr("fault"));
+  EXPECT_EQ(cli({"topic", "list"}).status, 0);
+
+  script("");
+  const CliResult recovered = cli({"control", "recover"});
+  ASSERT_EQ(recovered.status, 0) << recovered.err;
+  EXPECT_EQ(state(), "running");
+  EXPECT_EQ(controllerState("position_controller"), "running");
+  command(0.9);
+  ASSERT_TRUE(positionReaches(0.9, 1e-9));
+}
+
+// The seed robot simulated (bullet, paced at 5 × real time), held at 1 rad by its
+// effort PID against gravity. An emergency stop sends 0 N·m (gravity swings
+// the arm away), and the release brings the controller's effort back: the
+// arm returns to 1 rad, held by the effort that held it before.
+TEST_F(SafetyCli, InSimulationAnEmergencyStopRemovesTheHoldingEffortAndTheReleaseRestoresIt) {
+  CliProcess node({"launch", (kOneDof / "one_dof_w_jnt_ctl.launch.yaml").string(), "--rtf", "5", "--pub",
+                   "/one_DOF_robot/joint1_position_controller/command:=1.0"},
+                  scratch());
+  ASSERT_TRUE(waitForNode()) << node.currentOut();
+  double holding_effort = 0.0;
+  const auto settledAtOne = [&] {
+    const std::vector<json> states = jointStates(1);
+    if (states.empty() || std::abs(position(states[0]) - 1.0) > 1e-3) return false;
+    if (std::abs(states[0].at("velocity").at(0).get<double>()) > 1e-3) return false;
+    holding_effort = effort(states[0]);
+    return true;
+  };
+  ASSERT_TRUE(waitFor(settledAtOne));
+  EXPECT_GT(std::abs(holding_effort), 1.0);  // gravity needs holding
+
+  ASSERT_EQ(cli({"control", "estop", "on"}).status, 0);
+  const std::vector<json> stopped = jointStates(10);
+  ASSERT_EQ(stopped.size(), 10u);
+  for (const json& message : stopped) EXPECT_EQ(effort(message), 0.0);
+  EXPECT_GT(std::abs(position(stopped.back()) - 1.0), 0.01);  // swinging away
+
+  ASSERT_EQ(cli({"control", "estop", "off"}).status, 0);
+  const double before = holding_effort;
+  ASSERT_TRUE(waitFor(settledAtOne));
+  EXPECT_NEAR(holding_effort, before, 0.05);
+
+  node.signal(SIGINT);
+  EXPECT_FALSE(node.wait(kWait_s).timed_out);
+}
+
+}  // namespace
+}  // namespace servoloop::cli::testing
