@@ -14,6 +14,11 @@ RobotSummary summarizeRobot(RobotInstance& robot) {
   summary.joints = robot.joints();
   summary.loop = robot.loop().statistics().snapshot();
   summary.launch_failures = robot.launchFailures();
+  const controller_manager::SafetySupervisor& safety = robot.safety();
+  summary.safety_state = controller_manager::toString(safety.state());
+  summary.safety_reason = safety.reason();
+  summary.protective_stops = safety.protectiveStops();
+  summary.emergency_stops = safety.emergencyStops();
   return summary;
 }
 
@@ -52,6 +57,10 @@ nlohmann::json toJson(const RunSummary& summary) {
                         {"overruns", loop.overruns},
                         {"schedule_resets", loop.schedule_resets},
                         {"hardware_errors", loop.hardware_errors}}}});
+    robots.back()["safety"] = {{"state", robot.safety_state},
+                               {"reason", robot.safety_reason},
+                               {"protective_stops", robot.protective_stops},
+                               {"emergency_stops", robot.emergency_stops}};
     if (!robot.launch_failures.empty()) robots.back()["launch_failures"] = robot.launch_failures;
   }
   return {{"sim_time", summary.sim_time_s},
@@ -76,6 +85,12 @@ std::string toText(const RunSummary& summary) {
                           joint.position, joint.velocity, joint.effort);
     }
     text += "  " + controller_manager::LoopStatistics::summary(robot.loop) + "\n";
+    // Said only when the robot was stopped at some point.
+    if (robot.safety_state != "running" || robot.protective_stops > 0 || robot.emergency_stops > 0) {
+      text += fmt::format("  safety: {} at the end; {} protective stop(s), {} emergency stop(s){}\n", robot.safety_state,
+                          robot.protective_stops, robot.emergency_stops,
+                          robot.safety_reason.empty() ? "" : " — " + robot.safety_reason);
+    }
     for (const std::string& failure : robot.launch_failures) text += "  launch failure: " + failure + "\n";
   }
   return text;

@@ -214,6 +214,13 @@ TEST_F(SafetyOnHardware, ReadAndWriteErrorsAreProtectiveStopsRecoveredByCommand)
     command(-0.3);
     ASSERT_TRUE(positionReaches(-0.3, 1e-9));
   }
+  // The summary counts the stops: two per failure (the first, and the one the
+  // early recovery ran into).
+  node_->signal(SIGINT);
+  const CliResult ended = node_->wait(kWait_s);
+  node_.reset();
+  ASSERT_FALSE(ended.timed_out);
+  EXPECT_THAT(ended.out, HasSubstr("safety: running at the end; 4 protective stop(s), 0 emergency stop(s)"));
 }
 
 TEST_F(SafetyOnHardware, ARefusedModeSwitchStartsNothingAndAStallOnlyOverruns) {

@@ -26,6 +26,11 @@ struct RobotSummary {
   std::vector<JointReading> joints;  // final state
   controller_manager::LoopStatisticsSnapshot loop;
   std::vector<std::string> launch_failures;  // see RobotInstance::launchFailures
+  // The safety state at the end and how often the robot was stopped.
+  std::string safety_state = "running";
+  std::string safety_reason;  // empty when running
+  std::uint64_t protective_stops = 0;
+  std::uint64_t emergency_stops = 0;
 };
 
 struct RunSummary {
