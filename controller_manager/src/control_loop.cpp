@@ -2,6 +2,7 @@
 #include "servoloop/controller_manager/control_loop.hpp"
 
 #include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/loop_clock.hpp"
 #include "servoloop/controller_manager/safety_supervisor.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/core/logging.hpp"
@@ -42,14 +43,28 @@ void ControlLoop::recordFailure(HardwareCall call, ReturnType result, Time time,
   }
 }
 
+void ControlLoop::setPhaseTiming(bool timed) noexcept {
+  time_phases_ = timed;
+  manager_.setUpdateTiming(timed);
+}
+
+void ControlLoop::requestStatisticsReset() noexcept {
+  manager_.requestUpdateTimingReset();
+  statistics_.requestReset();
+}
+
+void ControlLoop::applyRequestedStatisticsReset() noexcept { statistics_.applyRequestedReset(); }
+
 ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t cycle) noexcept {
   ReturnType result = ReturnType::error;
+  const std::int64_t start_ns = time_phases_ ? loop_clock::nowNs() : 0;
   try {
     result = robot_hw_.read(time, period);
   } catch (...) {
     // read() must not throw; containing it keeps the loop (and the robot's
     // other joints) under control. It is reported as an error of this call.
   }
+  if (time_phases_) statistics_.recordRead(loop_clock::nowNs() - start_ns);
   recordHardwareResult(HardwareCall::read, result, time, cycle);
   if (options_.safety != nullptr) options_.safety->pollHardwareInput();
   return result;
@@ -57,11 +72,13 @@ ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t c
 
 ReturnType ControlLoop::writeHardware(Time time, Duration period, std::uint64_t cycle) noexcept {
   ReturnType result = ReturnType::error;
+  const std::int64_t start_ns = time_phases_ ? loop_clock::nowNs() : 0;
   try {
     result = robot_hw_.write(time, period);
   } catch (...) {
     // As in readHardware: counted and reported as an error of write().
   }
+  if (time_phases_) statistics_.recordWrite(loop_clock::nowNs() - start_ns);
   recordHardwareResult(HardwareCall::write, result, time, cycle);
   return result;
 }

@@ -51,6 +51,7 @@ struct ControllerEntry {
   bool stopped_by_hardware_failure = false;  // scratch of containHardwareFailure
 
   FaultRecord fault;
+  DurationStatistics update_time;  // written by the real-time thread (timed cycles)
   std::string last_fault;  // non-real-time: the last drained fault's message
   FaultKind last_fault_kind = FaultKind::update_threw;  // non-real-time: its kind
 };

@@ -302,6 +302,14 @@ void ControllerManager::publishRealtimeList(std::vector<detail::ControllerEntry*
   waitUntilRealtimeLeaves(current);
 }
 
+std::vector<std::pair<std::string, DurationSnapshot>> ControllerManager::updateTimes() {
+  std::lock_guard<std::mutex> lock(services_mutex_);
+  std::vector<std::pair<std::string, DurationSnapshot>> times;
+  times.reserve(entries_.size());
+  for (const auto& entry : entries_) times.emplace_back(entry->name, entry->update_time.snapshot());
+  return times;
+}
+
 std::vector<ControllerSpec> ControllerManager::listControllers() {
   std::lock_guard<std::mutex> lock(services_mutex_);
   processFaultsLocked();

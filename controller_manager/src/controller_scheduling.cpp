@@ -9,6 +9,7 @@
 #include "asymmetric_fence.hpp"
 #include "controller_entry.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/controller_manager/loop_clock.hpp"
 
 namespace servoloop::controller_manager {
 
@@ -118,6 +119,7 @@ int ControllerManager::enterRealtimeList() noexcept {
 
 void ControllerManager::update(const Time& time, const Duration& /*period*/) noexcept {
   ++cycle_;
+  const bool reset_timing = update_timing_reset_.load(std::memory_order_acquire);
   SwitchPhase expected = SwitchPhase::pending;
   if (switch_phase_.load(std::memory_order_acquire) == SwitchPhase::pending &&
       switch_phase_.compare_exchange_strong(expected, SwitchPhase::executing,
@@ -128,8 +130,10 @@ void ControllerManager::update(const Time& time, const Duration& /*period*/) noe
 
   const int list_index = enterRealtimeList();
   for (detail::ControllerEntry* entry : realtime_lists_[list_index]) {
+    if (reset_timing) entry->update_time.reset();
     updateController(*entry, time);
   }
+  if (reset_timing) update_timing_reset_.store(false, std::memory_order_release);
   // Release is enough here: a publisher waiting for this list sees the -1
   // only after every read of the list above.
   realtime_reading_list_.store(-1, std::memory_order_release);
@@ -218,8 +222,10 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
   const Duration period = time - entry.last_update_time;
   entry.last_update_time = time;
   ReturnType result = ReturnType::ok;
+  const std::int64_t start_ns = time_updates_ ? loop_clock::nowNs() : 0;
   try {
     result = controller.updateRequest(time, period);
+    if (time_updates_) entry.update_time.record(loop_clock::nowNs() - start_ns);
   } catch (const std::exception& e) {
     containInUpdate(entry, FaultKind::update_threw, e.what(), time);
     return;

@@ -152,6 +152,8 @@ void SimulationLoop::publishElapsed() noexcept {
 
 ReturnType SimulationLoop::cycleOnce() noexcept {
   syncHardwareStep();
+  applyRequestedStatisticsReset();
+  setPhaseTiming(true);
   const std::int64_t start_ns = loop_clock::nowNs();
   bool control_updated = false;
   const ReturnType result = runCycle(&control_updated);
@@ -179,6 +181,7 @@ void SimulationLoop::runFreeCycles(std::uint64_t max_cycles, const std::atomic<b
   // then cost a few percent of a cheap cycle instead of a tenth of it.
   const std::int64_t run_start_ns = loop_clock::cycleClockNs();
   const std::int64_t wall_before_ns = wall_time_ns_;
+  setPhaseTiming(false);
   for (std::uint64_t n = 0; n < max_cycles && !shouldStop(external_stop); ++n) {
     bool control_updated = false;
     // Counted across runs: a node runs its free loop in short runs.
@@ -187,9 +190,12 @@ void SimulationLoop::runFreeCycles(std::uint64_t max_cycles, const std::atomic<b
       mutableStatistics().recordUntimedCycle(control_updated);
       continue;
     }
+    applyRequestedStatisticsReset();
+    setPhaseTiming(true);
     const std::int64_t start_ns = loop_clock::cycleClockNs();
     runCycle(&control_updated);
     const std::int64_t end_ns = loop_clock::cycleClockNs();
+    setPhaseTiming(false);  // the next kFreeRunningTimingStride - 1 cycles are not timed
     mutableStatistics().recordCycle(end_ns - start_ns, control_updated);
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
     publishElapsed();
@@ -213,8 +219,10 @@ void SimulationLoop::runPacedCycles(std::uint64_t max_cycles, const std::atomic<
   // One clock read per cycle: the end of one cycle is the start of the next,
   // so a cycle's compute time includes the loop's own bookkeeping.
   std::int64_t cycle_start_ns = run_start_ns;
+  setPhaseTiming(true);
   for (std::uint64_t n = 0; n < max_cycles && !shouldStop(external_stop); ++n) {
     bool control_updated = false;
+    applyRequestedStatisticsReset();
     runCycle(&control_updated);
     std::int64_t end_ns = loop_clock::nowNs();
     mutableStatistics().recordCycle(end_ns - cycle_start_ns, control_updated);

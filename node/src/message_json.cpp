@@ -265,6 +265,7 @@ void withMessageFromJson(std::string_view type_name, const json& value, Fn&& fn)
   if (type_name == std_msgs::Float64::kTypeName) return decode(std_msgs::Float64{});
   if (type_name == std_msgs::Float64MultiArray::kTypeName) return decode(std_msgs::Float64MultiArray{});
   if (type_name == std_msgs::Bool::kTypeName) return decode(std_msgs::Bool{});
+  if (type_name == diagnostic_msgs::DiagnosticArray::kTypeName) return decode(diagnostic_msgs::DiagnosticArray{});
   if (type_name == sensor_msgs::JointState::kTypeName) return decode(sensor_msgs::JointState{});
   if (type_name == control_msgs::JointControllerState::kTypeName) {
     return decode(control_msgs::JointControllerState{});
@@ -295,6 +296,7 @@ json toJson(const realtime::MessageView& msg) {
   if (const auto* m = msg.as<std_msgs::Float64>()) return toJson(*m);
   if (const auto* m = msg.as<std_msgs::Float64MultiArray>()) return toJson(*m);
   if (const auto* m = msg.as<std_msgs::Bool>()) return toJson(*m);
+  if (const auto* m = msg.as<diagnostic_msgs::DiagnosticArray>()) return toJson(*m);
   if (const auto* m = msg.as<sensor_msgs::JointState>()) return toJson(*m);
   if (const auto* m = msg.as<control_msgs::JointControllerState>()) return toJson(*m);
   if (const auto* m = msg.as<nav_msgs::Odometry>()) return toJson(*m);

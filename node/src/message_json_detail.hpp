@@ -31,6 +31,7 @@ inline const std::map<std::string_view, std::vector<std::string_view>>& fieldTab
       {std_msgs::Float64::kTypeName, {"data"}},
       {std_msgs::Float64MultiArray::kTypeName, {"data"}},
       {std_msgs::Bool::kTypeName, {"data"}},
+      {diagnostic_msgs::DiagnosticArray::kTypeName, {"stamp", "status"}},
       {sensor_msgs::JointState::kTypeName, {"stamp", "name", "position", "velocity", "effort"}},
       {control_msgs::JointControllerState::kTypeName,
        {"stamp", "set_point", "process_value", "process_value_dot", "error", "time_step", "command", "p", "i",

@@ -16,6 +16,20 @@ json toJson(const std_msgs::Float64& msg) { return json{{"data", msg.data}}; }
 json toJson(const std_msgs::Float64MultiArray& msg) { return json{{"data", numberList(msg.data)}}; }
 json toJson(const std_msgs::Bool& msg) { return json{{"data", msg.data}}; }
 
+json toJson(const diagnostic_msgs::DiagnosticArray& msg) {
+  json status = json::array();
+  for (const auto& s : msg.status) {
+    json values = json::array();
+    for (const auto& kv : s.values) values.push_back({{"key", kv.key}, {"value", kv.value}});
+    status.push_back({{"level", s.level},
+                      {"name", s.name},
+                      {"message", s.message},
+                      {"hardware_id", s.hardware_id},
+                      {"values", std::move(values)}});
+  }
+  return json{{"stamp", msg.stamp}, {"status", std::move(status)}};
+}
+
 json toJson(const sensor_msgs::JointState& msg) {
   return json{{"stamp", msg.stamp},
               {"name", msg.name},
@@ -110,6 +124,42 @@ void fromJson(const json& value, std_msgs::Float64& out) {
   }
   FieldReader reader(std_msgs::Float64::kTypeName, value);
   reader.number("data", out.data);
+}
+
+void fromJson(const json& value, diagnostic_msgs::DiagnosticArray& out) {
+  constexpr std::string_view type = diagnostic_msgs::DiagnosticArray::kTypeName;
+  FieldReader reader(type, value);
+  reader.number("stamp", out.stamp);
+  const json* status = reader.field("status");
+  if (status == nullptr) return;
+  if (!status->is_array()) reader.fail("status", "a list of statuses", *status);
+  static const std::vector<std::string_view> fields = {"level", "name", "message", "hardware_id", "values"};
+  static const std::vector<std::string_view> key_value = {"key", "value"};
+  out.status.assign(status->size(), {});
+  for (std::size_t i = 0; i < status->size(); ++i) {
+    const std::string where = "status[" + std::to_string(i) + "]";
+    FieldReader item(type, (*status)[i], fields, where);
+    auto& s = out.status[i];
+    double level = 0.0;
+    item.number("level", level);
+    if (level != 0.0 && level != 1.0 && level != 2.0 && level != 3.0) {
+      item.fail("level", "0 (OK), 1 (WARN), 2 (ERROR) or 3 (STALE)", (*status)[i]["level"]);
+    }
+    s.level = static_cast<int>(level);
+    item.text("name", s.name);
+    item.text("message", s.message);
+    item.text("hardware_id", s.hardware_id);
+    const json* values = item.field("values");
+    if (values == nullptr) continue;
+    if (!values->is_array()) item.fail("values", "a list of {key, value}", *values);
+    for (std::size_t k = 0; k < values->size(); ++k) {
+      FieldReader pair(type, (*values)[k], key_value, where + ".values[" + std::to_string(k) + "]");
+      diagnostic_msgs::KeyValue kv;
+      pair.text("key", kv.key);
+      pair.text("value", kv.value);
+      s.values.push_back(std::move(kv));
+    }
+  }
 }
 
 void fromJson(const json& value, std_msgs::Bool& out) {

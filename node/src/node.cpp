@@ -162,6 +162,7 @@ void Node::waitUntilDone(const std::function<void()>& tick, std::chrono::millise
       any_robot = true;
       robot->manager().processFaults();
       robot->loop().logHardwareErrorReport();
+      robot->publishDiagnosticsIfDue();
       all_finished &= robot->finished();
     }
     if (tick) tick();

@@ -14,6 +14,7 @@
 #include "servoloop/node/action_json.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/node.hpp"
+#include "servoloop/node/run_summary.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
@@ -199,6 +200,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     });
   }
   if (op == "control.safety") return controlSafety(robot);
+  if (op == "control.stats") return controlStats(robot, request.value("reset", false));
   if (op == "control.estop") {
     const auto engage = request.find("engage");
     if (engage == request.end() || !engage->is_boolean()) {
@@ -223,7 +225,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   if (op == "action.cancel") return actionCancel(request, connection);
   throw Error("unknown op '" + op +
               "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries,"
-              "safety,estop,recover}, "
+              "safety,estop,recover,stats}, "
               "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, "
               "action.{list,send,status,cancel}, model.spawn, world.shutdown");
 }
@@ -237,6 +239,16 @@ json NodeOperations::ping() {
     const controller_manager::LoopStatisticsSnapshot loop = robot_->loop().statistics().snapshot();
     reply["loop"] = {{"cycles", loop.cycles}, {"overruns", loop.overruns}};
   }
+  return reply;
+}
+
+json NodeOperations::controlStats(RobotInstance& robot, bool reset) {
+  json controllers = json::array();
+  for (const auto& [name, update_time] : robot.manager().updateTimes()) {
+    controllers.push_back({{"name", name}, {"update", toJson(update_time)}});
+  }
+  json reply = {{"loop", toJson(robot.loop().statistics().snapshot())}, {"controllers", std::move(controllers)}};
+  if (reset) robot.loop().requestStatisticsReset();
   return reply;
 }
 

@@ -33,7 +33,7 @@ std::string topicNames(const std::map<std::string, std::shared_ptr<detail::Topic
 std::string knownTypesText() {
   std::string text;
   for (std::string_view type : {std_msgs::Float64::kTypeName, std_msgs::Float64MultiArray::kTypeName,
-                                std_msgs::Bool::kTypeName,
+                                std_msgs::Bool::kTypeName, diagnostic_msgs::DiagnosticArray::kTypeName,
                                 sensor_msgs::JointState::kTypeName, control_msgs::JointControllerState::kTypeName,
                                 nav_msgs::Odometry::kTypeName, trajectory_msgs::JointTrajectory::kTypeName,
                                 control_msgs::JointTrajectoryControllerState::kTypeName,
@@ -68,6 +68,9 @@ TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view
   if (type_name == std_msgs::Float64::kTypeName) return typedTopicLocked<std_msgs::Float64>(name);
   if (type_name == std_msgs::Float64MultiArray::kTypeName) return typedTopicLocked<std_msgs::Float64MultiArray>(name);
   if (type_name == std_msgs::Bool::kTypeName) return typedTopicLocked<std_msgs::Bool>(name);
+  if (type_name == diagnostic_msgs::DiagnosticArray::kTypeName) {
+    return typedTopicLocked<diagnostic_msgs::DiagnosticArray>(name);
+  }
   if (type_name == sensor_msgs::JointState::kTypeName) return typedTopicLocked<sensor_msgs::JointState>(name);
   if (type_name == control_msgs::JointControllerState::kTypeName) {
     return typedTopicLocked<control_msgs::JointControllerState>(name);
@@ -246,6 +249,7 @@ std::size_t TopicBus::flush() {
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64MultiArray, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Bool, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(diagnostic_msgs::DiagnosticArray, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::JointState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, )

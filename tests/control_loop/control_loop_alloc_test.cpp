@@ -7,6 +7,7 @@
 #include "control_loop_test_support.hpp"
 #include "servoloop/controller_manager/safety_supervisor.hpp"
 #include "servoloop/controller_manager/simulation_loop.hpp"
+#include "servoloop/controller_manager/wall_clock_loop.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 
 namespace servoloop::controller_manager {
@@ -79,6 +80,36 @@ TEST(ControlLoopAllocation, SafetyTransitionsAllocateNothing) {
   EXPECT_EQ(safety.emergencyStops(), kChunks / 2);
   EXPECT_EQ(safety.protectiveStops(), 1u);
   EXPECT_EQ(f.controller()->state(), ControllerState::failed);
+}
+
+// The wall-clock loop with its per-phase statistics (read, the controller's
+// update, write, wake-up latency, period jitter), a statistics reset asked
+// for mid-run, and the safety layer: 2000 cycles at 10 kHz, no allocation.
+TEST(ControlLoopAllocation, WallClockCyclesWithStatisticsAndAResetAllocateNothing) {
+  testing::LoopFixture f(0.0001, 10000.0);
+  f.recorder->enabled = false;
+  SafetySupervisor safety(f.hw);
+  WallClockLoop::Options options;
+  options.safety = &safety;
+  options.step_simulation = true;
+  WallClockLoop loop(f.hw, f.manager, options);
+  f.requestStart();
+  loop.runFor(Duration(0.001));  // start-up: carries out the switch
+  ASSERT_TRUE(f.controller()->isRunning());
+
+  std::size_t allocations = 0;
+  {
+    AllocationCounter counter;
+    loop.runFor(Duration(0.1));
+    loop.requestStatisticsReset();
+    loop.runFor(Duration(0.1));
+    allocations = counter.allocations();
+  }
+  EXPECT_EQ(allocations, 0u);
+  const LoopStatisticsSnapshot s = loop.statistics().snapshot();
+  EXPECT_GT(s.read.count, 0u);
+  EXPECT_LE(s.cycles, 1001u);  // counted since the reset only
+  EXPECT_GT(f.manager.updateTimes()[0].second.count, 0u);
 }
 
 }  // namespace

@@ -176,3 +176,57 @@ TEST(WallClockLoop, HardwareErrorIsCountedAndReportedOnce) {
 
 }  // namespace
 }  // namespace servoloop::controller_manager
+
+namespace servoloop::controller_manager {
+namespace {
+
+// The phases are timed separately: a read() that sleeps 2 ms shows in read's
+// figures (and the cycle's), not in write's or the controller's; every cycle
+// records a wake-up latency, every cycle after the first a period jitter.
+TEST(WallClockLoopStatistics, PhasesWakeUpLatencyAndJitterArePerCycle) {
+  testing::LoopFixture f(0.005, 200.0);
+  f.recorder->enabled = false;
+  f.hw.read_sleep = std::chrono::microseconds(2000);
+  WallClockLoop loop(f.hw, f.manager);
+  f.requestStart();
+  loop.runFor(Duration(0.1));  // 20 cycles of 5 ms
+  const LoopStatisticsSnapshot s = loop.statistics().snapshot();
+  ASSERT_GE(s.cycles, 10u);
+  EXPECT_EQ(s.read.count, s.cycles);
+  EXPECT_EQ(s.write.count, s.cycles);
+  EXPECT_EQ(s.wakeup_latency.count, s.cycles);
+  EXPECT_EQ(s.period_jitter.count, s.cycles - 1);
+  EXPECT_GE(s.read.min_s, 0.002);  // sleep_for sleeps at least as long
+  EXPECT_LT(s.write.p50_s, 0.001);
+  EXPECT_GE(s.compute_min_s, s.read.min_s);
+  const auto times = f.manager.updateTimes();
+  ASSERT_EQ(times.size(), 1u);
+  EXPECT_EQ(times[0].first, "ctrl");
+  EXPECT_EQ(times[0].second.count, f.controller()->updates);
+  EXPECT_LT(times[0].second.p50_s, 0.001);
+  EXPECT_GE(s.wakeup_latency.min_s, 0.0);
+  EXPECT_LE(s.wakeup_latency.p50_s, s.wakeup_latency.max_s);
+}
+
+// A reset asked from another thread happens at the start of the next cycle:
+// afterwards only the cycles since are counted, controllers' times included.
+TEST(WallClockLoopStatistics, ResetRequestZeroesAtTheNextCycle) {
+  testing::LoopFixture f(0.002, 500.0);
+  f.recorder->enabled = false;
+  WallClockLoop loop(f.hw, f.manager);
+  f.requestStart();
+  loop.runFor(Duration(0.02));
+  ASSERT_GE(loop.statistics().snapshot().cycles, 5u);
+  loop.requestStatisticsReset();
+  EXPECT_TRUE(loop.statistics().resetPending());
+  loop.runFor(Duration(0.001));  // one cycle
+  const LoopStatisticsSnapshot s = loop.statistics().snapshot();
+  EXPECT_FALSE(loop.statistics().resetPending());
+  EXPECT_EQ(s.cycles, 1u);
+  EXPECT_EQ(s.read.count, 1u);
+  EXPECT_EQ(f.manager.updateTimes()[0].second.count, 1u);
+  EXPECT_GT(s.sim_time_s, 0.01);  // control time runs on
+}
+
+}  // namespace
+}  // namespace servoloop::controller_manager

@@ -47,7 +47,8 @@ TEST(Messages, TypeNames) {
   EXPECT_EQ(control_msgs::JointTrajectoryControllerState::kTypeName, "control_msgs/JointTrajectoryControllerState");
   EXPECT_EQ(knownMessageTypes(),
             (std::vector<std::string>{"control_msgs/JointControllerState",
-                                      "control_msgs/JointTrajectoryControllerState", "geometry_msgs/Twist",
+                                      "control_msgs/JointTrajectoryControllerState", "diagnostic_msgs/DiagnosticArray",
+                                      "geometry_msgs/Twist",
                                       "nav_msgs/Odometry", "sensor_msgs/JointState", "std_msgs/Bool",
                                       "std_msgs/Float64", "std_msgs/Float64MultiArray", "tf2_msgs/TFMessage",
                                       "trajectory_msgs/JointTrajectory"}));
@@ -73,6 +74,27 @@ TEST(Messages, BoolJson) {
   // A number is not a switch: ROS's Bool takes true or false only.
   EXPECT_THROW(messageFromJson<std_msgs::Bool>(json::parse(R"({"data": 1})")), Error);
   EXPECT_THROW(messageFromJson<std_msgs::Bool>(json::parse(R"({"on": true})")), Error);
+}
+
+TEST(Messages, DiagnosticArrayJsonRoundTripAndErrors) {
+  diagnostic_msgs::DiagnosticArray msg;
+  msg.stamp = 2.5;
+  msg.status.push_back({diagnostic_msgs::DiagnosticStatus::kWarn, "/arm: control loop", "overran", "mock",
+                        {{"cycles", "2000"}, {"overruns", "3"}}});
+  const json j = toJson(msg);
+  EXPECT_EQ(j.dump(), R"({"stamp":2.5,"status":[{"hardware_id":"mock","level":1,"message":"overran",)"
+                      R"("name":"/arm: control loop","values":[{"key":"cycles","value":"2000"},)"
+                      R"({"key":"overruns","value":"3"}]}]})");
+  const auto back = messageFromJson<diagnostic_msgs::DiagnosticArray>(j);
+  ASSERT_EQ(back.status.size(), 1u);
+  EXPECT_EQ(back.status[0].level, 1);
+  EXPECT_EQ(back.status[0].values[1].value, "3");
+  try {
+    messageFromJson<diagnostic_msgs::DiagnosticArray>(json::parse(R"({"status": [{"level": 7}]})"));
+    ADD_FAILURE() << "level 7 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("status[0]"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Messages, Float64MultiArrayJsonRoundTrip) {

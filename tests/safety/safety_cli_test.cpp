@@ -196,6 +196,15 @@ TEST_F(SafetyOnHardware, ReadAndWriteErrorsAreProtectiveStopsRecoveredByCommand)
     EXPECT_THAT(safety().value("reason", ""), HasSubstr(call + " returned an error"));
     EXPECT_EQ(controllerState("position_controller"), "failed");
     EXPECT_EQ(controllerState("joint_state_controller"), "running");  // it commands nothing
+    // The diagnostics say so (published once a second).
+    const CliResult diagnostics = cli({"topic", "echo", "-n", "1", "--json", "/one_DOF_robot/diagnostics"});
+    ASSERT_EQ(diagnostics.status, 0) << diagnostics.err;
+    const json report = json::parse(diagnostics.out);
+    EXPECT_EQ(report.at("status")[0].at("name"), "/one_DOF_robot: control loop");
+    EXPECT_EQ(report.at("status")[0].at("level"), 2);
+    EXPECT_THAT(report.at("status")[0].at("message").get<std::string>(), HasSubstr("protective stop"));
+    EXPECT_EQ(report.at("status")[2].at("name"), "/one_DOF_robot: position_controller");
+    EXPECT_EQ(report.at("status")[2].at("level"), 2);
 
     // Recovering while the hardware still fails: refused, still stopped.
     const CliResult early = cli({"control", "recover"});
@@ -233,12 +242,30 @@ TEST_F(SafetyOnHardware, ARefusedModeSwitchStartsNothingAndAStallOnlyOverruns) {
   EXPECT_EQ(state(), "running");
   script("");
 
-  // A read that takes 5 ms at 500 Hz: every cycle overruns, nothing stops.
+  // A read that takes 5 ms at 500 Hz: every cycle overruns, nothing stops;
+  // `control stats` shows it in read() and the overruns, and --reset zeroes
+  // them.
+  const CliResult reset = cli({"control", "stats", "--reset"});
+  ASSERT_EQ(reset.status, 0) << reset.err;
+  EXPECT_THAT(reset.out, HasSubstr("position_controller update()"));
   script("stall_ms 5\n");
   command(0.75);
   ASSERT_TRUE(positionReaches(0.75, 1e-9));
   EXPECT_EQ(state(), "running");
   script("");
+  ASSERT_TRUE(positionReaches(0.75, 1e-9));  // a cycle or more after the stall ended
+  const CliResult stats = cli({"control", "stats", "--json"});
+  ASSERT_EQ(stats.status, 0) << stats.err;
+  const json figures = json::parse(stats.out);
+  const json& loop = figures.at("loop");
+  EXPECT_GE(loop.at("read").at("max").get<double>(), 0.005);
+  EXPECT_GE(loop.at("overruns").get<std::uint64_t>(), 1u);
+  EXPECT_EQ(loop.at("read").at("count"), loop.at("cycles"));
+  EXPECT_EQ(loop.at("wakeup_latency").at("count"), loop.at("cycles"));
+  EXPECT_LT(loop.at("write").at("max").get<double>(), 0.005);
+  ASSERT_EQ(figures.at("controllers").size(), 2u);
+  EXPECT_EQ(figures.at("controllers")[1].at("name"), "position_controller");
+  EXPECT_GT(figures.at("controllers")[1].at("update").at("count").get<std::uint64_t>(), 0u);
   EXPECT_EQ(cli({"control", "list"}).status, 0);
 }
 

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <spdlog/fmt/fmt.h>
 
 #include "command_registry.hpp"
 #include "node_connection.hpp"
@@ -33,6 +34,7 @@ struct ControlOptions {
   double timeout_s = 0.0;
   bool force_kill = false;
   std::string estop;  // "on" or "off"
+  bool reset = false;
 };
 
 std::string stringField(const nlohmann::json& object, const char* key) {
@@ -156,6 +158,44 @@ void runRecover(const ControlOptions& options) {
   printSafety(client.call("control.recover", nlohmann::json::object(), kSwitchCallTimeoutS), options.json);
 }
 
+// One row of `control stats`: a duration's count and figures in microseconds.
+void printDurationRow(const std::string& label, const nlohmann::json& d) {
+  const auto us = [&](const char* key) { return d.value(key, 0.0) * 1e6; };
+  const std::uint64_t count = d.value("count", std::uint64_t{0});
+  if (count == 0) {
+    std::cout << fmt::format("{:<34} {:>9}\n", label, "-");
+    return;
+  }
+  std::cout << fmt::format("{:<34} {:>9} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", label, count, us("min"),
+                           us("mean"), us("p50"), us("p99"), us("max"));
+}
+
+void runStats(const ControlOptions& options) {
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
+  const nlohmann::json reply = client.call("control.stats", {{"reset", options.reset}});
+  if (options.json) {
+    std::cout << reply.dump(2) << "\n";
+  } else {
+    const nlohmann::json loop = reply.value("loop", nlohmann::json::object());
+    std::cout << fmt::format("{} cycles, {} overruns, {} hardware errors, real-time factor {:.3f}\n",
+                             loop.value("cycles", 0), loop.value("overruns", 0), loop.value("hardware_errors", 0),
+                             loop.value("real_time_factor", 0.0));
+    std::cout << fmt::format("{:<34} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "(us)", "count", "min", "mean", "p50",
+                             "p99", "max");
+    nlohmann::json cycle = loop.value("compute", nlohmann::json::object());
+    cycle["count"] = cycle.value("timed_cycles", 0);
+    printDurationRow("cycle", cycle);
+    printDurationRow("read()", loop.value("read", nlohmann::json::object()));
+    for (const auto& controller : reply.value("controllers", nlohmann::json::array())) {
+      printDurationRow(stringField(controller, "name") + " update()", controller.value("update", nlohmann::json::object()));
+    }
+    printDurationRow("write()", loop.value("write", nlohmann::json::object()));
+    printDurationRow("wake-up latency", loop.value("wakeup_latency", nlohmann::json::object()));
+    printDurationRow("period jitter", loop.value("period_jitter", nlohmann::json::object()));
+  }
+  if (options.reset) std::cerr << "statistics reset\n";
+}
+
 CLI::App* addClientSubcommand(CLI::App& control, const std::string& name,
                               const std::string& description, ControlOptions& options) {
   CLI::App* command = control.add_subcommand(name, description);
@@ -248,6 +288,17 @@ void addControlClientCommands(CLI::App& root) {
     reload->add_flag("--force-kill", options->force_kill,
                      "Stop and unload every controller first");
     reload->callback([options] { runReloadLibraries(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* stats = addClientSubcommand(
+        control, "stats",
+        "Loop statistics: cycle, read(), each controller's update(), write(), wake-up latency and period jitter "
+        "(count, min, mean, p50, p99, max), overruns, hardware errors",
+        *options);
+    stats->add_flag("--json", options->json, "Print the figures as JSON (seconds)");
+    stats->add_flag("--reset", options->reset, "Zero the figures after printing them");
+    stats->callback([options] { runStats(*options); });
   }
   {
     auto options = std::make_shared<ControlOptions>();

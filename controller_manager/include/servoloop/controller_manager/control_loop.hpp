@@ -93,6 +93,10 @@ class ControlLoop {
 
   // Any thread.
   const LoopStatistics& statistics() const noexcept { return statistics_; }
+  // Any thread. Zeroes the statistics, the manager's controller timings
+  // included, at the start of the next cycle (control time and wall time
+  // run on).
+  void requestStatisticsReset() noexcept;
   // Any thread. True once a hardware call returned ReturnType::deactivate or
   // stop_after_failed_cycles was reached; the loop then refuses to run on.
   bool hardwareAskedToStop() const noexcept { return hardware_stop_.load(std::memory_order_acquire); }
@@ -138,6 +142,13 @@ class ControlLoop {
   // Clears a consumed stop request at the end of a run.
   void consumeStopRequest() noexcept { stop_requested_.store(false, std::memory_order_release); }
 
+  // Whether this cycle's phases (read, each controller's update, write) are
+  // timed: every cycle unless a loop times only some (a free-running
+  // simulation, see LoopStatistics).
+  void setPhaseTiming(bool timed) noexcept;
+  // At the start of a cycle: a statistics reset another thread asked for.
+  void applyRequestedStatisticsReset() noexcept;
+
   hardware_interface::RobotHW& robotHW() noexcept { return robot_hw_; }
   LoopStatistics& mutableStatistics() noexcept { return statistics_; }
 
@@ -154,6 +165,7 @@ class ControlLoop {
   std::atomic<bool> stop_requested_{false};
   std::atomic<bool> hardware_stop_{false};
   bool deactivate_this_cycle_ = false;  // real-time thread only
+  bool time_phases_ = true;             // real-time thread only
 };
 
 }  // namespace servoloop::controller_manager

@@ -21,6 +21,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -29,6 +30,7 @@
 #include "servoloop/controller_manager/controller_context.hpp"
 #include "servoloop/controller_manager/controller_factory.hpp"
 #include "servoloop/controller_manager/controller_spec.hpp"
+#include "servoloop/controller_manager/duration_statistics.hpp"
 #include "servoloop/controller_manager/switch_request.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/core/time.hpp"
@@ -146,6 +148,12 @@ class ControllerManager {
   // The loaded controller of that name, or nullptr. Valid until it is unloaded.
   ControllerBase* getController(const std::string& name);
 
+  // Any thread. How long each loaded controller's update() took, in load
+  // order, over the timed cycles since the last reset (see setUpdateTiming).
+  std::vector<std::pair<std::string, DurationSnapshot>> updateTimes();
+  // Any thread. Zeroes those at the start of the next update().
+  void requestUpdateTimingReset() noexcept { update_timing_reset_.store(true, std::memory_order_release); }
+
   double updateRate() const noexcept { return update_rate_hz_; }
   hardware_interface::RobotHW* robotHW() const noexcept { return robot_hw_; }
 
@@ -169,6 +177,10 @@ class ControllerManager {
   // update(). Controllers that claim no command (state broadcasters) run on.
   // Returns how many controllers were stopped.
   std::size_t containHardwareFailure(const Time& time, const char* why) noexcept;
+
+  // Real-time. Whether the next update()s time each controller's update()
+  // (default true; a loop that times only some cycles switches it).
+  void setUpdateTiming(bool timed) noexcept { time_updates_ = timed; }
 
  private:
   enum class SwitchPhase : std::uint8_t { idle, pending, executing, done };
@@ -238,6 +250,8 @@ class ControllerManager {
   SwitchPlan switch_plan_;
 
   std::uint64_t cycle_ = 0;  // real-time thread only
+  bool time_updates_ = true;  // real-time thread only
+  std::atomic<bool> update_timing_reset_{false};
   // Fallback starts so far (real-time thread writes; switches compare).
   std::atomic<std::uint64_t> fallback_starts_{0};
 };

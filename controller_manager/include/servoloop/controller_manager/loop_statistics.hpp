@@ -12,15 +12,17 @@
 //
 // Not every cycle need be timed: a free-running simulation loop times one
 // cycle in kFreeRunningTimingStride and only counts the others
-// (recordUntimedCycle). The compute figures are then those of the timed
-// cycles, and timed_cycles says how many there were. The compute-cost percentiles
-// come from a histogram preallocated inside the object (log-linear buckets,
-// at most 1/32 ≈ 3 % relative error), so recording never allocates.
-#include <array>
+// (recordUntimedCycle). The compute and phase figures are then those of the
+// timed cycles, and timed_cycles says how many there were. Each kind of
+// duration is a DurationStatistics (duration_statistics.hpp): percentiles
+// from a histogram preallocated inside the object, so recording never
+// allocates.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+
+#include "servoloop/controller_manager/duration_statistics.hpp"
 
 namespace servoloop::controller_manager {
 
@@ -45,19 +47,23 @@ struct LoopStatisticsSnapshot {
   std::uint64_t overruns = 0;         // cycles that ended after their deadline
   std::uint64_t schedule_resets = 0;  // times a loop gave up catching up on a backlog
   std::uint64_t hardware_errors = 0;  // read/write/step calls that returned ReturnType::error
+
+  // Phases of the timed cycles: the hardware's read() and write() calls.
+  DurationSnapshot read;
+  DurationSnapshot write;
+  // Wall-clock loops only (count 0 otherwise): how late each cycle started
+  // after its deadline (wake-up latency, what cyclictest measures), and how
+  // far each period between two cycle starts was from the nominal one
+  // (|measured − nominal|, period jitter).
+  DurationSnapshot wakeup_latency;
+  DurationSnapshot period_jitter;
 };
 
 class LoopStatistics {
  public:
-  // Histogram layout: values below kLinearBuckets ns have a bucket each; above,
-  // every power of two is split into kSubBuckets equal buckets, up to 2^kMaxExponent ns
-  // (about 18 minutes; larger values land in the last bucket).
-  static constexpr int kSubBucketBits = 5;
-  static constexpr std::int64_t kSubBuckets = std::int64_t{1} << kSubBucketBits;
-  static constexpr std::int64_t kLinearBuckets = kSubBuckets;
-  static constexpr int kMaxExponent = 40;
-  static constexpr std::size_t kBucketCount =
-      static_cast<std::size_t>(kLinearBuckets + (kMaxExponent - kSubBucketBits) * kSubBuckets);
+  // The histogram layout (DurationStatistics'), kept here for the tests.
+  static constexpr std::int64_t kLinearBuckets = DurationStatistics::kLinearBuckets;
+  static constexpr std::size_t kBucketCount = DurationStatistics::kBucketCount;
 
   LoopStatistics() { reset(); }
   LoopStatistics(const LoopStatistics&) = delete;
@@ -76,11 +82,28 @@ class LoopStatistics {
   // The loop's cumulative simulated (control) and wall time.
   void setElapsed(double sim_time_s, std::int64_t wall_time_ns) noexcept;
   void recordOverrun() noexcept { bump(overruns_); }
+  // Phase and timing figures of the current (timed) cycle.
+  void recordRead(std::int64_t ns) noexcept { read_.record(ns); }
+  void recordWrite(std::int64_t ns) noexcept { write_.record(ns); }
+  void recordWakeupLatency(std::int64_t ns) noexcept { wakeup_latency_.record(ns); }
+  void recordPeriodJitter(std::int64_t ns) noexcept { period_jitter_.record(ns); }
+  // At the start of a cycle: carries out a reset another thread asked for
+  // (requestReset), cycles and times included. True if it did.
+  bool applyRequestedReset() noexcept {
+    if (!reset_requested_.load(std::memory_order_acquire)) return false;
+    reset();
+    reset_requested_.store(false, std::memory_order_release);
+    return true;
+  }
   void recordScheduleReset() noexcept { bump(schedule_resets_); }
   void recordHardwareError() noexcept { bump(hardware_errors_); }
 
-  // Non-real-time: back to zero. Only while no loop thread records.
+  // Back to zero. Only on the writer's thread, or while no loop thread records.
   void reset() noexcept;
+  // Any thread: the writer resets at the start of its next cycle
+  // (applyRequestedReset); resetPending() is true until then.
+  void requestReset() noexcept { reset_requested_.store(true, std::memory_order_release); }
+  bool resetPending() const noexcept { return reset_requested_.load(std::memory_order_acquire); }
 
   // --- Reader side (any thread) ---
 
@@ -95,32 +118,30 @@ class LoopStatistics {
   std::string summary() const;
   static std::string summary(const LoopStatisticsSnapshot& stats);
 
-  // The histogram bucket a value (ns) falls in, and the range [lower, upper)
-  // of values a bucket holds. Public for the tests of the bucket layout.
-  static std::size_t bucketIndex(std::int64_t value_ns) noexcept;
-  static std::int64_t bucketLower(std::size_t index) noexcept;
-  static std::int64_t bucketUpper(std::size_t index) noexcept;
+  // DurationStatistics' bucket layout (for the tests).
+  static std::size_t bucketIndex(std::int64_t value_ns) noexcept { return DurationStatistics::bucketIndex(value_ns); }
+  static std::int64_t bucketLower(std::size_t index) noexcept { return DurationStatistics::bucketLower(index); }
+  static std::int64_t bucketUpper(std::size_t index) noexcept { return DurationStatistics::bucketUpper(index); }
 
  private:
   // Single writer: a relaxed load and store is an atomic increment here.
   static void bump(std::atomic<std::uint64_t>& counter) noexcept {
     counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
   }
-  // The value below which a fraction q of the recorded cycles lie (bucket midpoint).
-  double percentileSeconds(double q, std::uint64_t total, std::int64_t min_ns,
-                           std::int64_t max_ns) const noexcept;
 
   std::atomic<std::uint64_t> cycles_{0};
   std::atomic<std::uint64_t> control_updates_{0};
   std::atomic<double> sim_time_s_{0.0};
   std::atomic<std::int64_t> wall_time_ns_{0};
-  std::atomic<std::int64_t> compute_min_ns_{0};
-  std::atomic<std::int64_t> compute_max_ns_{0};
-  std::atomic<std::int64_t> compute_sum_ns_{0};
   std::atomic<std::uint64_t> overruns_{0};
   std::atomic<std::uint64_t> schedule_resets_{0};
   std::atomic<std::uint64_t> hardware_errors_{0};
-  std::array<std::atomic<std::uint64_t>, kBucketCount> histogram_{};
+  DurationStatistics compute_;
+  DurationStatistics read_;
+  DurationStatistics write_;
+  DurationStatistics wakeup_latency_;
+  DurationStatistics period_jitter_;
+  std::atomic<bool> reset_requested_{false};
 };
 
 }  // namespace servoloop::controller_manager

@@ -30,6 +30,7 @@ namespace servoloop::node {
 nlohmann::json toJson(const std_msgs::Float64& msg);
 nlohmann::json toJson(const std_msgs::Float64MultiArray& msg);
 nlohmann::json toJson(const std_msgs::Bool& msg);
+nlohmann::json toJson(const diagnostic_msgs::DiagnosticArray& msg);
 nlohmann::json toJson(const sensor_msgs::JointState& msg);
 nlohmann::json toJson(const control_msgs::JointControllerState& msg);
 nlohmann::json toJson(const nav_msgs::Odometry& msg);
@@ -40,6 +41,7 @@ nlohmann::json toJson(const tf2_msgs::TFMessage& msg);
 
 void fromJson(const nlohmann::json& json, std_msgs::Float64& out);
 void fromJson(const nlohmann::json& json, std_msgs::Bool& out);
+void fromJson(const nlohmann::json& json, diagnostic_msgs::DiagnosticArray& out);
 void fromJson(const nlohmann::json& json, std_msgs::Float64MultiArray& out);
 void fromJson(const nlohmann::json& json, sensor_msgs::JointState& out);
 void fromJson(const nlohmann::json& json, control_msgs::JointControllerState& out);

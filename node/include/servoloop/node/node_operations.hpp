@@ -56,6 +56,7 @@ class NodeOperations {
   nlohmann::json controlListTypes();
   nlohmann::json controlListJoints(RobotInstance& robot);
   static nlohmann::json controlSafety(RobotInstance& robot);
+  static nlohmann::json controlStats(RobotInstance& robot, bool reset);
   nlohmann::json paramOp(const std::string& op, const nlohmann::json& request);
   nlohmann::json topicList(RobotInstance& robot);
   nlohmann::json topicPub(RobotInstance& robot, const nlohmann::json& request);

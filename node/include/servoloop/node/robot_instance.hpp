@@ -33,6 +33,7 @@
 // simulate one robot each, so robots of a world never interact physically.
 // Everything here is non-real-time except what runs on the loop thread.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <filesystem>
@@ -150,6 +151,11 @@ class RobotInstance {
   // start, or when the hardware fails again at once.
   controller_manager::ServiceResult recover();
 
+  // Non-real-time (the node's service thread calls it now and then).
+  // Publishes the robot's diagnostics (robot_diagnostics.hpp) on
+  // <ns>/diagnostics when a second of wall time has passed since the last.
+  void publishDiagnosticsIfDue();
+
   // What the launch asked for and did not happen: controllers that did not
   // load, switches that did not start them. Read after stop().
   const std::vector<std::string>& launchFailures() const { return launch_failures_; }
@@ -209,6 +215,9 @@ class RobotInstance {
   std::condition_variable recovery_wake_;
   bool recovery_requested_ = false;
   bool resumed_ = false;  // set by the loop thread when it runs again after a fault
+  // publishDiagnosticsIfDue's thread only.
+  std::chrono::steady_clock::time_point next_diagnostics_{};
+  std::uint64_t diagnostics_overruns_ = 0;
   std::function<void()> on_finished_;
   bool controllers_shut_down_ = false;
 };

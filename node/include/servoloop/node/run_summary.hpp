@@ -17,6 +17,7 @@ struct ControllerSummary {
   std::string type;
   std::string state;       // "running", "stopped", "initialized", "failed"
   std::string last_fault;  // empty unless it failed at some point
+  controller_manager::DurationSnapshot update_time;  // its update() calls (timed cycles)
 };
 
 struct RobotSummary {
@@ -40,6 +41,12 @@ struct RunSummary {
   std::uint64_t cycles = 0;        // physics steps, all robots
   std::vector<RobotSummary> robots;
 };
+
+// {count, min, mean, p50, p99, max} in seconds.
+nlohmann::json toJson(const controller_manager::DurationSnapshot& duration);
+// A loop's statistics: cycles, times, compute ("cycle"), phases ("read",
+// "write"), wake-up latency, period jitter, overruns and errors.
+nlohmann::json toJson(const controller_manager::LoopStatisticsSnapshot& loop);
 
 // Captures a robot's part (call with its loop stopped, before its controllers
 // are shut down).

@@ -154,6 +154,36 @@ struct TFMessage {
 
 }  // namespace tf2_msgs
 
+namespace diagnostic_msgs {
+
+struct KeyValue {
+  std::string key;
+  std::string value;
+};
+
+// One part's health, as ROS's DiagnosticStatus: level kOk, kWarn, kError or
+// kStale, a name ("/arm: control loop"), a one-line message and key/values.
+struct DiagnosticStatus {
+  static constexpr int kOk = 0;
+  static constexpr int kWarn = 1;
+  static constexpr int kError = 2;
+  static constexpr int kStale = 3;
+  int level = kOk;
+  std::string name;
+  std::string message;
+  std::string hardware_id;
+  std::vector<KeyValue> values;
+};
+
+// ROS's /diagnostics message.
+struct DiagnosticArray {
+  static constexpr std::string_view kTypeName = "diagnostic_msgs/DiagnosticArray";
+  double stamp = 0.0;  // control time, s
+  std::vector<DiagnosticStatus> status;
+};
+
+}  // namespace diagnostic_msgs
+
 namespace nav_msgs {
 
 // Where a body is and how it moves: the pose of child_frame_id in frame_id,

@@ -197,6 +197,7 @@ void TopicBus::publish(std::string_view topic, const Msg& msg) {
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Float64MultiArray, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(std_msgs::Bool, extern)
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(diagnostic_msgs::DiagnosticArray, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::JointState, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, extern)
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, extern)
