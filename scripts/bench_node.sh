@@ -1,0 +1,144 @@
+#!/usr/bin/env bash
+# The node as users run it, against two references, each pair measured in
+# alternating rounds in one window (docs/benchmarks.md, "The node as users run it"):
+#
+#   1. wall clock: `servoloop launch` of the seed on the mock at 1 kHz on the
+#      wall clock (--clock wall) next to `cyclictest` (Debian's rt-tests) at
+#      the same 1 ms interval and the same scheduling: wake-up latency p50,
+#      p99 and max of each, and servoloop's p99 ÷ cyclictest's. Also the
+#      paced cycle's compute time against the free-running one.
+#   2. simulation: `servoloop launch --duration` of the seed on bullet,
+#      free-running, against raw Bullet stepping of the same robot
+#      (servoloop_bench_loop_vs_bullet's loop/seed/raw_bullet): wall time per
+#      physics step, node ÷ raw.
+#
+#   scripts/bench_node.sh [--quick]
+#
+# Environment: BUILD_DIR (default <repo>/build), ROUNDS (default 5),
+# SECONDS_PER_RUN (default 10: wall seconds of each wall-clock run),
+# SIM_SECONDS (default 30: simulated seconds of each bullet run), PRIORITY
+# (SCHED_FIFO priority for both in part 1; default 0: the normal scheduler).
+# Needs python3; part 1 needs cyclictest (apt install rt-tests) and is
+# skipped without it.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
+BIN="$BUILD_DIR/bin"
+ROUNDS="${ROUNDS:-5}"
+SECONDS_PER_RUN="${SECONDS_PER_RUN:-10}"
+SIM_SECONDS="${SIM_SECONDS:-30}"
+PRIORITY="${PRIORITY:-0}"
+if [[ "${1:-}" == "--quick" ]]; then ROUNDS=2; SECONDS_PER_RUN=2; SIM_SECONDS=5; fi
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+export SERVOLOOP_RUN_DIR="$WORK/run"
+mkdir -m 700 "$SERVOLOOP_RUN_DIR"
+
+echo "date (UTC): $(date -u '+%Y-%m-%d %H:%M:%S'); git $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo ?)"
+echo "nproc $(nproc); load $(cut -d' ' -f1-3 /proc/loadavg); kernel $(uname -r); cpu:$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)"
+echo "rounds $ROUNDS; wall-clock runs ${SECONDS_PER_RUN} s; bullet runs ${SIM_SECONDS} s simulated; priority $PRIORITY"
+
+# --- 1. wall clock against cyclictest -------------------------------------------
+SEED="$ROOT/robots/one_dof"
+cat >"$WORK/wall.launch.yaml" <<EOF
+world: {backend: mock, time_step: 0.001, clock: wall}
+controller_manager: {update_rate: 1000}
+$( [[ "$PRIORITY" -gt 0 ]] && echo "realtime: {priority: $PRIORITY, lock_memory: true}" )
+robots:
+  - urdf: $SEED/minimal_robot_description_w_jnt_ctl.urdf
+    model: one_DOF_robot
+    params: [$SEED/control_config/one_dof_ctl_params.yaml]
+    controllers: [joint_state_controller, joint1_position_controller]
+EOF
+
+if command -v cyclictest >/dev/null; then
+  echo
+  echo "== 1. wake-up latency at 1 kHz: servoloop launch --clock wall (mock) vs cyclictest"
+  loops=$((SECONDS_PER_RUN * 1000))
+  for round in $(seq "$ROUNDS"); do
+    cyclictest -q -m --default-system -t 1 -i 1000 -l "$loops" -p "$PRIORITY" -h 10000 >"$WORK/cyclictest_$round.txt" 2>&1 || true
+    "$BIN/servoloop" launch "$WORK/wall.launch.yaml" --duration "$SECONDS_PER_RUN" --json \
+      --pub /one_DOF_robot/joint1_position_controller/command:=1.0 >"$WORK/servoloop_$round.json" 2>"$WORK/servoloop_$round.log"
+  done
+  # Free-running compute time of the same cycle (the mock stepped without sleeping).
+  "$BIN/servoloop" launch "$SEED/one_dof_w_jnt_ctl.launch.yaml" --backend mock --duration 30 --json \
+    --pub /one_DOF_robot/joint1_position_controller/command:=1.0 >"$WORK/free.json" 2>/dev/null
+  python3 - "$WORK" "$ROUNDS" <<'PY'
+import json, statistics, sys
+work, rounds = sys.argv[1], int(sys.argv[2])
+
+def cyclictest_figures(path):
+    counts, overflow, max_us = {}, 0, None
+    for line in open(path):
+        if line.startswith("# Max Latencies:"):
+            max_us = float(line.split()[3])
+        elif line.startswith("# Histogram Overflows:"):
+            overflow = int(line.split()[3])
+        elif line[:1].isdigit():
+            us, count = line.split()[:2]
+            counts[int(us)] = int(count)
+    total = sum(counts.values()) + overflow
+    def percentile(q):
+        rank, seen = q * total, 0
+        for us in sorted(counts):
+            seen += counts[us]
+            if seen >= rank:
+                return us + 0.5  # the bucket's middle: 1 us buckets
+        return max_us
+    return percentile(0.5), percentile(0.99), max_us
+
+rows = []
+for r in range(1, rounds + 1):
+    c50, c99, cmax = cyclictest_figures(f"{work}/cyclictest_{r}.txt")
+    loop = json.load(open(f"{work}/servoloop_{r}.json"))["robots"][0]["loop"]
+    w = loop["wakeup_latency"]
+    rows.append((c50, c99, cmax, w["p50"] * 1e6, w["p99"] * 1e6, w["max"] * 1e6, loop["compute"]["p50"] * 1e6,
+                 loop["overruns"], loop["cycles"]))
+    print(f"  round {r}: cyclictest p50 {c50:7.1f} p99 {c99:7.1f} max {cmax:8.1f} us | servoloop p50 {rows[-1][3]:7.1f} "
+          f"p99 {rows[-1][4]:7.1f} max {rows[-1][5]:8.1f} us, {loop['overruns']} overruns in {loop['cycles']} cycles")
+med = lambda i: statistics.median(row[i] for row in rows)
+print(f"  median: cyclictest p50 {med(0):.1f} p99 {med(1):.1f} max {med(2):.1f} us; "
+      f"servoloop p50 {med(3):.1f} p99 {med(4):.1f} max {med(5):.1f} us")
+ratios = [row[4] / row[1] for row in rows]
+print(f"  servoloop p99 / cyclictest p99: median {statistics.median(ratios):.2f} "
+      f"(rounds: {', '.join(f'{x:.2f}' for x in ratios)}); target <= 1.2")
+free = json.load(open(f"{work}/free.json"))["robots"][0]["loop"]["compute"]
+print(f"  cycle compute p50: paced on the wall clock {med(6):.2f} us, free-running {free['p50'] * 1e6:.2f} us "
+      f"(ratio {med(6) / (free['p50'] * 1e6):.2f})")
+PY
+else
+  echo "== 1. skipped: no cyclictest (apt install rt-tests)"
+fi
+
+# --- 2. the node against raw Bullet -------------------------------------------------
+echo
+echo "== 2. seed on bullet, free-running: servoloop launch --duration $SIM_SECONDS vs raw Bullet stepping"
+for round in $(seq "$ROUNDS"); do
+  "$BIN/servoloop_bench_loop_vs_bullet" --benchmark_filter='loop/seed/raw_bullet' --benchmark_repetitions=5 \
+    >"$WORK/raw_$round.txt" 2>/dev/null
+  (cd "$ROOT" && "$BIN/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --duration "$SIM_SECONDS" \
+    --rtf 0 --json --pub /one_DOF_robot/joint1_position_controller/command:=1.0) >"$WORK/node_$round.json" 2>/dev/null
+done
+python3 - "$WORK" "$ROUNDS" <<'PY'
+import json, re, statistics, sys
+work, rounds = sys.argv[1], int(sys.argv[2])
+rows = []
+for r in range(1, rounds + 1):
+    raw = None
+    for line in open(f"{work}/raw_{r}.txt"):
+        m = re.match(r"\s*loop/seed/raw_bullet\s+([0-9.]+) ns wall", line)
+        if m:
+            raw = float(m.group(1))
+    summary = json.load(open(f"{work}/node_{r}.json"))
+    loop = summary["robots"][0]["loop"]
+    node_ns = summary["wall_time"] / summary["cycles"] * 1e9   # what the user waits for, start to end
+    loop_ns = loop["wall_time"] / loop["cycles"] * 1e9         # the loop thread's own time
+    rows.append((raw, node_ns, loop_ns))
+    print(f"  round {r}: raw bullet {raw:7.1f} ns/step | node {node_ns:7.1f} ns/step (loop thread {loop_ns:7.1f}), "
+          f"real-time factor {summary['real_time_factor']:.0f}")
+ratios = [n / raw for raw, n, _ in rows]
+loop_ratios = [l / raw for raw, _, l in rows]
+print(f"  node / raw bullet: median {statistics.median(ratios):.3f} (rounds: {', '.join(f'{x:.3f}' for x in ratios)}); "
+      f"loop thread / raw bullet: median {statistics.median(loop_ratios):.3f}; target <= 1.10")
+PY
