@@ -88,6 +88,10 @@ class PublisherChannel : public PublisherChannelBase {
     return true;
   }
 
+  // Any thread, a hint: false when no published message waits (one being
+  // published right now may or may not be seen; the next pass delivers it).
+  bool mayHoldMessages() const noexcept { return ready_.mayHoldValues(); }
+
   // Delivery thread: hands every queued message, oldest first, to
   // deliver(const Msg&, Time) and recycles its slot. Returns the count.
   template <class Deliver>

@@ -29,6 +29,12 @@ class RealtimeIndexQueue {
 
   std::size_t capacity() const noexcept { return mask_ + 1; }
 
+  // Any thread, a hint: false when nothing was pushed that is not popped yet
+  // (a push racing with this call may or may not be seen).
+  bool mayHoldValues() const noexcept {
+    return head_.load(std::memory_order_acquire) != tail_.load(std::memory_order_acquire);
+  }
+
   // Real-time safe. False when full.
   bool push(std::uint32_t value) noexcept {
     std::size_t position = tail_.load(std::memory_order_relaxed);

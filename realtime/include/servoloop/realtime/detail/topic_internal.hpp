@@ -134,6 +134,12 @@ class Topic final : public TopicBase {
     std::deque<Pending> from_non_rt;
     {
       std::lock_guard lock(structure_mutex);
+      // Nothing queued and no publisher gone: nothing to copy or deliver. A
+      // free-running loop flushes its bus every few steps, mostly to find this.
+      const bool idle = pending.empty() && std::none_of(publishers.begin(), publishers.end(), [](const auto& channel) {
+                          return channel->mayHoldMessages() || channel->closed.load(std::memory_order_acquire);
+                        });
+      if (idle) return 0;
       channels = publishers;
       typed = subscribers;
       untyped = any_subscribers;
