@@ -486,7 +486,7 @@ void RobotInstance::shutdownControllers() {
 }
 
 double RobotInstance::simTime() const {
-  if (sim_loop_ == nullptr) return loop_->statistics().snapshot().sim_time_s;
+  if (sim_loop_ == nullptr) return loop_->statistics().simTime();
   return stepsToSeconds(sim_loop_->stepsTaken(), sim_loop_->physicsStep().seconds);
 }
 
@@ -562,9 +562,9 @@ bool RobotInstance::waitForRecovery() {
 }
 
 bool RobotInstance::waitForCycles(std::uint64_t cycles, double timeout_s) const {
-  const std::uint64_t target = loop_->statistics().snapshot().cycles + cycles;
+  const std::uint64_t target = loop_->statistics().cycles() + cycles;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (loop_->statistics().snapshot().cycles < target) {
+  while (loop_->statistics().cycles() < target) {
     if (finished() || std::chrono::steady_clock::now() > deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }

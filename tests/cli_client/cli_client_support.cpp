@@ -86,6 +86,15 @@ CliProcess::CliProcess(const std::vector<std::string>& args, const fs::path& scr
           }(),
           servoloop::testing::ProcessOptions{scratch, {}, {}}) {}
 
+bool waitUntil(const std::function<bool()>& done, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
 CliResult runCli(const std::vector<std::string>& args, const fs::path& scratch, double timeout_s) {
   CliProcess process(args, scratch);
   return process.wait(timeout_s);

@@ -82,6 +82,9 @@ class CliProcess : public servoloop::testing::ChildProcess {
   CliProcess(const std::vector<std::string>& args, const std::filesystem::path& scratch);
 };
 
+// Polls `done` every 20 ms until it returns true; false after timeout_s.
+bool waitUntil(const std::function<bool()>& done, double timeout_s);
+
 // Runs `servoloop args...` to completion (bounded by timeout_s).
 CliResult runCli(const std::vector<std::string>& args, const std::filesystem::path& scratch,
                  double timeout_s = 20.0);

@@ -11,6 +11,7 @@
 #include <csignal>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -78,15 +79,7 @@ class HardwareOverShm : public ::testing::Test {
     ASSERT_TRUE(drive_->waitForOutput("motor(s) at", kWait_s)) << drive_->currentErr();
   }
 
-  template <class Condition>
-  bool waitFor(Condition done) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kWait_s);
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (done()) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return false;
-  }
+  bool waitFor(const std::function<bool()>& done) { return waitUntil(done, kWait_s); }
 
   std::string state() {
     const CliResult result = cli({"control", "safety", "--json"});

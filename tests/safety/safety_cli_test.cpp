@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -40,15 +41,7 @@ class SafetyCli : public ::testing::Test {
   CliResult cli(const std::vector<std::string>& args) { return runCli(args, scratch(), kWait_s); }
 
   // Polls until `done` holds, up to kWait_s.
-  template <class Condition>
-  bool waitFor(Condition done) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kWait_s);
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (done()) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return false;
-  }
+  bool waitFor(const std::function<bool()>& done) { return waitUntil(done, kWait_s); }
 
   bool waitForNode() {
     return waitFor([this] { return cli({"control", "safety"}).status == 0; });

@@ -108,6 +108,10 @@ class LoopStatistics {
   // --- Reader side (any thread) ---
 
   LoopStatisticsSnapshot snapshot() const noexcept;
+  // Two figures alone, without reading the histograms: cycles so far, and
+  // the control time the loop advanced.
+  std::uint64_t cycles() const noexcept { return cycles_.load(std::memory_order_acquire); }
+  double simTime() const noexcept { return sim_time_s_.load(std::memory_order_relaxed); }
 
   // Non-real-time. The end-of-run summary, e.g.
   //   "loop: 1000 cycles (1000 control updates), 1.000 s simulated in 1.002 s wall
