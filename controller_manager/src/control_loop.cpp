@@ -71,6 +71,8 @@ ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t c
 }
 
 ReturnType ControlLoop::writeHardware(Time time, Duration period, std::uint64_t cycle) noexcept {
+  // Every write, also the physics steps between two control updates.
+  if (options_.safety != nullptr) options_.safety->overrideCommands();
   ReturnType result = ReturnType::error;
   const std::int64_t start_ns = time_phases_ ? loop_clock::nowNs() : 0;
   try {
@@ -90,7 +92,6 @@ void ControlLoop::setBusTime(Time time) noexcept {
 void ControlLoop::updateControllers(Time time, Duration period) noexcept {
   manager_.update(time, period);
   if (options_.cycle_hook != nullptr) options_.cycle_hook->afterUpdate(time, period);
-  if (options_.safety != nullptr) options_.safety->overrideCommands();
 }
 
 void ControlLoop::finishCycle(Time time) noexcept {

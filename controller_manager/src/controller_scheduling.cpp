@@ -153,8 +153,9 @@ std::size_t ControllerManager::containHardwareFailure(const Time& time, const ch
       ++stopped;
     }
   }
-  bool any_fallback = false;
-  for (detail::ControllerEntry* entry : list) any_fallback |= entry->stopped_by_hardware_failure && !entry->fallbacks.empty();
+  // The epoch moves on even without fallbacks: a switch prepared before the
+  // stop (one that would start a controller now) is then not carried out.
+  const bool any_fallback = stopped > 0;
   if (any_fallback) fallback_starts_.fetch_add(1, std::memory_order_acq_rel);  // odd: see containInUpdate
   for (detail::ControllerEntry* entry : list) {
     if (!entry->stopped_by_hardware_failure) continue;

@@ -221,7 +221,7 @@ ServiceResult ControllerManager::completeSwitchLocked(bool announce) {
     std::string which;
     for (const ControllerFault& fault : faults) which += (which.empty() ? "" : ", ") + fault.controller;
     return fail("switch controllers: a controller faulted (" + (which.empty() ? std::string("see above") : which) +
-                ") and its fallback controllers started while the switch was being prepared, so nothing was "
+                ") while the switch was being prepared (its fallback controllers, if any, started), so nothing was "
                 "switched; check `control list` and retry");
   }
   std::string failed_to_start;

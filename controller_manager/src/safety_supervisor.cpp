@@ -1,6 +1,8 @@
 // SafetySupervisor: latched safety states and the emergency-stop command override.
 #include "servoloop/controller_manager/safety_supervisor.hpp"
 
+#include <cmath>
+
 #include <spdlog/fmt/fmt.h>
 
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
@@ -31,10 +33,15 @@ namespace {
 // The command storage of every handle of one command interface. Looking the
 // handles up records claims; they are cleared again, as nobody claimed them.
 template <class Interface>
-void collectCommands(hardware_interface::RobotHW& hw, std::vector<double*>& out) {
+void collectCommands(hardware_interface::RobotHW& hw, std::vector<double*>& out,
+                     std::vector<const double*>* positions = nullptr) {
   auto* interface = hw.get<Interface>();
   if (interface == nullptr) return;
-  for (const std::string& name : interface->getNames()) out.push_back(interface->getHandle(name).getCommandPtr());
+  for (const std::string& name : interface->getNames()) {
+    const auto handle = interface->getHandle(name);
+    out.push_back(handle.getCommandPtr());
+    if (positions != nullptr) positions->push_back(handle.getPositionPtr());
+  }
   interface->clearClaims();
 }
 
@@ -43,7 +50,7 @@ void collectCommands(hardware_interface::RobotHW& hw, std::vector<double*>& out)
 SafetySupervisor::SafetySupervisor(hardware_interface::RobotHW& hw) : hw_(hw) {
   collectCommands<hardware_interface::EffortJointInterface>(hw, zeroed_commands_);
   collectCommands<hardware_interface::VelocityJointInterface>(hw, zeroed_commands_);
-  collectCommands<hardware_interface::PositionJointInterface>(hw, position_commands_);
+  collectCommands<hardware_interface::PositionJointInterface>(hw, position_commands_, &measured_positions_);
   held_positions_.assign(position_commands_.size(), 0.0);
 }
 
@@ -107,12 +114,7 @@ std::string SafetySupervisor::reason() const {
 }
 
 void SafetySupervisor::pollHardwareInput() noexcept {
-  bool input = false;
-  try {
-    input = hw_.emergencyStopInput();
-  } catch (...) {
-    input = true;  // it must not throw; an input that cannot be read is taken as pressed
-  }
+  const bool input = hw_.emergencyStopInput();  // noexcept
   hardware_input_.store(input, std::memory_order_release);
   if (input) engageEmergencyStop(EmergencyStopSource::hardware);
 }
@@ -143,8 +145,13 @@ bool SafetySupervisor::hardwareStopped(Time time) noexcept {
   return !already_contained;
 }
 
+// Where each position-commanded joint is (its command when the position is
+// not known), as a faulted controller's safe output holds it.
 void SafetySupervisor::latchHeldPositions() noexcept {
-  for (std::size_t i = 0; i < position_commands_.size(); ++i) held_positions_[i] = *position_commands_[i];
+  for (std::size_t i = 0; i < position_commands_.size(); ++i) {
+    const double* measured = measured_positions_[i];
+    held_positions_[i] = measured != nullptr && std::isfinite(*measured) ? *measured : *position_commands_[i];
+  }
   holding_ = true;
 }
 

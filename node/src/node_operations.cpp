@@ -184,9 +184,14 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
       if (robot.finished()) {
         throw Error("robot '" + robot.robotNamespace() + "': its control loop has ended, so no switch can be carried out");
       }
-      if (robot.safety().state() == controller_manager::SafetyState::fault) {
+      const controller_manager::SafetyState safety = robot.safety().state();
+      if (safety == controller_manager::SafetyState::fault) {
         throw Error("robot '" + robot.robotNamespace() + "': " + robot.safety().reason() +
                     "; no switch can be carried out until then");
+      }
+      if (safety == controller_manager::SafetyState::protective_stop && !switch_request.start_controllers.empty()) {
+        throw Error("robot '" + robot.robotNamespace() + "': " + robot.safety().reason() +
+                    "; no controller can start until then (stopping them is allowed)");
       }
       throwIfFailed(robot.manager().switchController(switch_request));
       return json(nullptr);

@@ -33,6 +33,9 @@ namespace {
 
 // Simulated time between two bus flushes of a free-running loop.
 constexpr double kFreeRunningFlushInterval_s = 0.01;
+// How long recover() waits for the loop: to resume, to run its confirming
+// cycles, to carry out a switch (wall time).
+constexpr double kRecoverySwitchTimeout_s = 5.0;
 
 // Writes one world setting to the robot's sim/ parameters, where the backend
 // reads it, warning when a parameter file said otherwise.
@@ -554,6 +557,9 @@ bool RobotInstance::waitForRecovery() {
   recovery_wake_.wait(lock, [this] { return recovery_requested_ || stop_requested_.load(); });
   if (stop_requested_.load()) return false;
   recovery_requested_ = false;
+  // Cleared here, where the loop is sure to run again (not by recover(), whose
+  // caller could otherwise see "running" for a loop that has ended).
+  safety_->clearStop();
   loop_->clearHardwareStop();
   resumed_ = true;
   lock.unlock();
@@ -561,12 +567,18 @@ bool RobotInstance::waitForRecovery() {
   return true;
 }
 
+// False when the loop did not run `cycles` more cycles within timeout_s (it
+// ended, or stalls). A statistics reset meanwhile restarts the count.
 bool RobotInstance::waitForCycles(std::uint64_t cycles, double timeout_s) const {
-  const std::uint64_t target = loop_->statistics().cycles() + cycles;
+  std::uint64_t last = loop_->statistics().cycles();
+  std::uint64_t seen = 0;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (loop_->statistics().cycles() < target) {
+  while (seen < cycles) {
     if (finished() || std::chrono::steady_clock::now() > deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const std::uint64_t now = loop_->statistics().cycles();
+    seen += now >= last ? now - last : now;  // counted from 0 again after a reset
+    last = now;
   }
   return true;
 }
@@ -601,6 +613,7 @@ controller_manager::ServiceResult RobotInstance::restartStoppedControllers(std::
       }
     }
   }
+  request.timeout_s = kRecoverySwitchTimeout_s;
   return manager_->switchController(request);
 }
 
@@ -613,30 +626,33 @@ controller_manager::ServiceResult RobotInstance::recover() {
   }
   const SafetyState before = safety_->state();
   if (before == SafetyState::running) return ServiceResult::success();
-  if (before == SafetyState::fault && (finished() || !loop_thread_.joinable())) {
+  if (finished() || !loop_thread_.joinable()) {
     return ServiceResult::failure(fmt::format(
         "robot '{}': its control loop has ended (the run had a duration), so it cannot be recovered; launch again",
         namespace_));
   }
   manager_->processFaults();  // the stopped controllers' faults, drained and recorded
-  safety_->clearStop();
   if (before == SafetyState::fault) {
+    // The loop thread clears the fault when it runs again (waitForRecovery).
     std::unique_lock lock(recovery_mutex_);
     resumed_ = false;
     recovery_requested_ = true;
     recovery_wake_.notify_all();
-    const bool resumed =
-        recovery_wake_.wait_for(lock, std::chrono::seconds(10), [this] { return resumed_ || stop_requested_.load(); });
+    const bool resumed = recovery_wake_.wait_for(lock, std::chrono::duration<double>(kRecoverySwitchTimeout_s),
+                                                 [this] { return resumed_ || stop_requested_.load(); });
     if (!resumed || stop_requested_.load()) {
+      recovery_requested_ = false;
       return ServiceResult::failure(fmt::format("robot '{}': its control loop did not run again", namespace_));
     }
+  } else {
+    safety_->clearStop();
   }
   // The hardware must work for a few cycles before any controller drives it
-  // again, and go on working once they do.
+  // again, and go on working once they do; a loop that does not cycle fails too.
   constexpr std::uint64_t kCyclesToConfirm = 5;
   const auto failedAgain = [&] {
-    waitForCycles(kCyclesToConfirm, 5.0);
-    return safety_->state() != SafetyState::running;
+    const bool cycled = waitForCycles(kCyclesToConfirm, kRecoverySwitchTimeout_s);
+    return !cycled || safety_->state() != SafetyState::running;
   };
   if (failedAgain()) {
     return ServiceResult::failure(
@@ -653,6 +669,7 @@ controller_manager::ServiceResult RobotInstance::recover() {
     controller_manager::SwitchRequest stop;
     stop.stop_controllers = restarted;
     stop.strictness = controller_manager::SwitchStrictness::BEST_EFFORT;
+    stop.timeout_s = kRecoverySwitchTimeout_s;
     manager_->switchController(stop);
     return ServiceResult::failure(
         fmt::format("robot '{}': the hardware failed again at once: {}", namespace_, safety_->reason()));

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <limits>
 
 #include "control_loop_test_support.hpp"
 #include "servoloop/controller_manager/safety_supervisor.hpp"
@@ -249,11 +250,12 @@ class PositionRobot : public hardware_interface::RobotHW {
   hardware_interface::VelocityJointInterface velocity_interface;
 };
 
-TEST(SafetySupervisor, EmergencyStopHoldsPositionCommandsAtTheirValueWhenItEngaged) {
+TEST(SafetySupervisor, EmergencyStopHoldsPositionJointsWhereTheyWereWhenItEngaged) {
   PositionRobot hw;
   SafetySupervisor safety(hw);
   // Building the supervisor claims nothing.
   EXPECT_TRUE(hw.position_interface.getClaims().empty());
+  hw.position = 0.68;  // measured
   hw.position_command = 0.7;
   hw.velocity_command = 0.3;
   safety.overrideCommands();  // running: untouched
@@ -262,12 +264,13 @@ TEST(SafetySupervisor, EmergencyStopHoldsPositionCommandsAtTheirValueWhenItEngag
 
   safety.engageEmergencyStop(EmergencyStopSource::topic);
   safety.overrideCommands();
-  EXPECT_EQ(hw.position_command, 0.7);
+  EXPECT_EQ(hw.position_command, 0.68);  // where the joint is, not where it was going
   EXPECT_EQ(hw.velocity_command, 0.0);
   hw.position_command = 1.9;  // a controller goes on commanding
   hw.velocity_command = 0.3;
+  hw.position = 0.69;         // and the joint settles a little
   safety.overrideCommands();
-  EXPECT_EQ(hw.position_command, 0.7);
+  EXPECT_EQ(hw.position_command, 0.68);  // the hold does not follow it
   EXPECT_EQ(hw.velocity_command, 0.0);
   EXPECT_NE(safety.reason().find("engaged by topic"), std::string::npos) << safety.reason();
 
@@ -275,12 +278,23 @@ TEST(SafetySupervisor, EmergencyStopHoldsPositionCommandsAtTheirValueWhenItEngag
   hw.position_command = 1.9;
   safety.overrideCommands();
   EXPECT_EQ(hw.position_command, 1.9);
-  // A second stop holds the value of its own moment.
+  // A second stop holds the position of its own moment.
+  hw.position = 1.85;
   safety.engageEmergencyStop(EmergencyStopSource::command);
   safety.overrideCommands();
   hw.position_command = -1.0;
   safety.overrideCommands();
-  EXPECT_EQ(hw.position_command, 1.9);
+  EXPECT_EQ(hw.position_command, 1.85);
+  // Without a finite measured position, the command at the stop is held.
+  ASSERT_TRUE(safety.releaseEmergencyStop(nullptr));
+  safety.overrideCommands();
+  hw.position = std::numeric_limits<double>::quiet_NaN();
+  hw.position_command = 0.4;
+  safety.engageEmergencyStop(EmergencyStopSource::command);
+  safety.overrideCommands();
+  hw.position_command = 3.0;
+  safety.overrideCommands();
+  EXPECT_EQ(hw.position_command, 0.4);
 }
 
 TEST(SafetySupervisor, OnTheWallClockAReadErrorStopsTheControllerAndTheLoopKeepsItsRate) {

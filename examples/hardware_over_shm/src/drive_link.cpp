@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstring>
 #include <ctime>
+#include <new>
 #include <stdexcept>
 #include <utility>
 
@@ -17,14 +18,14 @@ namespace {
 
 std::string objectName(const std::string& name) { return name.starts_with("/") ? name : "/" + name; }
 
-DriveImage* map(int fd, const std::string& name) {
+void* map(int fd, const std::string& name) {
   void* memory = mmap(nullptr, sizeof(DriveImage), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
   const int error = errno;
   close(fd);
   if (memory == MAP_FAILED) {
     throw std::runtime_error("drive link '" + name + "': mmap failed: " + std::strerror(error));
   }
-  return static_cast<DriveImage*>(memory);
+  return memory;
 }
 
 }  // namespace
@@ -45,18 +46,44 @@ DriveLink DriveLink::create(const std::string& name, std::uint32_t joint_count, 
   if (fd < 0) {
     throw std::runtime_error("drive link '" + name + "': shm_open(" + object + ") failed: " + std::strerror(errno));
   }
-  if (ftruncate(fd, sizeof(DriveImage)) != 0) {
+  // An object of that name already there: a drive that was killed (take it
+  // over: a plugin still attached sees the new drive), a drive still running
+  // (refuse), or something else (refuse rather than overwrite it).
+  struct stat info {};
+  if (fstat(fd, &info) != 0) {
+    const int error = errno;
+    close(fd);
+    throw std::runtime_error("drive link '" + name + "': fstat failed: " + std::strerror(error));
+  }
+  const auto size = static_cast<std::size_t>(info.st_size);
+  if (size != 0 && size != sizeof(DriveImage)) {
+    close(fd);
+    throw std::runtime_error("'/dev/shm" + object + "' exists and is not a drive image; choose another drive name");
+  }
+  if (size == 0 && ftruncate(fd, sizeof(DriveImage)) != 0) {
     const int error = errno;
     close(fd);
     throw std::runtime_error("drive link '" + name + "': ftruncate failed: " + std::strerror(error));
   }
-  DriveImage* image = map(fd, name);
-  image->heartbeat_ns.store(0, std::memory_order_relaxed);
-  for (std::size_t j = 0; j < kMaxJoints; ++j) {
-    image->encoder_counts[j].store(0, std::memory_order_relaxed);
-    image->velocity_counts_per_s[j].store(0.0, std::memory_order_relaxed);
-    image->torque_command[j].store(0.0, std::memory_order_relaxed);
+  void* memory = map(fd, name);
+  if (size != 0) {
+    const auto* existing = static_cast<const DriveImage*>(memory);
+    if (existing->magic.load(std::memory_order_acquire) != kMagic) {
+      munmap(memory, sizeof(DriveImage));
+      throw std::runtime_error("'/dev/shm" + object + "' exists and is not a drive image; choose another drive name");
+    }
+    // A running drive beats at 10 Hz at least: watch for 250 ms.
+    const std::int64_t beat = existing->heartbeat_ns.load(std::memory_order_acquire);
+    const timespec pause{0, 250000000};
+    nanosleep(&pause, nullptr);
+    if (existing->heartbeat_ns.load(std::memory_order_acquire) != beat) {
+      munmap(memory, sizeof(DriveImage));
+      throw std::runtime_error("a drive named '" + name + "' is running already; stop it or choose another name");
+    }
   }
+  // The image's atomics begin their lifetime here (a killed drive's are
+  // replaced): zero counts, velocities and commands, no heartbeat yet.
+  auto* image = new (memory) DriveImage{};
   image->joint_count.store(joint_count, std::memory_order_relaxed);
   image->magic.store(kMagic, std::memory_order_release);
   return DriveLink(object, image, unlink_on_close);
@@ -75,7 +102,8 @@ DriveLink DriveLink::attach(const std::string& name) {
     throw std::runtime_error("'/dev/shm" + object + "' is not a drive image (too small); is another program using "
                              "the name? choose another drive name");
   }
-  DriveImage* image = map(fd, name);
+  // The drive constructed the image; this process only maps it.
+  auto* image = static_cast<DriveImage*>(map(fd, name));
   if (image->magic.load(std::memory_order_acquire) != kMagic) {
     munmap(image, sizeof(DriveImage));
     throw std::runtime_error("'/dev/shm" + object + "' is not a drive image (wrong magic); choose another drive name");

@@ -66,7 +66,7 @@ struct LoopCommonOptions {
   // hardware error puts the robot in protective stop and has the manager
   // stop its commanding controllers in that cycle, the hardware's
   // emergency-stop input is polled after every read(), an emergency stop
-  // overrides the commands after every update, and a hardware stop of the
+  // overrides the commands before every write(), and a hardware stop of the
   // loop is a fault. Must outlive the loop.
   SafetySupervisor* safety = nullptr;
 };
@@ -130,8 +130,7 @@ class ControlLoop {
   }
   // Sets the topic bus clock (if any) to time.
   void setBusTime(Time time) noexcept;
-  // ControllerManager::update, then the cycle hook, then the safety
-  // supervisor's emergency-stop override.
+  // ControllerManager::update, then the cycle hook.
   void updateControllers(Time time, Duration period) noexcept;
   // Closes the cycle (control time `time`): error episode bookkeeping; sets
   // hardwareAskedToStop() when the hardware said deactivate or failed too

@@ -88,10 +88,15 @@ class LoopStatistics {
   void recordWakeupLatency(std::int64_t ns) noexcept { wakeup_latency_.record(ns); }
   void recordPeriodJitter(std::int64_t ns) noexcept { period_jitter_.record(ns); }
   // At the start of a cycle: carries out a reset another thread asked for
-  // (requestReset), cycles and times included. True if it did.
+  // (requestReset): counts and figures back to zero, control and wall time
+  // kept. True if it did.
   bool applyRequestedReset() noexcept {
     if (!reset_requested_.load(std::memory_order_acquire)) return false;
+    // Control and wall time run on: they are the loop's clock, not a figure.
+    const double sim_time_s = sim_time_s_.load(std::memory_order_relaxed);
+    const std::int64_t wall_time_ns = wall_time_ns_.load(std::memory_order_relaxed);
     reset();
+    setElapsed(sim_time_s, wall_time_ns);
     reset_requested_.store(false, std::memory_order_release);
     return true;
   }

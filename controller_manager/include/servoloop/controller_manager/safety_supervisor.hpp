@@ -13,10 +13,11 @@
 //   emergency_stop   latched by `servoloop control estop on`, a true on the
 //                    robot's `estop` topic, or the hardware's own input
 //                    (RobotHW::emergencyStopInput). Controllers keep running
-//                    and keep their state; after every update their outputs
+//                    and keep their state; before every write() their outputs
 //                    are overridden: effort and velocity commands are 0,
-//                    position commands hold the value they had when the stop
-//                    engaged. Released by `estop off` (or a false on the
+//                    position commands hold the joint where it was when the
+//                    stop engaged (its measured position; its command if the
+//                    position is not finite). Released by `estop off` (or a false on the
 //                    topic), refused while the hardware's input is still
 //                    active; the robot then returns to the state under it.
 //   fault            the loop stopped for the hardware (a call returned
@@ -97,8 +98,8 @@ class SafetySupervisor {
   // The loop stopped for the hardware: the robot is in fault. True on the
   // transition (the caller then contains the controllers).
   bool hardwareStopped(Time time) noexcept;
-  // After the controllers' update, before write(): in emergency stop, zero
-  // every effort and velocity command and hold every position command.
+  // Right before every write(): in emergency stop, zero every effort and
+  // velocity command and hold every position command.
   void overrideCommands() noexcept;
 
  private:
@@ -107,6 +108,7 @@ class SafetySupervisor {
   hardware_interface::RobotHW& hw_;
   std::vector<double*> zeroed_commands_;    // effort and velocity
   std::vector<double*> position_commands_;  // held
+  std::vector<const double*> measured_positions_;  // the joints' positions, per position command
   std::vector<double> held_positions_;      // real-time thread: values at the stop
   bool holding_ = false;                    // real-time thread: held_positions_ are latched
 

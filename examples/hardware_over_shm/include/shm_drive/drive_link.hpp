@@ -21,12 +21,12 @@ inline constexpr std::uint64_t kMagic = 0x315f564952445653;  // "SVDRIV_1"
 inline constexpr std::size_t kMaxJoints = 16;
 
 struct DriveImage {
-  std::atomic<std::uint64_t> magic;
-  std::atomic<std::uint32_t> joint_count;
-  std::atomic<std::int64_t> heartbeat_ns;  // written last in each drive cycle (release)
-  std::atomic<std::int64_t> encoder_counts[kMaxJoints];
-  std::atomic<double> velocity_counts_per_s[kMaxJoints];
-  std::atomic<double> torque_command[kMaxJoints];  // written by the plugin
+  std::atomic<std::uint64_t> magic{0};
+  std::atomic<std::uint32_t> joint_count{0};
+  std::atomic<std::int64_t> heartbeat_ns{0};  // written last in each drive cycle (release)
+  std::atomic<std::int64_t> encoder_counts[kMaxJoints]{};
+  std::atomic<double> velocity_counts_per_s[kMaxJoints]{};
+  std::atomic<double> torque_command[kMaxJoints]{};  // written by the plugin
 };
 static_assert(std::atomic<double>::is_always_lock_free && std::atomic<std::int64_t>::is_always_lock_free,
               "the drive image needs lock-free atomics to be shared between processes");
@@ -37,7 +37,9 @@ class DriveLink {
  public:
   // The drive's side: creates the object (or takes over one a killed drive
   // left behind, so a plugin still attached to it sees the new drive) and
-  // initialises it for joint_count joints. Throws std::runtime_error.
+  // initialises it for joint_count joints. Throws std::runtime_error when a
+  // drive of that name is still running (its heartbeat moves within 250 ms)
+  // or the name holds something else.
   static DriveLink create(const std::string& name, std::uint32_t joint_count, bool unlink_on_close);
   // The plugin's side: attaches to a drive's object. Throws std::runtime_error
   // naming the object and what to do when there is none or it is not a drive's.
