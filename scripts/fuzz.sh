@@ -13,7 +13,7 @@ bash scripts/install_deps.sh clang libclang-rt-14-dev
 seconds=${FUZZ_SECONDS:-30}
 build_dir=${BUILD_DIR:-build-fuzz}
 
-CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DSERVOLOOP_FUZZ=ON -DSERVOLOOP_BUILD_TESTS=OFF \
+CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DSERVOLOOP_FUZZ=ON -DSERVOLOOP_BUILD_TESTS=OFF -DSERVOLOOP_ROS1_BRIDGE=OFF \
   -DSERVOLOOP_BUILD_BENCHMARKS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
 cmake --build "$build_dir" --parallel 2 --target servoloop_fuzzers
 

@@ -155,6 +155,9 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   if (op == "control.list_types") return controlListTypes();
 
   RobotInstance& robot = robotFor(op);
+  if (op == "robot.description") {
+    return {{"urdf", robot.robotDescription()}, {"path", robot.urdfPath().string()}};
+  }
   if (op == "control.list") return controlList(robot);
   if (op == "control.list_joints") return controlListJoints(robot);
   if (op == "control.load" || op == "control.unload") {

@@ -82,7 +82,8 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   params::ParameterStore& store = *world.parameters;
 
   // Robot description and namespace.
-  const std::string xml = simulatableUrdf(readRobotDescription(spec.urdf, spec.xacro_args), spec.urdf.string()).xml;
+  robot_description_ = readRobotDescription(spec.urdf, spec.xacro_args);
+  const std::string xml = simulatableUrdf(robot_description_, spec.urdf.string()).xml;
   model_ = parseRobotModel(xml, spec.urdf.string());
   robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
   namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);

@@ -116,6 +116,9 @@ class RobotInstance {
   const std::string& robotNamespace() const { return namespace_; }
   const std::string& robotName() const { return robot_name_; }
   const std::filesystem::path& urdfPath() const { return urdf_path_; }
+  // The robot's URDF as ROS's robot_description holds it: xacro expanded,
+  // nothing else changed.
+  const std::string& robotDescription() const { return robot_description_; }
   controller_manager::ControllerManager& manager() { return *manager_; }
   realtime::TopicBus& topics() { return *bus_; }
   realtime::ActionRegistry& actions() { return *actions_; }
@@ -180,6 +183,7 @@ class RobotInstance {
   std::string namespace_;
   std::string robot_name_;
   std::filesystem::path urdf_path_;
+  std::string robot_description_;
   std::string backend_name_;
   double real_time_factor_ = 0.0;
   RealtimeSettings realtime_;  // applied on the loop thread before its first cycle

@@ -1,0 +1,95 @@
+// servoloop_ros1_bridge: a running servoloop node seen from ROS 1. Started by
+// `servoloop ros1-bridge [-N NS]` (see docs/ros1.md). It is a client of the
+// node's IPC socket, so whatever happens on the ROS side (no master, a slow
+// subscriber, a crashing client) never reaches the node's control loop.
+#include <csignal>
+
+#include <atomic>
+#include <chrono>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <ros/ros.h>
+
+#include "controller_manager_services.hpp"
+#include "node_link.hpp"
+#include "parameter_bridge.hpp"
+#include "topic_bridge.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void requestStop(int) { g_stop.store(true); }
+
+// Waits for the ROS master, saying once where it looks. False when stopped.
+bool waitForMaster() {
+  bool said = false;
+  while (!g_stop.load()) {
+    if (ros::master::check()) return true;
+    if (!said) {
+      std::cerr << "servoloop ros1-bridge: waiting for the ROS master at " << ros::master::getURI()
+                << " (start roscore, or set ROS_MASTER_URI)\n";
+      said = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  return false;
+}
+
+int runBridge(const std::string& requested_namespace, bool use_sim_time) {
+  const std::string node_namespace = servoloop::ros1::pickNodeNamespace(requested_namespace);
+  servoloop::ros1::NodeLink link(node_namespace);
+
+  if (!waitForMaster()) return 0;
+  ros::NodeHandle nh;
+  const servoloop::ros1::ParameterCopy copy = servoloop::ros1::copyParametersToRos(link, use_sim_time);
+  servoloop::ros1::ControllerManagerServices services(nh, link);
+  servoloop::ros1::TopicBridge topics(nh, link);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  std::cout << "servoloop ros1-bridge: bridging " << node_namespace << " to the ROS master at "
+            << ros::master::getURI() << " (" << copy.parameters << " parameter trees"
+            << (copy.robot_description ? ", robot_description" : "") << ", /clock, "
+            << (node_namespace == "/" ? "" : node_namespace) << "/controller_manager/*)" << std::endl;
+  try {
+    topics.run(g_stop);
+  } catch (const std::exception& e) {
+    spinner.stop();
+    ros::shutdown();
+    throw std::runtime_error(std::string(e.what()) + "; the bridge stops");
+  }
+  spinner.stop();
+  ros::shutdown();
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"servoloop_ros1_bridge: a running servoloop node's topics, parameters and controller manager in ROS 1"};
+  std::string requested_namespace;
+  bool no_sim_time = false;
+  app.add_option("-N,--namespace", requested_namespace,
+                 "Robot namespace of the node to bridge, e.g. /one_DOF_robot (default: the only running node)")
+      ->type_name("NS");
+  app.add_flag("--no-sim-time", no_sim_time, "Leave /use_sim_time false (ROS nodes keep the wall clock)");
+  // ROS remappings (name:=value) pass through to ros::init.
+  app.allow_extras();
+  CLI11_PARSE(app, argc, argv);
+
+  std::signal(SIGINT, requestStop);
+  std::signal(SIGTERM, requestStop);
+  try {
+    const std::string ros_name = "servoloop_bridge" + (requested_namespace.empty() ? std::string() :
+        "_" + servoloop::ros1::namespaceStem(requested_namespace));
+    ros::init(argc, argv, ros_name, ros::init_options::NoSigintHandler);
+    return runBridge(requested_namespace, !no_sim_time);
+  } catch (const std::exception& e) {
+    std::cerr << "servoloop ros1-bridge: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,43 @@
+#pragma once
+// The node's JSON message form (docs/node_operations.md, `topic.subscribe` and
+// `topic.pub`) to and from ROS 1 messages, for the types the node's topic bus
+// carries. The JSON form flattens a header into "stamp" (seconds of simulated
+// time) and writes NaN as null; both directions keep those conventions, so a
+// message crossing the bridge and back is unchanged.
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <ros/node_handle.h>
+#include <ros/publisher.h>
+#include <ros/subscriber.h>
+
+namespace servoloop::ros1 {
+
+// Publishes one node message (its JSON form) on a ROS topic.
+using JsonPublisher = std::function<void(const nlohmann::json& msg)>;
+// Receives one ROS message in the node's JSON form.
+using JsonCallback = std::function<void(nlohmann::json msg)>;
+
+struct BridgedType {
+  std::string name;  // e.g. "sensor_msgs/JointState"
+  // Commands go from ROS to the node (the node subscribes to them); states go
+  // from the node to ROS.
+  bool command = false;
+  std::function<JsonPublisher(ros::NodeHandle& nh, const std::string& topic)> advertise;
+  std::function<ros::Subscriber(ros::NodeHandle& nh, const std::string& topic, JsonCallback callback)> subscribe;
+  // JSON → ROS message → serialised bytes → ROS message → JSON (for tests).
+  std::function<nlohmann::json(const nlohmann::json& msg)> round_trip;
+};
+
+// The type, or nullptr when the bridge does not carry it.
+const BridgedType* findBridgedType(std::string_view type_name);
+std::vector<std::string> bridgedTypeNames();
+
+// Exposed for tests: a message of `type_name` taken from JSON to its ROS form,
+// serialised, read back and turned into JSON again.
+nlohmann::json roundTrip(std::string_view type_name, const nlohmann::json& msg);
+
+}  // namespace servoloop::ros1

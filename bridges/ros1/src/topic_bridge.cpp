@@ -1,0 +1,100 @@
+#include "topic_bridge.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+
+
+namespace servoloop::ros1 {
+
+using nlohmann::json;
+using SteadyClock = std::chrono::steady_clock;
+
+TopicBridge::TopicBridge(ros::NodeHandle& nh, NodeLink& link, TopicBridgeOptions options)
+    : nh_(nh),
+      link_(link),
+      options_(options),
+      streams_(link.nodeNamespace()),
+      clock_(nh.advertise<rosgraph_msgs::Clock>("/clock", 10)) {}
+
+void TopicBridge::discover() {
+  const json topics = streams_.call("topic.list").at("topics");
+  for (const json& topic : topics) {
+    const std::string name = topic.at("name").get<std::string>();
+    const std::string type_name = topic.value("type", "");
+    if (directions_.count(name) != 0 || skipped_.count(name) != 0 || type_name.empty()) continue;
+    const BridgedType* type = findBridgedType(type_name);
+    if (type == nullptr) {
+      ROS_WARN("servoloop bridge: topic %s has type %s, which the bridge does not carry; it stays in servoloop",
+               name.c_str(), type_name.c_str());
+      skipped_.insert(name);
+      continue;
+    }
+    if (type->command) {
+      // The ROS message goes to the node's bus; a refusal (a NaN command, say)
+      // is the node's one-line error, reported without stopping the bridge.
+      from_ros_.emplace(name, type->subscribe(nh_, name, [this, name, type_name](json msg) {
+        try {
+          link_.call("topic.pub", {{"topic", name}, {"type", type_name}, {"msg", std::move(msg)}});
+        } catch (const std::exception& e) {
+          ROS_WARN_THROTTLE(1.0, "servoloop bridge: %s not delivered: %s", name.c_str(), e.what());
+        }
+      }));
+      directions_.emplace(name, "from ROS");
+    } else {
+      to_ros_.emplace(name, type->advertise(nh_, name));
+      streams_.call("topic.subscribe", {{"topic", name}});
+      directions_.emplace(name, "to ROS");
+    }
+    ROS_INFO("servoloop bridge: %s (%s) %s", name.c_str(), type_name.c_str(), directions_.at(name).c_str());
+  }
+}
+
+void TopicBridge::forwardToRos(const json& stream_message) {
+  const std::string topic = stream_message.value("stream", "");
+  const auto it = to_ros_.find(topic);
+  if (it == to_ros_.end()) return;
+  const json& msg = stream_message.at("msg");
+  try {
+    it->second(msg);
+  } catch (const std::exception& e) {
+    ROS_WARN_THROTTLE(1.0, "servoloop bridge: message on %s not converted: %s", topic.c_str(), e.what());
+  }
+  if (const auto stamp = stream_message.find("stamp"); stamp != stream_message.end() && stamp->is_number()) {
+    publishClock(stamp->get<double>());
+  }
+}
+
+void TopicBridge::publishClock(double sim_time) {
+  if (!(sim_time > last_clock_) || !std::isfinite(sim_time)) return;
+  rosgraph_msgs::Clock clock;
+  clock.clock = ros::Time(sim_time);
+  clock_.publish(clock);
+  last_clock_ = sim_time;
+}
+
+void TopicBridge::run(const std::atomic<bool>& stop) {
+  const auto discovery_period = std::chrono::duration<double>(options_.discovery_period_s);
+  const auto clock_period = std::chrono::duration<double>(options_.clock_period_s);
+  SteadyClock::time_point next_discovery = SteadyClock::now();
+  SteadyClock::time_point next_clock = SteadyClock::now();
+  while (!stop.load() && ros::ok()) {
+    const SteadyClock::time_point now = SteadyClock::now();
+    if (now >= next_discovery) {
+      discover();
+      next_discovery = now + std::chrono::duration_cast<SteadyClock::duration>(discovery_period);
+    }
+    if (now >= next_clock) {
+      publishClock(streams_.call("ping").value("sim_time", 0.0));
+      next_clock = now + std::chrono::duration_cast<SteadyClock::duration>(clock_period);
+    }
+    const double wait_s = std::chrono::duration<double>(std::min(next_discovery, next_clock) - SteadyClock::now()).count();
+    if (auto message = streams_.readStream(std::max(wait_s, 0.0005))) forwardToRos(*message);
+    // Drain what else arrived without waiting.
+    while (auto more = streams_.readStream(0.0)) forwardToRos(*more);
+  }
+}
+
+}  // namespace servoloop::ros1

@@ -1,0 +1,60 @@
+#pragma once
+// Topics between a node's topic bus and ROS 1, both ways, under the same
+// names and types. Commands (the types a controller subscribes to:
+// std_msgs/Float64, Float64MultiArray, Bool, geometry_msgs/Twist,
+// trajectory_msgs/JointTrajectory) go from ROS to the node; states
+// (sensor_msgs/JointState, control_msgs/*, nav_msgs/Odometry, tf2_msgs/TFMessage,
+// diagnostic_msgs/DiagnosticArray) go from the node to ROS. Topics are found
+// with `topic.list` once a second, so controllers spawned later are bridged
+// too. /clock follows the node's simulated time.
+#include <atomic>
+#include <map>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <ros/node_handle.h>
+#include <ros/publisher.h>
+#include <ros/subscriber.h>
+
+#include "node_link.hpp"
+#include "ros_message_json.hpp"
+
+namespace servoloop::ros1 {
+
+struct TopicBridgeOptions {
+  double discovery_period_s = 1.0;
+  // /clock is published when simulated time moves on, at most this often
+  // (wall clock), and at least this often while the node runs.
+  double clock_period_s = 0.005;
+};
+
+class TopicBridge {
+ public:
+  TopicBridge(ros::NodeHandle& nh, NodeLink& link, TopicBridgeOptions options = {});
+
+  // Bridges until `stop` is set or ROS shuts down. Throws std::runtime_error
+  // when the node's connection closes (the node ended).
+  void run(const std::atomic<bool>& stop);
+
+  // Topics bridged so far, for the log: name → "to ROS" / "from ROS".
+  const std::map<std::string, std::string>& bridged() const { return directions_; }
+
+ private:
+  void discover();
+  void forwardToRos(const nlohmann::json& stream_message);
+  void publishClock(double sim_time);
+
+  ros::NodeHandle& nh_;
+  NodeLink& link_;
+  TopicBridgeOptions options_;
+  NodeLink streams_;  // a link of its own: subscriptions, discovery, the clock
+  std::map<std::string, JsonPublisher> to_ros_;
+  std::map<std::string, ros::Subscriber> from_ros_;
+  std::map<std::string, std::string> directions_;
+  std::set<std::string> skipped_;  // topics of types the bridge does not carry (reported once)
+  ros::Publisher clock_;
+  double last_clock_ = -1.0;
+};
+
+}  // namespace servoloop::ros1

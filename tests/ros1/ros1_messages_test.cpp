@@ -1,0 +1,128 @@
+// The bridge's message side without a ROS master: the message packages the
+// project generates are ROS's own on the wire (md5sums as ROS Noetic's
+// generated code publishes them), and every bridged type survives JSON → ROS →
+// serialised bytes → ROS → JSON unchanged, NaN included.
+#include <cmath>
+#include <string>
+
+#include <control_msgs/JointControllerState.h>
+#include <control_msgs/JointTrajectoryControllerState.h>
+#include <controller_manager_msgs/ListControllers.h>
+#include <controller_manager_msgs/SwitchController.h>
+#include <gtest/gtest.h>
+#include <ros/message_traits.h>
+#include <ros/service_traits.h>
+
+#include "controller_manager_services.hpp"
+#include "parameter_bridge.hpp"
+#include "ros_message_json.hpp"
+
+namespace {
+
+using nlohmann::json;
+
+TEST(Ros1Messages, GeneratedPackagesHaveRosMd5sums) {
+  // The md5sums ROS Noetic's control_msgs and controller_manager_msgs carry
+  // (as published in their generated code for every client library).
+  EXPECT_EQ(std::string(ros::message_traits::MD5Sum<control_msgs::JointControllerState>::value()),
+            "987ad85e4756f3aef7f1e5e7fe0595d1");
+  EXPECT_EQ(std::string(ros::message_traits::MD5Sum<control_msgs::JointTrajectoryControllerState>::value()),
+            "10817c60c2486ef6b33e97dcd87f4474");
+  EXPECT_EQ(std::string(ros::service_traits::MD5Sum<controller_manager_msgs::ListControllers>::value()),
+            "1341feb2e63fa791f855565d0da950d8");
+  EXPECT_EQ(std::string(ros::service_traits::MD5Sum<controller_manager_msgs::SwitchController>::value()),
+            "b29a7abc673b2c54c14b54e50f8d06a5");
+}
+
+TEST(Ros1Messages, EveryBridgedTypeRoundTripsThroughRosSerialisation) {
+  const json cases = {
+      {"std_msgs/Float64", {{"data", 1.25}}},
+      {"std_msgs/Bool", {{"data", true}}},
+      {"std_msgs/Float64MultiArray", {{"data", {1.0, nullptr, -3.5}}}},
+      {"geometry_msgs/Twist", {{"linear", {{"x", 0.5}, {"y", 0.0}, {"z", 0.0}}}, {"angular", {{"x", 0.0}, {"y", 0.0}, {"z", -1.5}}}}},
+      {"sensor_msgs/JointState",
+       {{"stamp", 12.5}, {"name", {"joint1", "joint2"}}, {"position", {0.1, -0.2}}, {"velocity", {0.0, 3.0}},
+        {"effort", {nullptr, 4.13}}}},
+      {"control_msgs/JointControllerState",
+       {{"stamp", 3.131}, {"set_point", 1.0}, {"process_value", 0.98}, {"process_value_dot", 0.01},
+        {"error", -0.02}, {"time_step", 0.001}, {"command", -4.13}, {"p", 100.0}, {"i", 0.01}, {"d", 10.0},
+        {"i_clamp", 0.0}, {"antiwindup", false}}},
+      {"trajectory_msgs/JointTrajectory",
+       {{"stamp", 0.0}, {"joint_names", {"a", "b"}},
+        {"points", {{{"positions", {1.0, 2.0}}, {"velocities", json::array()}, {"accelerations", json::array()},
+                     {"effort", json::array()}, {"time_from_start", 1.5}}}}}},
+      {"nav_msgs/Odometry",
+       {{"stamp", 2.0}, {"frame_id", "odom"}, {"child_frame_id", "base_link"},
+        {"pose", {{"position", {{"x", 1.0}, {"y", 2.0}, {"z", 0.0}}},
+                  {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.5}, {"w", 0.75}}},
+                  {"covariance", std::vector<double>(36, 0.25)}}},
+        {"twist", {{"linear", {{"x", 0.1}, {"y", 0.0}, {"z", 0.0}}}, {"angular", {{"x", 0.0}, {"y", 0.0}, {"z", 0.2}}},
+                   {"covariance", std::vector<double>(36, 0.5)}}}}},
+      {"tf2_msgs/TFMessage",
+       {{"transforms", {{{"stamp", 1.0}, {"frame_id", "odom"}, {"child_frame_id", "base_link"},
+                         {"translation", {{"x", 1.0}, {"y", 0.0}, {"z", 0.0}}},
+                         {"rotation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"w", 1.0}}}}}}}},
+      {"diagnostic_msgs/DiagnosticArray",
+       {{"stamp", 4.0}, {"status", {{{"level", 2}, {"name", "loop"}, {"message", "protective stop"},
+                                      {"hardware_id", "one_DOF_robot"},
+                                      {"values", {{{"key", "overruns"}, {"value", "3"}}}}}}}}},
+  };
+  for (const auto& [type, msg] : cases.items()) {
+    SCOPED_TRACE(type);
+    EXPECT_EQ(servoloop::ros1::roundTrip(type, msg), msg);
+  }
+  // + control_msgs/JointTrajectoryControllerState, in the next test.
+  EXPECT_EQ(servoloop::ros1::bridgedTypeNames().size(), cases.size() + 1) << "a bridged type has no round-trip case";
+}
+
+TEST(Ros1Messages, TrajectoryControllerStateRoundTrips) {
+  const json point = {{"positions", {1.0}}, {"velocities", {0.5}}, {"accelerations", {0.0}}, {"effort", json::array()},
+                      {"time_from_start", 0.25}};
+  const json msg = {{"stamp", 1.5}, {"joint_names", {"j"}}, {"desired", point}, {"actual", point}, {"error", point}};
+  EXPECT_EQ(servoloop::ros1::roundTrip("control_msgs/JointTrajectoryControllerState", msg), msg);
+}
+
+TEST(Ros1Messages, CommandsGoToTheNodeAndStatesComeFromIt) {
+  for (const char* command : {"std_msgs/Float64", "std_msgs/Float64MultiArray", "std_msgs/Bool", "geometry_msgs/Twist",
+                              "trajectory_msgs/JointTrajectory"}) {
+    ASSERT_NE(servoloop::ros1::findBridgedType(command), nullptr) << command;
+    EXPECT_TRUE(servoloop::ros1::findBridgedType(command)->command) << command;
+  }
+  for (const char* state : {"sensor_msgs/JointState", "control_msgs/JointControllerState", "nav_msgs/Odometry",
+                            "tf2_msgs/TFMessage", "diagnostic_msgs/DiagnosticArray"}) {
+    ASSERT_NE(servoloop::ros1::findBridgedType(state), nullptr) << state;
+    EXPECT_FALSE(servoloop::ros1::findBridgedType(state)->command) << state;
+  }
+  EXPECT_EQ(servoloop::ros1::findBridgedType("gazebo_msgs/ModelStates"), nullptr);
+  EXPECT_THROW(servoloop::ros1::roundTrip("gazebo_msgs/ModelStates", json::object()), std::invalid_argument);
+}
+
+TEST(Ros1Messages, ControllerStatesAndInterfacesUseRosControlNames) {
+  EXPECT_STREQ(servoloop::ros1::rosControlState("running"), "running");
+  EXPECT_STREQ(servoloop::ros1::rosControlState("stopped"), "stopped");
+  EXPECT_STREQ(servoloop::ros1::rosControlState("initialized"), "initialized");
+  EXPECT_STREQ(servoloop::ros1::rosControlState("constructed"), "initialized");
+  EXPECT_STREQ(servoloop::ros1::rosControlState("failed"), "aborted");
+  EXPECT_EQ(servoloop::ros1::rosControlInterfaceName("EffortJointInterface"), "hardware_interface::EffortJointInterface");
+  EXPECT_EQ(servoloop::ros1::rosControlInterfaceName("my_robot::GripperInterface"), "my_robot::GripperInterface");
+}
+
+TEST(Ros1Messages, ParametersKeepTheirYamlTypes) {
+  const XmlRpc::XmlRpcValue value = servoloop::ros1::yamlToXmlRpc(
+      YAML::Load("{i: 100, d: 1.5, b: true, quoted: '2', s: effort_controllers/JointPositionController, l: [1, 2.5]}"));
+  ASSERT_EQ(value.getType(), XmlRpc::XmlRpcValue::TypeStruct);
+  XmlRpc::XmlRpcValue copy = value;
+  EXPECT_EQ(copy["i"].getType(), XmlRpc::XmlRpcValue::TypeInt);
+  EXPECT_EQ(static_cast<int>(copy["i"]), 100);
+  EXPECT_EQ(copy["d"].getType(), XmlRpc::XmlRpcValue::TypeDouble);
+  EXPECT_EQ(static_cast<double>(copy["d"]), 1.5);
+  EXPECT_EQ(copy["b"].getType(), XmlRpc::XmlRpcValue::TypeBoolean);
+  EXPECT_EQ(copy["quoted"].getType(), XmlRpc::XmlRpcValue::TypeString);
+  EXPECT_EQ(static_cast<std::string>(copy["quoted"]), "2");
+  EXPECT_EQ(static_cast<std::string>(copy["s"]), "effort_controllers/JointPositionController");
+  ASSERT_EQ(copy["l"].getType(), XmlRpc::XmlRpcValue::TypeArray);
+  EXPECT_EQ(copy["l"][0].getType(), XmlRpc::XmlRpcValue::TypeInt);
+  EXPECT_EQ(static_cast<double>(copy["l"][1]), 2.5);
+}
+
+}  // namespace
