@@ -13,4 +13,5 @@ bash scripts/install_deps.sh \
   ros-std-msgs ros-geometry-msgs ros-trajectory-msgs python3-gencpp python3-genpy \
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-trajectory-msgs \
   python3-tf2-msgs python3-diagnostic-msgs python3-rosgraph-msgs \
+  libactionlib-dev libactionlib-msgs-dev ros-actionlib-msgs python3-actionlib-msgs \
   ros-robot-state-publisher

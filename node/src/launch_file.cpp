@@ -371,7 +371,7 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   if (root.IsNull() || !root.IsDefined()) return launch;
   params::checkYamlDocument(root, source_name);
   parser.requireMap(root, "", "world: {backend: bullet} and robots: [...]");
-  parser.checkKeys(root, "", {"world", "controller_manager", "realtime", "robots", "publish", "record", "plot"});
+  parser.checkKeys(root, "", {"world", "controller_manager", "realtime", "robots", "publish", "record", "plot", "ros1_bridge"});
   if (root["realtime"] && !root["realtime"].IsNull()) launch.realtime = parser.realtime(root["realtime"], "realtime");
   launch.world = parser.world(root["world"]);
   launch.controller_manager = parser.controllerManager(root["controller_manager"]);
@@ -379,6 +379,7 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   launch.publish = parser.list(root["publish"], "publish", &Parser::publication);
   launch.record = parser.list(root["record"], "record", &Parser::record);
   if (root["plot"] && !root["plot"].IsNull()) launch.plot = parser.path(root["plot"], "plot");
+  if (root["ros1_bridge"] && !root["ros1_bridge"].IsNull()) launch.ros1_bridge = parser.boolean(root["ros1_bridge"], "ros1_bridge");
   return launch;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include <control_msgs/JointControllerState.h>
+#include <control_msgs/FollowJointTrajectoryAction.h>
 #include <control_msgs/JointTrajectoryControllerState.h>
 #include <controller_manager_msgs/ListControllers.h>
 #include <controller_manager_msgs/SwitchController.h>
@@ -32,6 +33,11 @@ TEST(Ros1Messages, GeneratedPackagesHaveRosMd5sums) {
             "1341feb2e63fa791f855565d0da950d8");
   EXPECT_EQ(std::string(ros::service_traits::MD5Sum<controller_manager_msgs::SwitchController>::value()),
             "b29a7abc673b2c54c14b54e50f8d06a5");
+  // The action's messages, made by genaction from the .action file.
+  EXPECT_EQ(std::string(ros::message_traits::MD5Sum<control_msgs::FollowJointTrajectoryGoal>::value()),
+            "69636787b6ecbde4d61d711979bc7ecb");
+  EXPECT_EQ(std::string(ros::message_traits::MD5Sum<control_msgs::FollowJointTrajectoryActionGoal>::value()),
+            "cff5c1d533bf2f82dd0138d57f4304bb");
 }
 
 TEST(Ros1Messages, EveryBridgedTypeRoundTripsThroughRosSerialisation) {

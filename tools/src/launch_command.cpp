@@ -21,6 +21,7 @@
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/node.hpp"
 #include "servoloop/node/run_summary.hpp"
+#include "ros1_bridge_process.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 
@@ -42,6 +43,7 @@ struct LaunchOptions {
   std::string plot;
   bool json = false;
   bool ipc = false;
+  bool ros1_bridge = false;
   std::vector<std::string> plugin_dirs;
 };
 
@@ -133,10 +135,22 @@ void runLaunch(const LaunchOptions& options) {
   node_options.serve_ipc = !options.duration_s || options.ipc;
   for (const std::string& dir : options.plugin_dirs) node_options.plugin_directories.emplace_back(dir);
 
+  const bool ros1_bridge = launch.ros1_bridge || options.ros1_bridge;
+  if (ros1_bridge) {
+    if (!node_options.serve_ipc) {
+      throw Error("--ros1-bridge: the bridge talks to the node's socket, which a --duration run does not serve; add --ipc");
+    }
+    ros1BridgeProgram();  // says how to get it, before anything starts
+  }
+
   node::Node world(launch, node_options);
   {
     ShutdownSignals signals(world);
     world.start();
+    Ros1BridgeProcesses bridges;
+    if (ros1_bridge) {
+      for (const std::string& ns : world.robotNamespaces()) bridges.start(ns);
+    }
     if (!options.duration_s) {
       std::string names;
       for (const std::string& ns : world.robotNamespaces()) names += (names.empty() ? "" : ", ") + ns;
@@ -153,6 +167,7 @@ void runLaunch(const LaunchOptions& options) {
       progress->update(world.simTime(), wall_s);
     });
     if (progress) progress->finish();
+    bridges.stop();  // before the node: a bridge whose node vanished would report it
     world.shutdown();
   }
 
@@ -210,6 +225,8 @@ void addLaunchCommand(CLI::App& root) {
   launch->add_option("--record", options->recordings, "Record a topic to CSV; repeatable")->type_name("TOPIC=FILE.csv");
   launch->add_option("--plot", options->plot, "After the run, plot what was recorded to this PNG")->type_name("FILE.png");
   launch->add_flag("--json", options->json, "Print the end-of-run summary as one JSON object");
+  launch->add_flag("--ros1-bridge", options->ros1_bridge,
+                   "Also start `servoloop ros1-bridge` for each robot (as `ros1_bridge: true` in the launch file)");
   launch->add_flag("--ipc", options->ipc,
                    "Serve the IPC sockets during a --duration run too (runs without --duration always do)");
   launch->add_option("--plugin-dir", options->plugin_dirs,

@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.hpp"
+#include "ros1_bridge_process.hpp"
 #include "servoloop/core/errors.hpp"
 
 namespace servoloop::cli {
@@ -28,28 +29,15 @@ struct BridgeOptions {
   bool print_env = false;
 };
 
-fs::path executableDirectory() {
-  std::error_code error;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
-  if (error) throw Error("cannot find the servoloop executable (/proc/self/exe): " + error.message());
-  return exe.parent_path();
-}
-
 void runBridge(const BridgeOptions& options) {
-  const fs::path bin = executableDirectory();
-  const fs::path python = (bin / ".." / "share" / "servoloop" / "ros1" / "python").lexically_normal();
   if (options.print_env) {
+    const fs::path python = ros1PythonPath();
     // rostopic, rosservice and rosbag read the message packages Debian lacks
     // (control_msgs, controller_manager_msgs) from here.
     std::cout << "export PYTHONPATH=\"" << python.string() << "${PYTHONPATH:+:$PYTHONPATH}\"\n";
     return;
   }
-  const fs::path bridge = bin / "servoloop_ros1_bridge";
-  if (!fs::exists(bridge)) {
-    throw Error("the ROS 1 bridge is not part of this build (" + bridge.string() +
-                " is missing): install Debian's ROS 1 packages (see docs/ros1.md: apt install ros-core "
-                "libroscpp-dev ...) and build again; cmake finds them");
-  }
+  const fs::path bridge = ros1BridgeProgram();
   std::vector<std::string> args = {bridge.string()};
   if (!options.ns.empty()) args.insert(args.end(), {"--namespace", options.ns});
   if (options.no_sim_time) args.emplace_back("--no-sim-time");

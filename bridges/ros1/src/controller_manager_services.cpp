@@ -1,5 +1,7 @@
 #include "controller_manager_services.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <controller_manager_msgs/ListControllerTypes.h>
@@ -102,7 +104,9 @@ ControllerManagerServices::ControllerManagerServices(ros::NodeHandle& nh, NodeLi
           response.ok = false;
           return true;
         }
-        const double timeout = std::isfinite(request.timeout) && request.timeout > 0.0 ? request.timeout : 0.0;
+        // At most an hour: the bridge waits for the node's answer that long.
+        const double timeout =
+            std::isfinite(request.timeout) && request.timeout > 0.0 ? std::min(request.timeout, 3600.0) : 0.0;
         json args = {{"start", request.start_controllers}, {"stop", request.stop_controllers},
                      {"strictness", strictness}, {"start_asap", static_cast<bool>(request.start_asap)}};
         if (timeout > 0.0) args["timeout"] = timeout;

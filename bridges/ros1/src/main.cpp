@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 #include <ros/ros.h>
 
+#include "action_bridge.hpp"
 #include "controller_manager_services.hpp"
 #include "node_link.hpp"
 #include "parameter_bridge.hpp"
@@ -47,24 +48,51 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time) {
   if (!waitForMaster()) return 0;
   ros::NodeHandle nh;
   const servoloop::ros1::ParameterCopy copy = servoloop::ros1::copyParametersToRos(link, use_sim_time);
-  servoloop::ros1::ControllerManagerServices services(nh, link);
+  // The services on a connection of their own: a switch that takes a while
+  // never holds up the commands flowing from ROS on `link`.
+  servoloop::ros1::NodeLink service_link(node_namespace);
+  servoloop::ros1::ControllerManagerServices services(nh, service_link);
   servoloop::ros1::TopicBridge topics(nh, link);
+  // Actions on a connection of their own (the node answers a goal's status
+  // only on the connection that sent it), polled on a thread of their own.
+  servoloop::ros1::NodeLink action_link(node_namespace);
+  servoloop::ros1::ActionBridge actions(nh, action_link);
   ros::AsyncSpinner spinner(2);
   spinner.start();
+  std::atomic<bool> actions_failed{false};
+  std::thread action_thread([&] {
+    try {
+      auto next_discovery = std::chrono::steady_clock::now();
+      while (!g_stop.load() && ros::ok()) {
+        if (std::chrono::steady_clock::now() >= next_discovery) {
+          actions.discover();
+          next_discovery += std::chrono::seconds(1);
+        }
+        actions.poll();
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "servoloop ros1-bridge: actions: " << e.what() << "\n";
+      actions_failed.store(true);
+      g_stop.store(true);
+    }
+  });
   std::cout << "servoloop ros1-bridge: bridging " << node_namespace << " to the ROS master at "
-            << ros::master::getURI() << " (" << copy.parameters << " parameter trees"
+            << ros::master::getURI() << " (" << copy.parameters << " parameters"
             << (copy.robot_description ? ", robot_description" : "") << ", /clock, "
             << (node_namespace == "/" ? "" : node_namespace) << "/controller_manager/*)" << std::endl;
+  std::string failure;
   try {
     topics.run(g_stop);
   } catch (const std::exception& e) {
-    spinner.stop();
-    ros::shutdown();
-    throw std::runtime_error(std::string(e.what()) + "; the bridge stops");
+    failure = e.what();
   }
+  g_stop.store(true);
+  action_thread.join();
   spinner.stop();
   ros::shutdown();
-  return 0;
+  if (!failure.empty()) throw std::runtime_error(failure + "; the bridge stops");
+  return actions_failed.load() ? 1 : 0;
 }
 
 }  // namespace

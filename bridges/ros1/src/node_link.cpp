@@ -52,7 +52,7 @@ std::string pickNodeNamespace(const std::string& requested) {
 std::string namespaceStem(const std::string& node_namespace) {
   std::string stem = ipc::socketStemFor(node_namespace);
   for (char& c : stem) {
-    if (c == '.') c = '_';  // ROS names take letters, digits and '_'
+    if (c == '.' || c == '-') c = '_';  // ROS names take letters, digits and '_'
   }
   return stem;
 }

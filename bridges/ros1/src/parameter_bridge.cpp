@@ -37,16 +37,32 @@ XmlRpc::XmlRpcValue yamlToXmlRpc(const YAML::Node& node) {
   return XmlRpc::XmlRpcValue(std::string());
 }
 
+namespace {
+
+void setLeaves(const std::string& prefix, const YAML::Node& node, ParameterCopy& copy) {
+  if (node.IsMap() && node.size() > 0) {
+    for (const auto& entry : node) setLeaves(prefix + "/" + entry.first.as<std::string>(), entry.second, copy);
+    return;
+  }
+  if (prefix.empty()) return;
+  try {
+    ros::param::set(prefix, yamlToXmlRpc(node));
+    ++copy.parameters;
+  } catch (const ros::InvalidNameException& e) {
+    ROS_WARN("servoloop bridge: parameter %s stays in servoloop: ROS does not accept its name (%s)", prefix.c_str(),
+             e.what());
+  }
+}
+
+}  // namespace
+
 ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time) {
   ParameterCopy copy;
   const std::string yaml = link.call("param.dump", {{"namespace", "/"}}).value("yaml", "");
   const YAML::Node root = YAML::Load(yaml);
-  if (root.IsMap()) {
-    for (const auto& entry : root) {
-      ros::param::set("/" + entry.first.as<std::string>(), yamlToXmlRpc(entry.second));
-      ++copy.parameters;
-    }
-  }
+  // Leaf by leaf: setting a whole tree would replace what ROS nodes keep
+  // beside servoloop's parameters under the same namespace.
+  setLeaves("", root, copy);
 
   const std::string description = link.call("robot.description").value("urdf", "");
   if (!description.empty()) {

@@ -14,7 +14,7 @@
 namespace servoloop::ros1 {
 
 struct ParameterCopy {
-  int parameters = 0;  // top-level names set
+  int parameters = 0;  // parameters (leaves) set
   bool robot_description = false;
 };
 

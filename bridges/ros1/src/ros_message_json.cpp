@@ -10,6 +10,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
+#include <ros/console.h>
 #include <ros/serialization.h>
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/Bool.h>
@@ -21,9 +22,15 @@
 #include <stdexcept>
 
 namespace servoloop::ros1 {
-namespace {
 
 using nlohmann::json;
+
+namespace {
+
+// The trajectory conversions are declared in the header (action_bridge.cpp
+// uses them too); make them overloads of the ones below.
+using ros1::fromJson;
+using ros1::toJson;
 
 // --- JSON → ROS ------------------------------------------------------------------
 double number(const json& parent, const char* key) {
@@ -130,34 +137,6 @@ json toJson(const control_msgs::JointControllerState& m) {
           {"error", value(m.error)}, {"time_step", value(m.time_step)}, {"command", value(m.command)},
           {"p", value(m.p)}, {"i", value(m.i)}, {"d", value(m.d)}, {"i_clamp", value(m.i_clamp)},
           {"antiwindup", static_cast<bool>(m.antiwindup)}};
-}
-
-void fromJson(const json& j, trajectory_msgs::JointTrajectoryPoint& m) {
-  m.positions = numbers(j, "positions");
-  m.velocities = numbers(j, "velocities");
-  m.accelerations = numbers(j, "accelerations");
-  m.effort = numbers(j, "effort");
-  const double t = number(j, "time_from_start");
-  m.time_from_start = ros::Duration(std::isfinite(t) ? t : 0.0);
-}
-json toJson(const trajectory_msgs::JointTrajectoryPoint& m) {
-  return {{"positions", values(m.positions)}, {"velocities", values(m.velocities)},
-          {"accelerations", values(m.accelerations)}, {"effort", values(m.effort)},
-          {"time_from_start", seconds(m.time_from_start)}};
-}
-
-void fromJson(const json& j, trajectory_msgs::JointTrajectory& m) {
-  m.header.stamp = stampFrom(j);
-  m.joint_names = strings(j, "joint_names");
-  m.points.clear();
-  if (const auto it = j.find("points"); it != j.end() && it->is_array()) {
-    for (const json& point : *it) fromJson(point, m.points.emplace_back());
-  }
-}
-json toJson(const trajectory_msgs::JointTrajectory& m) {
-  json points = json::array();
-  for (const auto& point : m.points) points.push_back(toJson(point));
-  return {{"stamp", seconds(m.header.stamp)}, {"joint_names", m.joint_names}, {"points", std::move(points)}};
 }
 
 void fromJson(const json& j, control_msgs::JointTrajectoryControllerState& m) {
@@ -300,9 +279,12 @@ json serialiseAndBack(const json& msg) {
 }
 
 // --- registry ---------------------------------------------------------------------
-// How many messages a ROS publisher or subscriber queues: state topics run at
-// 50 Hz or more and a subscriber that falls behind should see the newest.
-constexpr std::uint32_t kQueueSize = 100;
+// How many messages a ROS publisher of a state topic queues for a slow
+// subscriber (50 Hz or more arrive), and how many commands wait: one, as
+// ros_control's controllers subscribe, so a late command never arrives behind
+// newer ones.
+constexpr std::uint32_t kStateQueueSize = 100;
+constexpr std::uint32_t kCommandQueueSize = 1;
 
 template <class Msg>
 BridgedType bridged(bool command) {
@@ -310,7 +292,7 @@ BridgedType bridged(bool command) {
   type.name = ros::message_traits::DataType<Msg>::value();
   type.command = command;
   type.advertise = [](ros::NodeHandle& nh, const std::string& topic) -> JsonPublisher {
-    auto publisher = std::make_shared<ros::Publisher>(nh.advertise<Msg>(topic, kQueueSize));
+    auto publisher = std::make_shared<ros::Publisher>(nh.advertise<Msg>(topic, kStateQueueSize));
     return [publisher](const json& msg) {
       Msg ros_msg;
       fromJson(msg, ros_msg);
@@ -318,8 +300,14 @@ BridgedType bridged(bool command) {
     };
   };
   type.subscribe = [](ros::NodeHandle& nh, const std::string& topic, JsonCallback callback) {
-    return nh.subscribe<Msg>(topic, kQueueSize,
-                             [callback = std::move(callback)](const typename Msg::ConstPtr& msg) { callback(toJson(*msg)); });
+    // roscpp does not catch what a subscriber callback throws: nothing may.
+    return nh.subscribe<Msg>(topic, kCommandQueueSize, [callback = std::move(callback), topic](const typename Msg::ConstPtr& msg) {
+      try {
+        callback(toJson(*msg));
+      } catch (const std::exception& e) {
+        ROS_ERROR("servoloop bridge: %s: %s", topic.c_str(), e.what());
+      }
+    });
   };
   type.round_trip = [](const json& msg) { return serialiseAndBack<Msg>(msg); };
   return type;
@@ -343,6 +331,34 @@ const std::map<std::string, BridgedType, std::less<>>& registry() {
 }
 
 }  // namespace
+
+void fromJson(const json& j, trajectory_msgs::JointTrajectoryPoint& m) {
+  m.positions = numbers(j, "positions");
+  m.velocities = numbers(j, "velocities");
+  m.accelerations = numbers(j, "accelerations");
+  m.effort = numbers(j, "effort");
+  const double t = number(j, "time_from_start");
+  m.time_from_start = ros::Duration(std::isfinite(t) ? t : 0.0);
+}
+json toJson(const trajectory_msgs::JointTrajectoryPoint& m) {
+  return {{"positions", values(m.positions)}, {"velocities", values(m.velocities)},
+          {"accelerations", values(m.accelerations)}, {"effort", values(m.effort)},
+          {"time_from_start", seconds(m.time_from_start)}};
+}
+
+void fromJson(const json& j, trajectory_msgs::JointTrajectory& m) {
+  m.header.stamp = stampFrom(j);
+  m.joint_names = strings(j, "joint_names");
+  m.points.clear();
+  if (const auto it = j.find("points"); it != j.end() && it->is_array()) {
+    for (const json& point : *it) fromJson(point, m.points.emplace_back());
+  }
+}
+json toJson(const trajectory_msgs::JointTrajectory& m) {
+  json points = json::array();
+  for (const auto& point : m.points) points.push_back(toJson(point));
+  return {{"stamp", seconds(m.header.stamp)}, {"joint_names", m.joint_names}, {"points", std::move(points)}};
+}
 
 const BridgedType* findBridgedType(std::string_view type_name) {
   const auto& types = registry();

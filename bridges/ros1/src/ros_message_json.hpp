@@ -13,6 +13,8 @@
 #include <ros/node_handle.h>
 #include <ros/publisher.h>
 #include <ros/subscriber.h>
+#include <trajectory_msgs/JointTrajectory.h>
+#include <trajectory_msgs/JointTrajectoryPoint.h>
 
 namespace servoloop::ros1 {
 
@@ -31,6 +33,13 @@ struct BridgedType {
   // JSON → ROS message → serialised bytes → ROS message → JSON (for tests).
   std::function<nlohmann::json(const nlohmann::json& msg)> round_trip;
 };
+
+// Trajectories in the node's JSON form (also the inside of trajectory goals
+// and feedback).
+void fromJson(const nlohmann::json& j, trajectory_msgs::JointTrajectoryPoint& m);
+nlohmann::json toJson(const trajectory_msgs::JointTrajectoryPoint& m);
+void fromJson(const nlohmann::json& j, trajectory_msgs::JointTrajectory& m);
+nlohmann::json toJson(const trajectory_msgs::JointTrajectory& m);
 
 // The type, or nullptr when the bridge does not carry it.
 const BridgedType* findBridgedType(std::string_view type_name);

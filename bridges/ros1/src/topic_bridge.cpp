@@ -1,7 +1,9 @@
 #include "topic_bridge.hpp"
 
 #include <chrono>
+#include <atomic>
 #include <cmath>
+#include <memory>
 
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -32,23 +34,40 @@ void TopicBridge::discover() {
       skipped_.insert(name);
       continue;
     }
-    if (type->command) {
-      // The ROS message goes to the node's bus; a refusal (a NaN command, say)
-      // is the node's one-line error, reported without stopping the bridge.
-      from_ros_.emplace(name, type->subscribe(nh_, name, [this, name, type_name](json msg) {
-        try {
-          link_.call("topic.pub", {{"topic", name}, {"type", type_name}, {"msg", std::move(msg)}});
-        } catch (const std::exception& e) {
-          ROS_WARN_THROTTLE(1.0, "servoloop bridge: %s not delivered: %s", name.c_str(), e.what());
-        }
-      }));
-      directions_.emplace(name, "from ROS");
-    } else {
-      to_ros_.emplace(name, type->advertise(nh_, name));
-      streams_.call("topic.subscribe", {{"topic", name}});
-      directions_.emplace(name, "to ROS");
+    try {
+      bridgeTopic(name, type_name, *type);
+    } catch (const ros::InvalidNameException& e) {
+      // servoloop's names allow what ROS's do not (a '-', a leading digit).
+      ROS_WARN("servoloop bridge: topic %s stays in servoloop: ROS does not accept its name (%s)", name.c_str(), e.what());
+      skipped_.insert(name);
+      continue;
     }
     ROS_INFO("servoloop bridge: %s (%s) %s", name.c_str(), type_name.c_str(), directions_.at(name).c_str());
+  }
+}
+
+void TopicBridge::bridgeTopic(const std::string& name, const std::string& type_name, const BridgedType& type) {
+  if (type.command) {
+    // The ROS message goes to the node's bus; a refusal (a NaN command, say)
+    // is the node's one-line error, reported (at most once a second per
+    // topic) without stopping the bridge.
+    auto last_warning = std::make_shared<std::atomic<double>>(-1.0);
+    from_ros_.emplace(name, type.subscribe(nh_, name, [this, name, type_name, last_warning](json msg) {
+      try {
+        link_.call("topic.pub", {{"topic", name}, {"type", type_name}, {"msg", std::move(msg)}});
+      } catch (const std::exception& e) {
+        const double now = ros::WallTime::now().toSec();
+        double last = last_warning->load();
+        if (now - last >= 1.0 && last_warning->compare_exchange_strong(last, now)) {
+          ROS_WARN("servoloop bridge: %s not delivered: %s", name.c_str(), e.what());
+        }
+      }
+    }));
+    directions_.emplace(name, "from ROS");
+  } else {
+    to_ros_.emplace(name, type.advertise(nh_, name));
+    streams_.call("topic.subscribe", {{"topic", name}});
+    directions_.emplace(name, "to ROS");
   }
 }
 
@@ -60,7 +79,9 @@ void TopicBridge::forwardToRos(const json& stream_message) {
   try {
     it->second(msg);
   } catch (const std::exception& e) {
-    ROS_WARN_THROTTLE(1.0, "servoloop bridge: message on %s not converted: %s", topic.c_str(), e.what());
+    if (conversion_warned_.insert(topic).second) {
+      ROS_WARN("servoloop bridge: messages on %s not converted: %s (said once)", topic.c_str(), e.what());
+    }
   }
   if (const auto stamp = stream_message.find("stamp"); stamp != stream_message.end() && stamp->is_number()) {
     publishClock(stamp->get<double>());

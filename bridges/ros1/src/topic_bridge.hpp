@@ -42,6 +42,7 @@ class TopicBridge {
 
  private:
   void discover();
+  void bridgeTopic(const std::string& name, const std::string& type_name, const BridgedType& type);
   void forwardToRos(const nlohmann::json& stream_message);
   void publishClock(double sim_time);
 
@@ -52,7 +53,8 @@ class TopicBridge {
   std::map<std::string, JsonPublisher> to_ros_;
   std::map<std::string, ros::Subscriber> from_ros_;
   std::map<std::string, std::string> directions_;
-  std::set<std::string> skipped_;  // topics of types the bridge does not carry (reported once)
+  std::set<std::string> skipped_;
+  std::set<std::string> conversion_warned_;  // topics of types the bridge does not carry (reported once)
   ros::Publisher clock_;
   double last_clock_ = -1.0;
 };

@@ -107,6 +107,7 @@ struct LaunchFile {
   std::vector<TimedPublication> publish;
   std::vector<RecordSpec> record;
   std::filesystem::path plot;  // absolute; empty: no plot
+  bool ros1_bridge = false;    // start `servoloop ros1-bridge` for each robot (docs/ros1.md)
 };
 
 // Reads and checks a launch file. Throws ConfigError if it cannot be read, is
