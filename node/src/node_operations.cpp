@@ -156,7 +156,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
 
   RobotInstance& robot = robotFor(op);
   if (op == "robot.description") {
-    return {{"urdf", robot.robotDescription()}, {"path", robot.urdfPath().string()}};
+    return {{"urdf", robot.robotDescription()}, {"path", robot.urdfPath().string()}, {"model", robot.robotName()}};
   }
   if (op == "control.list") return controlList(robot);
   if (op == "control.list_joints") return controlListJoints(robot);

@@ -10,11 +10,15 @@
 #include <control_msgs/JointTrajectoryControllerState.h>
 #include <controller_manager_msgs/ListControllers.h>
 #include <controller_manager_msgs/SwitchController.h>
+#include <gazebo_msgs/ApplyJointEffort.h>
+#include <gazebo_msgs/GetJointProperties.h>
+#include <gazebo_msgs/GetModelState.h>
 #include <gtest/gtest.h>
 #include <ros/message_traits.h>
 #include <ros/service_traits.h>
 
 #include "controller_manager_services.hpp"
+#include "gazebo_services.hpp"
 #include "parameter_bridge.hpp"
 #include "ros_message_json.hpp"
 
@@ -38,6 +42,13 @@ TEST(Ros1Messages, GeneratedPackagesHaveRosMd5sums) {
             "69636787b6ecbde4d61d711979bc7ecb");
   EXPECT_EQ(std::string(ros::message_traits::MD5Sum<control_msgs::FollowJointTrajectoryActionGoal>::value()),
             "cff5c1d533bf2f82dd0138d57f4304bb");
+  // gazebo_msgs' services as Gazebo's ROS API serves them (since ROS Jade).
+  EXPECT_EQ(std::string(ros::service_traits::MD5Sum<gazebo_msgs::ApplyJointEffort>::value()),
+            "c0039811b8cc919490b3cff748cdf46b");
+  EXPECT_EQ(std::string(ros::service_traits::MD5Sum<gazebo_msgs::GetJointProperties>::value()),
+            "7b30be900f50aa21efec4a0ec92d91c9");
+  EXPECT_EQ(std::string(ros::service_traits::MD5Sum<gazebo_msgs::GetModelState>::value()),
+            "4c515e936d3319c9610c559c60bfc3d4");
 }
 
 TEST(Ros1Messages, EveryBridgedTypeRoundTripsThroughRosSerialisation) {
@@ -129,6 +140,40 @@ TEST(Ros1Messages, ParametersKeepTheirYamlTypes) {
   ASSERT_EQ(copy["l"].getType(), XmlRpc::XmlRpcValue::TypeArray);
   EXPECT_EQ(copy["l"][0].getType(), XmlRpc::XmlRpcValue::TypeInt);
   EXPECT_EQ(static_cast<double>(copy["l"][1]), 2.5);
+}
+
+TEST(Ros1GazeboServices, EffortsAddUpOverTheirWindows) {
+  servoloop::ros1::EffortSchedule schedule;
+  schedule.apply(2.0, 0.0, -1.0, 1.0);   // from now (1.0 s), without end
+  schedule.apply(0.5, 0.0, 0.5, 1.0);    // from now for 0.5 s: [1.0, 1.5)
+  schedule.apply(-1.0, 2.0, 1.0, 1.0);   // later: [2.0, 3.0)
+  schedule.apply(7.0, 0.0, 0.0, 1.0);    // duration 0: nothing, as in Gazebo
+  EXPECT_EQ(schedule.sumAt(1.0), 2.5);
+  EXPECT_EQ(schedule.sumAt(1.49), 2.5);
+  EXPECT_EQ(schedule.sumAt(1.5), 2.0);
+  EXPECT_EQ(schedule.sumAt(2.0), 1.0);
+  EXPECT_EQ(schedule.sumAt(2.999), 1.0);
+  EXPECT_EQ(schedule.sumAt(3.0), 2.0);
+  EXPECT_EQ(schedule.sumAt(1e9), 2.0);
+}
+
+TEST(Ros1GazeboServices, JointTypesAndDampingComeFromTheUrdf) {
+  const auto joints = servoloop::ros1::urdfJoints(R"(<robot name="r">
+    <link name="a"/><link name="b"/><link name="c"/>
+    <joint name="hinge" type="revolute"><parent link="a"/><child link="b"/><dynamics damping="0.7"/></joint>
+    <joint name="wheel" type="continuous"><parent link="b"/><child link="c"/></joint>
+    <joint name="slide" type="prismatic"><parent link="b"/><child link="c"/></joint>
+    <joint name="glue" type="fixed"><parent link="a"/><child link="c"/></joint>
+    <transmission name="t"><joint name="hinge"/></transmission>
+  </robot>)");
+  ASSERT_EQ(joints.size(), 4u);
+  EXPECT_EQ(joints.at("hinge").gazebo_type, gazebo_msgs::GetJointProperties::Response::REVOLUTE);
+  EXPECT_EQ(joints.at("hinge").damping, 0.7);
+  EXPECT_EQ(joints.at("wheel").gazebo_type, gazebo_msgs::GetJointProperties::Response::CONTINUOUS);
+  EXPECT_EQ(joints.at("wheel").damping, 0.0);
+  EXPECT_EQ(joints.at("slide").gazebo_type, gazebo_msgs::GetJointProperties::Response::PRISMATIC);
+  EXPECT_EQ(joints.at("glue").gazebo_type, gazebo_msgs::GetJointProperties::Response::FIXED);
+  EXPECT_THROW(servoloop::ros1::urdfJoints("<robot"), std::runtime_error);
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ struct BridgeOptions {
   std::string ns;
   bool no_sim_time = false;
   bool print_env = false;
+  bool no_gazebo_services = false;
 };
 
 void runBridge(const BridgeOptions& options) {
@@ -41,6 +42,7 @@ void runBridge(const BridgeOptions& options) {
   std::vector<std::string> args = {bridge.string()};
   if (!options.ns.empty()) args.insert(args.end(), {"--namespace", options.ns});
   if (options.no_sim_time) args.emplace_back("--no-sim-time");
+  if (options.no_gazebo_services) args.emplace_back("--no-gazebo-services");
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
@@ -56,6 +58,8 @@ void addRos1BridgeCommand(CLI::App& root) {
                      "Robot namespace of the node to bridge, e.g. /one_DOF_robot (default: the only running node)")
       ->type_name("NS");
   bridge->add_flag("--no-sim-time", options->no_sim_time, "Leave /use_sim_time false");
+  bridge->add_flag("--no-gazebo-services", options->no_gazebo_services,
+                   "Do not serve /gazebo/apply_joint_effort, get_joint_properties and get_model_state");
   bridge->add_flag("--print-env", options->print_env,
                    "Print the PYTHONPATH that lets rostopic and rosservice read control_msgs and "
                    "controller_manager_msgs (eval \"$(servoloop ros1-bridge --print-env)\")");

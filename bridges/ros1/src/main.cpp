@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -16,6 +17,8 @@
 
 #include "action_bridge.hpp"
 #include "controller_manager_services.hpp"
+#include "gazebo_services.hpp"
+#include "robot_state_cache.hpp"
 #include "node_link.hpp"
 #include "parameter_bridge.hpp"
 #include "topic_bridge.hpp"
@@ -41,7 +44,7 @@ bool waitForMaster() {
   return false;
 }
 
-int runBridge(const std::string& requested_namespace, bool use_sim_time) {
+int runBridge(const std::string& requested_namespace, bool use_sim_time, bool gazebo_services) {
   const std::string node_namespace = servoloop::ros1::pickNodeNamespace(requested_namespace);
   servoloop::ros1::NodeLink link(node_namespace);
 
@@ -52,7 +55,15 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time) {
   // never holds up the commands flowing from ROS on `link`.
   servoloop::ros1::NodeLink service_link(node_namespace);
   servoloop::ros1::ControllerManagerServices services(nh, service_link);
-  servoloop::ros1::TopicBridge topics(nh, link);
+  servoloop::ros1::RobotStateCache robot_state;
+  servoloop::ros1::TopicBridge topics(nh, link, robot_state);
+  // Gazebo's joint and model services, on a connection of their own.
+  std::optional<servoloop::ros1::NodeLink> gazebo_link;
+  std::optional<servoloop::ros1::GazeboServices> gazebo;
+  if (gazebo_services) {
+    gazebo_link.emplace(node_namespace);
+    gazebo.emplace(nh, *gazebo_link, robot_state);
+  }
   // Actions on a connection of their own (the node answers a goal's status
   // only on the connection that sent it), polled on a thread of their own.
   servoloop::ros1::NodeLink action_link(node_namespace);
@@ -80,7 +91,8 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time) {
   std::cout << "servoloop ros1-bridge: bridging " << node_namespace << " to the ROS master at "
             << ros::master::getURI() << " (" << copy.parameters << " parameters"
             << (copy.robot_description ? ", robot_description" : "") << ", /clock, "
-            << (node_namespace == "/" ? "" : node_namespace) << "/controller_manager/*)" << std::endl;
+            << (node_namespace == "/" ? "" : node_namespace) << "/controller_manager/*"
+            << (gazebo_services ? ", /gazebo/*" : "") << ")" << std::endl;
   std::string failure;
   try {
     topics.run(g_stop);
@@ -105,6 +117,9 @@ int main(int argc, char** argv) {
                  "Robot namespace of the node to bridge, e.g. /one_DOF_robot (default: the only running node)")
       ->type_name("NS");
   app.add_flag("--no-sim-time", no_sim_time, "Leave /use_sim_time false (ROS nodes keep the wall clock)");
+  bool no_gazebo_services = false;
+  app.add_flag("--no-gazebo-services", no_gazebo_services,
+               "Do not serve /gazebo/apply_joint_effort, get_joint_properties, get_model_state");
   // ROS remappings (name:=value) pass through to ros::init.
   app.allow_extras();
   CLI11_PARSE(app, argc, argv);
@@ -115,7 +130,7 @@ int main(int argc, char** argv) {
     const std::string ros_name = "servoloop_bridge" + (requested_namespace.empty() ? std::string() :
         "_" + servoloop::ros1::namespaceStem(requested_namespace));
     ros::init(argc, argv, ros_name, ros::init_options::NoSigintHandler);
-    return runBridge(requested_namespace, !no_sim_time);
+    return runBridge(requested_namespace, !no_sim_time, !no_gazebo_services);
   } catch (const std::exception& e) {
     std::cerr << "servoloop ros1-bridge: " << e.what() << "\n";
     return 1;

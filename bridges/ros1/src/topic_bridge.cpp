@@ -14,9 +14,10 @@ namespace servoloop::ros1 {
 using nlohmann::json;
 using SteadyClock = std::chrono::steady_clock;
 
-TopicBridge::TopicBridge(ros::NodeHandle& nh, NodeLink& link, TopicBridgeOptions options)
+TopicBridge::TopicBridge(ros::NodeHandle& nh, NodeLink& link, RobotStateCache& state, TopicBridgeOptions options)
     : nh_(nh),
       link_(link),
+      state_(state),
       options_(options),
       streams_(link.nodeNamespace()),
       clock_(nh.advertise<rosgraph_msgs::Clock>("/clock", 10)) {}
@@ -76,6 +77,9 @@ void TopicBridge::forwardToRos(const json& stream_message) {
   const auto it = to_ros_.find(topic);
   if (it == to_ros_.end()) return;
   const json& msg = stream_message.at("msg");
+  const std::string& ns = link_.nodeNamespace();
+  if (topic == (ns == "/" ? "" : ns) + "/joint_states") state_.updateJoints(msg);
+  if (topic == (ns == "/" ? "" : ns) + "/ground_truth/odom") state_.updateGroundTruth(msg);
   try {
     it->second(msg);
   } catch (const std::exception& e) {
@@ -94,6 +98,7 @@ void TopicBridge::publishClock(double sim_time) {
   clock.clock = ros::Time(sim_time);
   clock_.publish(clock);
   last_clock_ = sim_time;
+  state_.updateSimTime(sim_time);
 }
 
 void TopicBridge::run(const std::atomic<bool>& stop) {

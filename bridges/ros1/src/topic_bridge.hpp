@@ -18,6 +18,7 @@
 #include <ros/subscriber.h>
 
 #include "node_link.hpp"
+#include "robot_state_cache.hpp"
 #include "ros_message_json.hpp"
 
 namespace servoloop::ros1 {
@@ -31,7 +32,9 @@ struct TopicBridgeOptions {
 
 class TopicBridge {
  public:
-  TopicBridge(ros::NodeHandle& nh, NodeLink& link, TopicBridgeOptions options = {});
+  // `state` receives the robot's joint states, base ground truth and
+  // simulated time as they pass.
+  TopicBridge(ros::NodeHandle& nh, NodeLink& link, RobotStateCache& state, TopicBridgeOptions options = {});
 
   // Bridges until `stop` is set or ROS shuts down. Throws std::runtime_error
   // when the node's connection closes (the node ended).
@@ -48,6 +51,7 @@ class TopicBridge {
 
   ros::NodeHandle& nh_;
   NodeLink& link_;
+  RobotStateCache& state_;
   TopicBridgeOptions options_;
   NodeLink streams_;  // a link of its own: subscriptions, discovery, the clock
   std::map<std::string, JsonPublisher> to_ros_;

@@ -1,0 +1,251 @@
+#include "gazebo_services.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <gazebo_msgs/ApplyJointEffort.h>
+#include <gazebo_msgs/GetJointProperties.h>
+#include <gazebo_msgs/GetModelState.h>
+#include <ros/ros.h>
+#include <tinyxml2.h>
+
+namespace servoloop::ros1 {
+
+using nlohmann::json;
+
+std::map<std::string, UrdfJoint> urdfJoints(const std::string& urdf_xml) {
+  tinyxml2::XMLDocument document;
+  if (document.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw std::runtime_error(std::string("the robot description does not read as XML: ") + document.ErrorStr());
+  }
+  const tinyxml2::XMLElement* robot = document.FirstChildElement("robot");
+  if (robot == nullptr) throw std::runtime_error("the robot description has no <robot> element");
+  std::map<std::string, UrdfJoint> joints;
+  for (const auto* joint = robot->FirstChildElement("joint"); joint != nullptr; joint = joint->NextSiblingElement("joint")) {
+    const char* name = joint->Attribute("name");
+    const char* type = joint->Attribute("type");
+    if (name == nullptr || type == nullptr) continue;  // a <gazebo> or transmission <joint> reference
+    UrdfJoint out;
+    const std::string kind = type;
+    if (kind == "revolute") out.gazebo_type = gazebo_msgs::GetJointProperties::Response::REVOLUTE;
+    else if (kind == "continuous") out.gazebo_type = gazebo_msgs::GetJointProperties::Response::CONTINUOUS;
+    else if (kind == "prismatic") out.gazebo_type = gazebo_msgs::GetJointProperties::Response::PRISMATIC;
+    else if (kind == "fixed") out.gazebo_type = gazebo_msgs::GetJointProperties::Response::FIXED;
+    else if (kind == "floating") out.gazebo_type = gazebo_msgs::GetJointProperties::Response::BALL;
+    else out.gazebo_type = gazebo_msgs::GetJointProperties::Response::UNIVERSAL;  // planar: two DOF
+    if (const auto* dynamics = joint->FirstChildElement("dynamics")) out.damping = dynamics->DoubleAttribute("damping", 0.0);
+    joints[name] = out;
+  }
+  return joints;
+}
+
+void EffortSchedule::apply(double effort, double start_s, double duration_s, double now_s) {
+  if (duration_s == 0.0 || !std::isfinite(effort)) return;
+  const double start = start_s > 0.0 ? start_s : now_s;
+  const double end = duration_s < 0.0 ? std::numeric_limits<double>::infinity() : start + duration_s;
+  entries_.push_back({effort, start, end});
+}
+
+double EffortSchedule::sumAt(double now_s) {
+  entries_.erase(std::remove_if(entries_.begin(), entries_.end(), [now_s](const Entry& e) { return e.end_s <= now_s; }),
+                 entries_.end());
+  double sum = 0.0;
+  for (const Entry& e : entries_) {
+    if (e.start_s <= now_s) sum += e.effort;
+  }
+  return sum;
+}
+
+namespace {
+
+// Gazebo names a joint "joint1" or, scoped, "model::joint1".
+std::string unscoped(const std::string& name) {
+  const auto at = name.rfind("::");
+  return at == std::string::npos ? name : name.substr(at + 2);
+}
+
+}  // namespace
+
+GazeboServices::GazeboServices(ros::NodeHandle& nh, NodeLink& link, const RobotStateCache& state)
+    : link_(link), state_(state), namespace_(link.nodeNamespace()) {
+  const json description = link.call("robot.description");
+  model_ = description.value("model", "");
+  joints_ = urdfJoints(description.value("urdf", ""));
+  try {
+    spawn_pose_ = link.call("param.get", {{"name", namespace_ + "/sim/pose"}}).at("value").get<std::vector<double>>();
+  } catch (const std::exception&) {
+    spawn_pose_.assign(6, 0.0);  // no pose given: the world's origin
+  }
+  spawn_pose_.resize(6, 0.0);
+
+  servers_.push_back(nh.advertiseService<gazebo_msgs::GetJointProperties::Request, gazebo_msgs::GetJointProperties::Response>(
+      "/gazebo/get_joint_properties",
+      [this](gazebo_msgs::GetJointProperties::Request& request, gazebo_msgs::GetJointProperties::Response& response) {
+        const std::string name = unscoped(request.joint_name);
+        const auto joint = joints_.find(name);
+        if (joint == joints_.end()) {
+          response.success = false;
+          response.status_message = "GetJointProperties: joint [" + request.joint_name + "] does not exist in " + model_;
+          return true;
+        }
+        response.type = static_cast<std::uint8_t>(joint->second.gazebo_type);
+        response.damping.push_back(joint->second.damping);
+        // The first calls may come before the first joint state: wait for it
+        // a little (a node written for Gazebo reads position[0] at once).
+        for (int i = 0; i < 100 && !state_.joint(name); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        if (const auto sample = state_.joint(name)) {
+          response.position.push_back(sample->position);
+          response.rate.push_back(sample->velocity);
+          response.success = true;
+          response.status_message = "GetJointProperties: got properties";
+        } else {
+          response.position.push_back(std::numeric_limits<double>::quiet_NaN());
+          response.rate.push_back(std::numeric_limits<double>::quiet_NaN());
+          response.success = false;
+          response.status_message = "GetJointProperties: no joint state of [" + name +
+                                    "] yet: a joint_state_controller must run on " + namespace_;
+        }
+        return true;
+      }));
+
+  servers_.push_back(nh.advertiseService<gazebo_msgs::ApplyJointEffort::Request, gazebo_msgs::ApplyJointEffort::Response>(
+      "/gazebo/apply_joint_effort",
+      [this](gazebo_msgs::ApplyJointEffort::Request& request, gazebo_msgs::ApplyJointEffort::Response& response) {
+        const std::string name = unscoped(request.joint_name);
+        if (joints_.count(name) == 0) {
+          response.success = false;
+          response.status_message = "ApplyJointEffort: joint [" + request.joint_name + "] does not exist in " + model_;
+          return true;
+        }
+        if (!std::isfinite(request.effort)) {
+          response.success = false;
+          response.status_message = "ApplyJointEffort: effort " + std::to_string(request.effort) + " is not a finite number";
+          return true;
+        }
+        std::string why;
+        const std::string topic = effortTopicFor(name, why);
+        if (topic.empty()) {
+          response.success = false;
+          response.status_message = "ApplyJointEffort: " + why;
+          return true;
+        }
+        {
+          std::lock_guard lock(mutex_);
+          schedules_[topic].apply(request.effort, request.start_time.toSec(), request.duration.toSec(), simTime());
+        }
+        tick();  // an effort that starts now is sent now
+        response.success = true;
+        response.status_message = "ApplyJointEffort: effort set";
+        return true;
+      }));
+
+  servers_.push_back(nh.advertiseService<gazebo_msgs::GetModelState::Request, gazebo_msgs::GetModelState::Response>(
+      "/gazebo/get_model_state",
+      [this](gazebo_msgs::GetModelState::Request& request, gazebo_msgs::GetModelState::Response& response) {
+        if (request.model_name != model_) {
+          response.success = false;
+          response.status_message = "GetModelState: model [" + request.model_name + "] does not exist (this bridge serves [" +
+                                    model_ + "])";
+          return true;
+        }
+        response.header.stamp = ros::Time(std::max(state_.simTime(), 0.0));
+        response.header.frame_id = request.relative_entity_name;
+        if (const auto odometry = state_.groundTruth()) {
+          const json& pose = odometry->at("pose");
+          response.pose.position.x = pose.at("position").value("x", 0.0);
+          response.pose.position.y = pose.at("position").value("y", 0.0);
+          response.pose.position.z = pose.at("position").value("z", 0.0);
+          response.pose.orientation.x = pose.at("orientation").value("x", 0.0);
+          response.pose.orientation.y = pose.at("orientation").value("y", 0.0);
+          response.pose.orientation.z = pose.at("orientation").value("z", 0.0);
+          response.pose.orientation.w = pose.at("orientation").value("w", 1.0);
+          const json& twist = odometry->at("twist");
+          response.twist.linear.x = twist.at("linear").value("x", 0.0);
+          response.twist.linear.y = twist.at("linear").value("y", 0.0);
+          response.twist.linear.z = twist.at("linear").value("z", 0.0);
+          response.twist.angular.x = twist.at("angular").value("x", 0.0);
+          response.twist.angular.y = twist.at("angular").value("y", 0.0);
+          response.twist.angular.z = twist.at("angular").value("z", 0.0);
+        } else {
+          // A fixed base stays where it was spawned (roll, pitch, yaw → quaternion).
+          response.pose.position.x = spawn_pose_[0];
+          response.pose.position.y = spawn_pose_[1];
+          response.pose.position.z = spawn_pose_[2];
+          const double cr = std::cos(spawn_pose_[3] / 2), sr = std::sin(spawn_pose_[3] / 2);
+          const double cp = std::cos(spawn_pose_[4] / 2), sp = std::sin(spawn_pose_[4] / 2);
+          const double cy = std::cos(spawn_pose_[5] / 2), sy = std::sin(spawn_pose_[5] / 2);
+          response.pose.orientation.w = cr * cp * cy + sr * sp * sy;
+          response.pose.orientation.x = sr * cp * cy - cr * sp * sy;
+          response.pose.orientation.y = cr * sp * cy + sr * cp * sy;
+          response.pose.orientation.z = cr * cp * sy - sr * sp * cy;
+        }
+        response.success = true;
+        response.status_message = "GetModelState: got properties";
+        return true;
+      }));
+
+  ticker_ = std::thread([this] {
+    while (!stop_.load()) {
+      tick();
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  });
+}
+
+GazeboServices::~GazeboServices() {
+  stop_.store(true);
+  if (ticker_.joinable()) ticker_.join();
+}
+
+std::string GazeboServices::effortTopicFor(const std::string& joint, std::string& why) {
+  const json reply = link_.call("control.list");
+  for (const json& controller : reply.at("controllers")) {
+    if (controller.value("type", "") != "effort_controllers/JointEffortController" ||
+        controller.value("state", "") != "running") {
+      continue;
+    }
+    for (const json& claim : controller.value("claimed_resources", json::array())) {
+      const auto resources = claim.value("resources", std::vector<std::string>{});
+      if (std::find(resources.begin(), resources.end(), joint) != resources.end()) {
+        return namespace_ + "/" + controller.value("name", "") + "/command";
+      }
+    }
+  }
+  why = "no running effort_controllers/JointEffortController claims [" + joint + "] in " + namespace_ +
+        ": servoloop applies Gazebo joint efforts through one (add it to the controllers; docs/ros1.md)";
+  return "";
+}
+
+double GazeboServices::simTime() {
+  // The node's own clock: the bridged stamps reach the bridge in bursts (the
+  // node delivers its bus to socket clients every 10 ms of simulated time).
+  try {
+    return link_.call("ping").value("sim_time", state_.simTime());
+  } catch (const std::exception&) {
+    return state_.simTime();
+  }
+}
+
+void GazeboServices::tick() {
+  // Under the lock from the sum to its publication, so two ticks (the
+  // ticker's and a service call's) never send their sums out of order.
+  std::lock_guard lock(mutex_);
+  if (schedules_.empty()) return;
+  const double now = simTime();
+  for (auto& [topic, schedule] : schedules_) {
+    const double sum = schedule.sumAt(now);
+    const auto last = published_.find(topic);
+    if (last != published_.end() && last->second == sum) continue;
+    published_[topic] = sum;
+    try {
+      link_.call("topic.pub", {{"topic", topic}, {"type", "std_msgs/Float64"}, {"msg", {{"data", sum}}}});
+    } catch (const std::exception& e) {
+      ROS_WARN("/gazebo/apply_joint_effort: %s not delivered: %s", topic.c_str(), e.what());
+    }
+  }
+}
+
+}  // namespace servoloop::ros1
