@@ -69,7 +69,7 @@ Ros1BridgeProcesses::~Ros1BridgeProcesses() { stop(); }
 void Ros1BridgeProcesses::stop() {
   for (pid_t pid : children_) ::kill(pid, SIGINT);
   for (pid_t pid : children_) {
-    if (!reapWithin(pid, 5.0)) {
+    if (!reapWithin(pid, 15.0)) {
       ::kill(pid, SIGKILL);
       reapWithin(pid, 5.0);
     }

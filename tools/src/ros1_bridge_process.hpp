@@ -20,7 +20,7 @@ std::filesystem::path ros1BridgeProgram();
 std::filesystem::path ros1PythonPath();
 
 // Bridges started as child processes, one per robot namespace; stopped
-// (SIGINT, then SIGKILL after 5 s) when this object goes. A bridge that ends
+// (SIGINT, then SIGKILL after 15 s) when this object goes. A bridge that ends
 // on its own leaves the node running.
 class Ros1BridgeProcesses {
  public:

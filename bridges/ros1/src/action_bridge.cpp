@@ -1,6 +1,7 @@
 #include "action_bridge.hpp"
 
 #include <cmath>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -89,6 +90,15 @@ class ActionServerBridge final : public BridgedAction {
       in_flight.assign(goals_.begin(), goals_.end());
     }
     for (auto& [goal_id, handle] : in_flight) {
+      // A cancel that came while the goal was being sent found no goal id
+      // yet: actionlib left the goal PREEMPTING; pass the cancel on now.
+      if (handle.getGoalStatus().status == actionlib_msgs::GoalStatus::PREEMPTING && cancel_sent_.insert(goal_id).second) {
+        try {
+          link_.call("action.cancel", {{"goal_id", goal_id}});
+        } catch (const std::exception& e) {
+          ROS_WARN("%s: cancel not delivered: %s", name_.c_str(), e.what());
+        }
+      }
       json status;
       try {
         status = link_.call("action.status", {{"goal_id", goal_id}});
@@ -133,6 +143,11 @@ class ActionServerBridge final : public BridgedAction {
     }
     if (reply.value("state", "") == "REJECTED") {
       handle.setRejected(Result(), "rejected by the controller");
+      try {
+        // Reading the ended goal's status lets the node forget it.
+        link_.call("action.status", {{"goal_id", reply.at("goal_id")}});
+      } catch (const std::exception&) {
+      }
       return;
     }
     handle.setAccepted();
@@ -157,6 +172,7 @@ class ActionServerBridge final : public BridgedAction {
   }
 
   void forget(std::int64_t goal_id) {
+    cancel_sent_.erase(goal_id);
     std::lock_guard lock(mutex_);
     goals_.erase(goal_id);
   }
@@ -166,6 +182,7 @@ class ActionServerBridge final : public BridgedAction {
   std::string type_;
   std::mutex mutex_;
   std::map<std::int64_t, GoalHandle> goals_;
+  std::set<std::int64_t> cancel_sent_;  // poll()'s own
   Server server_;  // last: its callbacks use the members above
 };
 
@@ -179,11 +196,18 @@ void ActionBridge::discover() {
     const std::string name = action.value("name", "");
     const std::string type = action.value("type", "");
     if (name.empty() || actions_.count(name) != 0 || skipped_.count(name) != 0) continue;
-    if (type == "control_msgs/FollowJointTrajectory") {
-      actions_.emplace(name, std::make_unique<ActionServerBridge<control_msgs::FollowJointTrajectoryAction>>(nh_, link_, name, type));
-    } else if (type == "control_msgs/GripperCommand") {
-      actions_.emplace(name, std::make_unique<ActionServerBridge<control_msgs::GripperCommandAction>>(nh_, link_, name, type));
-    } else {
+    try {
+      if (type == "control_msgs/FollowJointTrajectory") {
+        actions_.emplace(name, std::make_unique<ActionServerBridge<control_msgs::FollowJointTrajectoryAction>>(nh_, link_, name, type));
+      } else if (type == "control_msgs/GripperCommand") {
+        actions_.emplace(name, std::make_unique<ActionServerBridge<control_msgs::GripperCommandAction>>(nh_, link_, name, type));
+      }
+    } catch (const ros::InvalidNameException& e) {
+      ROS_WARN("servoloop bridge: action %s stays in servoloop: ROS does not accept its name (%s)", name.c_str(), e.what());
+      skipped_.insert(name);
+      continue;
+    }
+    if (type != "control_msgs/FollowJointTrajectory" && type != "control_msgs/GripperCommand") {
       ROS_WARN("servoloop bridge: action %s has type %s, which the bridge does not serve", name.c_str(), type.c_str());
       skipped_.insert(name);
       continue;

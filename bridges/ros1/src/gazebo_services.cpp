@@ -44,7 +44,8 @@ std::map<std::string, UrdfJoint> urdfJoints(const std::string& urdf_xml) {
 
 void EffortSchedule::apply(double effort, double start_s, double duration_s, double now_s) {
   if (duration_s == 0.0 || !std::isfinite(effort)) return;
-  const double start = start_s > 0.0 ? start_s : now_s;
+  // A start in the past (or 0) is now, as Gazebo moves it.
+  const double start = std::max(start_s, now_s);
   const double end = duration_s < 0.0 ? std::numeric_limits<double>::infinity() : start + duration_s;
   entries_.push_back({effort, start, end});
 }
@@ -198,11 +199,32 @@ GazeboServices::GazeboServices(ros::NodeHandle& nh, NodeLink& link, const RobotS
 GazeboServices::~GazeboServices() {
   stop_.store(true);
   if (ticker_.joinable()) ticker_.join();
+  // What the bridge applied ends with it.
+  std::lock_guard lock(mutex_);
+  for (const auto& [topic, sum] : published_) {
+    if (sum == 0.0) continue;
+    try {
+      link_.call("topic.pub", {{"topic", topic}, {"type", "std_msgs/Float64"}, {"msg", {{"data", 0.0}}}}, 2.0);
+    } catch (const std::exception&) {
+      // The node is gone: nothing to undo.
+    }
+  }
 }
 
 std::string GazeboServices::effortTopicFor(const std::string& joint, std::string& why) {
-  const json reply = link_.call("control.list");
-  for (const json& controller : reply.at("controllers")) {
+  // The controller list, read at most once a second (a node written for
+  // Gazebo calls at 100 Hz or more).
+  const auto now = std::chrono::steady_clock::now();
+  json reply;
+  {
+    std::lock_guard lock(controllers_mutex_);
+    if (now - controllers_read_ > std::chrono::seconds(1)) {
+      controllers_ = link_.call("control.list").at("controllers");
+      controllers_read_ = now;
+    }
+    reply = controllers_;
+  }
+  for (const json& controller : reply) {
     if (controller.value("type", "") != "effort_controllers/JointEffortController" ||
         controller.value("state", "") != "running") {
       continue;
@@ -235,16 +257,23 @@ void GazeboServices::tick() {
   std::lock_guard lock(mutex_);
   if (schedules_.empty()) return;
   const double now = simTime();
-  for (auto& [topic, schedule] : schedules_) {
-    const double sum = schedule.sumAt(now);
+  for (auto it = schedules_.begin(); it != schedules_.end();) {
+    const std::string& topic = it->first;
+    const double sum = it->second.sumAt(now);
     const auto last = published_.find(topic);
-    if (last != published_.end() && last->second == sum) continue;
+    if (last != published_.end() && last->second == sum) {
+      // Nothing left to apply and 0 sent: stop watching this topic.
+      it = it->second.empty() && sum == 0.0 ? schedules_.erase(it) : std::next(it);
+      continue;
+    }
     published_[topic] = sum;
     try {
       link_.call("topic.pub", {{"topic", topic}, {"type", "std_msgs/Float64"}, {"msg", {{"data", sum}}}});
     } catch (const std::exception& e) {
       ROS_WARN("/gazebo/apply_joint_effort: %s not delivered: %s", topic.c_str(), e.what());
+      published_.erase(topic);  // sent again at the next tick
     }
+    ++it;
   }
 }
 

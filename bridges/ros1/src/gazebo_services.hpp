@@ -20,6 +20,7 @@
 // A call the bridge cannot serve answers success=false with the reason in
 // status_message (for example, no effort controller on the joint).
 #include <atomic>
+#include <chrono>
 #include <map>
 #include <mutex>
 #include <string>
@@ -47,7 +48,7 @@ std::map<std::string, UrdfJoint> urdfJoints(const std::string& urdf_xml);
 // Efforts applied over windows of simulated time; the sum at a time.
 class EffortSchedule {
  public:
-  // start_s <= 0: from `now_s`; duration_s < 0: without end; 0: nothing.
+  // From max(start_s, now_s); duration_s < 0: without end; 0: nothing.
   void apply(double effort, double start_s, double duration_s, double now_s);
   // The sum of the efforts whose window holds `now_s`; forgets ended ones.
   double sumAt(double now_s);
@@ -83,6 +84,10 @@ class GazeboServices {
   std::string namespace_;
   std::map<std::string, UrdfJoint> joints_;
   std::vector<double> spawn_pose_;  // x y z roll pitch yaw
+
+  std::mutex controllers_mutex_;
+  nlohmann::json controllers_ = nlohmann::json::array();
+  std::chrono::steady_clock::time_point controllers_read_{};
 
   std::mutex mutex_;
   std::map<std::string, EffortSchedule> schedules_;  // by command topic

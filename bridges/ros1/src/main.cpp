@@ -29,11 +29,13 @@ std::atomic<bool> g_stop{false};
 
 void requestStop(int) { g_stop.store(true); }
 
-// Waits for the ROS master, saying once where it looks. False when stopped.
-bool waitForMaster() {
+// Waits for the ROS master, saying once where it looks. False when stopped;
+// throws when the node ends meanwhile.
+bool waitForMaster(servoloop::ros1::NodeLink& link) {
   bool said = false;
   while (!g_stop.load()) {
     if (ros::master::check()) return true;
+    link.call("ping");  // the node still runs
     if (!said) {
       std::cerr << "servoloop ros1-bridge: waiting for the ROS master at " << ros::master::getURI()
                 << " (start roscore, or set ROS_MASTER_URI)\n";
@@ -48,7 +50,7 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   const std::string node_namespace = servoloop::ros1::pickNodeNamespace(requested_namespace);
   servoloop::ros1::NodeLink link(node_namespace);
 
-  if (!waitForMaster()) return 0;
+  if (!waitForMaster(link)) return 0;
   ros::NodeHandle nh;
   const servoloop::ros1::ParameterCopy copy = servoloop::ros1::copyParametersToRos(link, use_sim_time);
   // The services on a connection of their own: a switch that takes a while
@@ -68,24 +70,29 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   // only on the connection that sent it), polled on a thread of their own.
   servoloop::ros1::NodeLink action_link(node_namespace);
   servoloop::ros1::ActionBridge actions(nh, action_link);
-  ros::AsyncSpinner spinner(2);
+  // Service calls (a switch, a goal being sent, a first joint state awaited)
+  // may take a while: enough threads that commands still flow meanwhile.
+  ros::AsyncSpinner spinner(4);
   spinner.start();
-  std::atomic<bool> actions_failed{false};
   std::thread action_thread([&] {
-    try {
-      auto next_discovery = std::chrono::steady_clock::now();
-      while (!g_stop.load() && ros::ok()) {
+    // A failed request (a timeout, say) is reported at most once a second and
+    // tried again; the node ending is noticed by the topic thread.
+    auto next_discovery = std::chrono::steady_clock::now();
+    auto next_report = std::chrono::steady_clock::now();
+    while (!g_stop.load() && ros::ok()) {
+      try {
         if (std::chrono::steady_clock::now() >= next_discovery) {
-          actions.discover();
           next_discovery += std::chrono::seconds(1);
+          actions.discover();
         }
         actions.poll();
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      } catch (const std::exception& e) {
+        if (std::chrono::steady_clock::now() >= next_report) {
+          std::cerr << "servoloop ros1-bridge: actions: " << e.what() << "\n";
+          next_report = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+        }
       }
-    } catch (const std::exception& e) {
-      std::cerr << "servoloop ros1-bridge: actions: " << e.what() << "\n";
-      actions_failed.store(true);
-      g_stop.store(true);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   });
   std::cout << "servoloop ros1-bridge: bridging " << node_namespace << " to the ROS master at "
@@ -104,7 +111,7 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   spinner.stop();
   ros::shutdown();
   if (!failure.empty()) throw std::runtime_error(failure + "; the bridge stops");
-  return actions_failed.load() ? 1 : 0;
+  return 0;
 }
 
 }  // namespace
