@@ -2,8 +2,9 @@
 # The ROS 1 bridge's figures (docs/benchmarks.md, "The ROS 1 bridge"): command
 # latency from a ROS publisher to the node's bus (against the same commands
 # over the node's socket), joint-state delivery at 50 Hz and 1 kHz, and the
-# loop's statistics under the same client work without and with the bridge. Needs a build with the bridge
-# (bash scripts/install_ros1.sh, then build) and runs roscore on a free port.
+# loop's statistics under the same client work without and with the bridge.
+# Needs a build with the bridge (bash scripts/install_ros1.sh, then build) and
+# runs roscore on a free port.
 #   BUILD_DIR  build folder (default: build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,25 +12,11 @@ build=${BUILD_DIR:-build}
 bin="$build/bin"
 [ -x "$bin/servoloop_ros1_bridge" ] || { echo "no ROS 1 bridge in $build: bash scripts/install_ros1.sh, then build" >&2; exit 1; }
 
-scratch=$(mktemp -d /tmp/servoloop-bench-ros1.XXXXXX)
-export SERVOLOOP_RUN_DIR="$scratch/run" ROS_HOME="$scratch/ros" ROS_LOG_DIR="$scratch/ros/log" ROS_HOSTNAME=localhost
-mkdir -p "$SERVOLOOP_RUN_DIR" && chmod 700 "$SERVOLOOP_RUN_DIR"
-port=$(/usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-export ROS_MASTER_URI="http://localhost:$port"
-eval "$("$bin/servoloop" ros1-bridge --print-env)"
+# shellcheck source=scripts/ros1_session.sh
+source scripts/ros1_session.sh
 ns=/one_DOF_robot
-pids=()
-cleanup() {
-  for pid in "${pids[@]}"; do kill -INT "$pid" 2>/dev/null || true; done
-  sleep 2
-  for pid in "${pids[@]}"; do kill -KILL -- "-$pid" 2>/dev/null || kill -KILL "$pid" 2>/dev/null || true; done
-  rm -rf "$scratch"
-}
-trap cleanup EXIT
-
-setsid roscore -p "$port" > "$scratch/roscore.log" 2>&1 & pids+=($!)
-until rosparam get /rosdistro > /dev/null 2>&1; do sleep 0.2; done
-"$bin/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --rtf 1 > "$scratch/node.log" 2>&1 & pids+=($!)
+start_roscore
+start_background node.log "$bin/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --rtf 1
 until "$bin/servoloop" control list -N $ns 2>/dev/null | grep -q "joint1_position_controller.*running"; do sleep 0.2; done
 
 stats() {  # the loop's compute time and the wake-up latency, p50/p99/max in us
@@ -52,7 +39,7 @@ echo "== window 1: over the node's socket (no bridge)"
 kill -INT $echo_pid; wait $echo_pid 2>/dev/null || true
 echo "loop: $(stats)"
 
-"$bin/servoloop" ros1-bridge -N $ns > "$scratch/bridge.log" 2>&1 & pids+=($!)
+start_background bridge.log "$bin/servoloop" ros1-bridge -N $ns
 until rostopic list 2>/dev/null | grep -q "$ns/joint_states"; do sleep 0.2; done
 sleep 2
 echo "== window 2: from and to ROS through the bridge"

@@ -10,30 +10,17 @@ cd "$(dirname "$0")/.."
 build=${BUILD_DIR:-build}
 bin="$build/bin"
 out=${OUT:-docs/ros1/seed_in_rviz.png}
-scratch=$(mktemp -d /tmp/servoloop-rviz.XXXXXX)
-export SERVOLOOP_RUN_DIR="$scratch/run" ROS_HOME="$scratch/ros" ROS_LOG_DIR="$scratch/ros/log" ROS_HOSTNAME=localhost
-mkdir -p "$SERVOLOOP_RUN_DIR" && chmod 700 "$SERVOLOOP_RUN_DIR"
-port=$(/usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-export ROS_MASTER_URI="http://localhost:$port"
+# shellcheck source=scripts/ros1_session.sh
+source scripts/ros1_session.sh
 display=:$(( 90 + RANDOM % 9 ))
-pids=()
-cleanup() {
-  for pid in "${pids[@]}"; do kill -INT "$pid" 2>/dev/null || true; done
-  sleep 2
-  for pid in "${pids[@]}"; do kill -KILL -- "-$pid" 2>/dev/null || kill -KILL "$pid" 2>/dev/null || true; done
-  rm -rf "$scratch"
-}
-trap cleanup EXIT
-
-setsid roscore -p "$port" > "$scratch/roscore.log" 2>&1 & pids+=($!)
-until rosparam get /rosdistro > /dev/null 2>&1; do sleep 0.2; done
-"$bin/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --rtf 1 --ros1-bridge \
-  --pub /one_DOF_robot/joint1_position_controller/command:=1.0 > "$scratch/node.log" 2>&1 & pids+=($!)
+start_roscore
+start_background node.log "$bin/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --rtf 1 --ros1-bridge \
+  --pub /one_DOF_robot/joint1_position_controller/command:=1.0
 until rostopic list 2>/dev/null | grep -q /one_DOF_robot/joint_states; do sleep 0.2; done
-/usr/lib/robot_state_publisher/robot_state_publisher __ns:=/one_DOF_robot > "$scratch/rsp.log" 2>&1 & pids+=($!)
-Xvfb "$display" -screen 0 1000x700x24 > "$scratch/xvfb.log" 2>&1 & pids+=($!)
+start_background rsp.log /usr/lib/robot_state_publisher/robot_state_publisher __ns:=/one_DOF_robot
+start_background xvfb.log Xvfb "$display" -screen 0 1000x700x24
 sleep 1
-DISPLAY=$display LIBGL_ALWAYS_SOFTWARE=1 rviz -d docs/ros1/seed.rviz > "$scratch/rviz.log" 2>&1 & pids+=($!)
+DISPLAY=$display LIBGL_ALWAYS_SOFTWARE=1 start_background rviz.log rviz -d docs/ros1/seed.rviz
 sleep 15   # rviz starts and the arm settles at 1 rad
 echo "joint1: $(rostopic echo -n 1 /one_DOF_robot/joint_states | grep position)"
 DISPLAY=$display import -window root "$out"
