@@ -40,13 +40,15 @@ json goalToJson(const control_msgs::FollowJointTrajectoryGoal& goal) {
           {"goal_time_tolerance", goal.goal_time_tolerance.toSec()}};
 }
 
+// The node writes a trajectory goal's feedback as the controller's state.
 void feedbackFromJson(const json& j, control_msgs::FollowJointTrajectoryFeedback& out) {
-  const double stamp = number(j, "stamp");
-  out.header.stamp = std::isfinite(stamp) && stamp >= 0.0 ? ros::Time(stamp) : ros::Time();
-  out.joint_names = j.value("joint_names", std::vector<std::string>{});
-  if (j.contains("desired")) fromJson(j.at("desired"), out.desired);
-  if (j.contains("actual")) fromJson(j.at("actual"), out.actual);
-  if (j.contains("error")) fromJson(j.at("error"), out.error);
+  control_msgs::JointTrajectoryControllerState state;
+  fromJson(j, state);
+  out.header = state.header;
+  out.joint_names = std::move(state.joint_names);
+  out.desired = std::move(state.desired);
+  out.actual = std::move(state.actual);
+  out.error = std::move(state.error);
 }
 
 void resultFromJson(const json& j, control_msgs::FollowJointTrajectoryResult& out) {

@@ -46,7 +46,7 @@ bool callForOk(NodeLink& link, const char* service, std::string_view op, const j
 }  // namespace
 
 ControllerManagerServices::ControllerManagerServices(ros::NodeHandle& nh, NodeLink& link) {
-  const std::string base = link.nodeNamespace() == "/" ? "/controller_manager/" : link.nodeNamespace() + "/controller_manager/";
+  const std::string base = link.resolve("controller_manager") + "/";
 
   servers_.push_back(nh.advertiseService<cmm::ListControllers::Request, cmm::ListControllers::Response>(
       base + "list_controllers", [&link](cmm::ListControllers::Request&, cmm::ListControllers::Response& response) {

@@ -12,6 +12,8 @@
 #include <ros/ros.h>
 #include <tinyxml2.h>
 
+#include "ros_message_json.hpp"
+
 namespace servoloop::ros1 {
 
 using nlohmann::json;
@@ -76,7 +78,7 @@ GazeboServices::GazeboServices(ros::NodeHandle& nh, NodeLink& link, const RobotS
   model_ = description.value("model", "");
   joints_ = urdfJoints(description.value("urdf", ""));
   try {
-    spawn_pose_ = link.call("param.get", {{"name", namespace_ + "/sim/pose"}}).at("value").get<std::vector<double>>();
+    spawn_pose_ = link.call("param.get", {{"name", link.resolve("sim/pose")}}).at("value").get<std::vector<double>>();
   } catch (const std::exception&) {
     spawn_pose_.assign(6, 0.0);  // no pose given: the world's origin
   }
@@ -154,22 +156,11 @@ GazeboServices::GazeboServices(ros::NodeHandle& nh, NodeLink& link, const RobotS
         }
         response.header.stamp = ros::Time(std::max(state_.simTime(), 0.0));
         response.header.frame_id = request.relative_entity_name;
-        if (const auto odometry = state_.groundTruth()) {
-          const json& pose = odometry->at("pose");
-          response.pose.position.x = pose.at("position").value("x", 0.0);
-          response.pose.position.y = pose.at("position").value("y", 0.0);
-          response.pose.position.z = pose.at("position").value("z", 0.0);
-          response.pose.orientation.x = pose.at("orientation").value("x", 0.0);
-          response.pose.orientation.y = pose.at("orientation").value("y", 0.0);
-          response.pose.orientation.z = pose.at("orientation").value("z", 0.0);
-          response.pose.orientation.w = pose.at("orientation").value("w", 1.0);
-          const json& twist = odometry->at("twist");
-          response.twist.linear.x = twist.at("linear").value("x", 0.0);
-          response.twist.linear.y = twist.at("linear").value("y", 0.0);
-          response.twist.linear.z = twist.at("linear").value("z", 0.0);
-          response.twist.angular.x = twist.at("angular").value("x", 0.0);
-          response.twist.angular.y = twist.at("angular").value("y", 0.0);
-          response.twist.angular.z = twist.at("angular").value("z", 0.0);
+        if (const auto ground_truth = state_.groundTruth()) {
+          nav_msgs::Odometry odometry;
+          fromJson(*ground_truth, odometry);
+          response.pose = odometry.pose.pose;
+          response.twist = odometry.twist.twist;
         } else {
           // A fixed base stays where it was spawned (roll, pitch, yaw → quaternion).
           response.pose.position.x = spawn_pose_[0];
@@ -232,7 +223,7 @@ std::string GazeboServices::effortTopicFor(const std::string& joint, std::string
     for (const json& claim : controller.value("claimed_resources", json::array())) {
       const auto resources = claim.value("resources", std::vector<std::string>{});
       if (std::find(resources.begin(), resources.end(), joint) != resources.end()) {
-        return namespace_ + "/" + controller.value("name", "") + "/command";
+        return link_.resolve(controller.value("name", "") + "/command");
       }
     }
   }

@@ -98,7 +98,7 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   std::cout << "servoloop ros1-bridge: bridging " << node_namespace << " to the ROS master at "
             << ros::master::getURI() << " (" << copy.parameters << " parameters"
             << (copy.robot_description ? ", robot_description" : "") << ", /clock, "
-            << (node_namespace == "/" ? "" : node_namespace) << "/controller_manager/*"
+            << link.resolve("controller_manager") << "/*"
             << (gazebo_services ? ", /gazebo/*" : "") << ")" << std::endl;
   std::string failure;
   try {

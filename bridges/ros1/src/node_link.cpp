@@ -8,6 +8,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/ipc/ipc_client.hpp"
 #include "servoloop/ipc/ipc_socket_path.hpp"
+#include "servoloop/params/parameter_store.hpp"
 
 namespace servoloop::ros1 {
 
@@ -27,6 +28,8 @@ nlohmann::json NodeLink::call(std::string_view op, const nlohmann::json& args, d
   std::lock_guard lock(impl_->mutex);
   return impl_->client.call(op, args, timeout_s);
 }
+
+std::string NodeLink::resolve(std::string_view relative) const { return params::resolveName(node_namespace_, relative); }
 
 std::optional<nlohmann::json> NodeLink::readStream(double timeout_s) {
   std::lock_guard lock(impl_->mutex);

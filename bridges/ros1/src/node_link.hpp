@@ -35,6 +35,9 @@ class NodeLink {
   std::optional<nlohmann::json> readStream(double timeout_s);
 
   const std::string& nodeNamespace() const { return node_namespace_; }
+  // A name under the node's namespace, resolved as ROS resolves it
+  // ("joint_states" → "/one_DOF_robot/joint_states"; under "/": "/joint_states").
+  std::string resolve(std::string_view relative) const;
 
  private:
   struct Impl;

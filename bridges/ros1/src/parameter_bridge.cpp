@@ -66,8 +66,7 @@ ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time) {
 
   const std::string description = link.call("robot.description").value("urdf", "");
   if (!description.empty()) {
-    const std::string& ns = link.nodeNamespace();
-    ros::param::set(ns == "/" ? "/robot_description" : ns + "/robot_description", description);
+    ros::param::set(link.resolve("robot_description"), description);
     const auto robots = link.call("ping").value("robots", std::vector<std::string>{});
     if (robots.size() == 1 && !ros::param::has("/robot_description")) ros::param::set("/robot_description", description);
     copy.robot_description = true;

@@ -27,8 +27,8 @@ using nlohmann::json;
 
 namespace {
 
-// The trajectory conversions are declared in the header (action_bridge.cpp
-// uses them too); make them overloads of the ones below.
+// The conversions declared in the header (the action bridge and the Gazebo
+// services use them too) are overloads of the ones below.
 using ros1::fromJson;
 using ros1::toJson;
 
@@ -139,30 +139,21 @@ json toJson(const control_msgs::JointControllerState& m) {
           {"antiwindup", static_cast<bool>(m.antiwindup)}};
 }
 
-void fromJson(const json& j, control_msgs::JointTrajectoryControllerState& m) {
-  m.header.stamp = stampFrom(j);
-  m.joint_names = strings(j, "joint_names");
-  fromJson(child(j, "desired"), m.desired);
-  fromJson(child(j, "actual"), m.actual);
-  fromJson(child(j, "error"), m.error);
-}
-json toJson(const control_msgs::JointTrajectoryControllerState& m) {
-  return {{"stamp", seconds(m.header.stamp)}, {"joint_names", m.joint_names}, {"desired", toJson(m.desired)},
-          {"actual", toJson(m.actual)}, {"error", toJson(m.error)}};
-}
-
-void fromJson(const json& j, geometry_msgs::Vector3& v) {
+// geometry_msgs' x, y, z messages (Vector3, Point).
+template <class Xyz>
+void xyzFromJson(const json& j, Xyz& v) {
   v.x = number(j, "x");
   v.y = number(j, "y");
   v.z = number(j, "z");
 }
-json toJson(const geometry_msgs::Vector3& v) { return {{"x", value(v.x)}, {"y", value(v.y)}, {"z", value(v.z)}}; }
-void fromJson(const json& j, geometry_msgs::Point& v) {
-  v.x = number(j, "x");
-  v.y = number(j, "y");
-  v.z = number(j, "z");
+template <class Xyz>
+json xyzToJson(const Xyz& v) {
+  return {{"x", value(v.x)}, {"y", value(v.y)}, {"z", value(v.z)}};
 }
-json toJson(const geometry_msgs::Point& v) { return {{"x", value(v.x)}, {"y", value(v.y)}, {"z", value(v.z)}}; }
+void fromJson(const json& j, geometry_msgs::Vector3& v) { xyzFromJson(j, v); }
+json toJson(const geometry_msgs::Vector3& v) { return xyzToJson(v); }
+void fromJson(const json& j, geometry_msgs::Point& v) { xyzFromJson(j, v); }
+json toJson(const geometry_msgs::Point& v) { return xyzToJson(v); }
 void fromJson(const json& j, geometry_msgs::Quaternion& q) {
   q.x = number(j, "x");
   q.y = number(j, "y");
@@ -187,29 +178,6 @@ void covarianceFrom(const json& j, boost::array<double, N>& out) {
 template <std::size_t N>
 json covarianceOf(const boost::array<double, N>& xs) {
   return values(std::vector<double>(xs.begin(), xs.end()));
-}
-
-void fromJson(const json& j, nav_msgs::Odometry& m) {
-  m.header.stamp = stampFrom(j);
-  m.header.frame_id = text(j, "frame_id");
-  m.child_frame_id = text(j, "child_frame_id");
-  const json& pose = child(j, "pose");
-  fromJson(child(pose, "position"), m.pose.pose.position);
-  fromJson(child(pose, "orientation"), m.pose.pose.orientation);
-  covarianceFrom(pose, m.pose.covariance);
-  const json& twist = child(j, "twist");
-  fromJson(child(twist, "linear"), m.twist.twist.linear);
-  fromJson(child(twist, "angular"), m.twist.twist.angular);
-  covarianceFrom(twist, m.twist.covariance);
-}
-json toJson(const nav_msgs::Odometry& m) {
-  return {{"stamp", seconds(m.header.stamp)},
-          {"frame_id", m.header.frame_id},
-          {"child_frame_id", m.child_frame_id},
-          {"pose", {{"position", toJson(m.pose.pose.position)}, {"orientation", toJson(m.pose.pose.orientation)},
-                    {"covariance", covarianceOf(m.pose.covariance)}}},
-          {"twist", {{"linear", toJson(m.twist.twist.linear)}, {"angular", toJson(m.twist.twist.angular)},
-                     {"covariance", covarianceOf(m.twist.covariance)}}}};
 }
 
 void fromJson(const json& j, tf2_msgs::TFMessage& m) {
@@ -331,6 +299,41 @@ const std::map<std::string, BridgedType, std::less<>>& registry() {
 }
 
 }  // namespace
+
+void fromJson(const json& j, control_msgs::JointTrajectoryControllerState& m) {
+  m.header.stamp = stampFrom(j);
+  m.joint_names = strings(j, "joint_names");
+  fromJson(child(j, "desired"), m.desired);
+  fromJson(child(j, "actual"), m.actual);
+  fromJson(child(j, "error"), m.error);
+}
+json toJson(const control_msgs::JointTrajectoryControllerState& m) {
+  return {{"stamp", seconds(m.header.stamp)}, {"joint_names", m.joint_names}, {"desired", toJson(m.desired)},
+          {"actual", toJson(m.actual)}, {"error", toJson(m.error)}};
+}
+
+void fromJson(const json& j, nav_msgs::Odometry& m) {
+  m.header.stamp = stampFrom(j);
+  m.header.frame_id = text(j, "frame_id");
+  m.child_frame_id = text(j, "child_frame_id");
+  const json& pose = child(j, "pose");
+  fromJson(child(pose, "position"), m.pose.pose.position);
+  fromJson(child(pose, "orientation"), m.pose.pose.orientation);
+  covarianceFrom(pose, m.pose.covariance);
+  const json& twist = child(j, "twist");
+  fromJson(child(twist, "linear"), m.twist.twist.linear);
+  fromJson(child(twist, "angular"), m.twist.twist.angular);
+  covarianceFrom(twist, m.twist.covariance);
+}
+json toJson(const nav_msgs::Odometry& m) {
+  return {{"stamp", seconds(m.header.stamp)},
+          {"frame_id", m.header.frame_id},
+          {"child_frame_id", m.child_frame_id},
+          {"pose", {{"position", toJson(m.pose.pose.position)}, {"orientation", toJson(m.pose.pose.orientation)},
+                    {"covariance", covarianceOf(m.pose.covariance)}}},
+          {"twist", {{"linear", toJson(m.twist.twist.linear)}, {"angular", toJson(m.twist.twist.angular)},
+                     {"covariance", covarianceOf(m.twist.covariance)}}}};
+}
 
 void fromJson(const json& j, trajectory_msgs::JointTrajectoryPoint& m) {
   m.positions = numbers(j, "positions");

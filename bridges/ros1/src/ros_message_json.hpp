@@ -13,6 +13,8 @@
 #include <ros/node_handle.h>
 #include <ros/publisher.h>
 #include <ros/subscriber.h>
+#include <control_msgs/JointTrajectoryControllerState.h>
+#include <nav_msgs/Odometry.h>
 #include <trajectory_msgs/JointTrajectory.h>
 #include <trajectory_msgs/JointTrajectoryPoint.h>
 
@@ -34,12 +36,17 @@ struct BridgedType {
   std::function<nlohmann::json(const nlohmann::json& msg)> round_trip;
 };
 
-// Trajectories in the node's JSON form (also the inside of trajectory goals
-// and feedback).
+// Trajectories, a trajectory controller's state (a trajectory action's
+// feedback) and odometry (a floating base's ground truth) in the node's JSON
+// form, for the action bridge and the Gazebo services.
 void fromJson(const nlohmann::json& j, trajectory_msgs::JointTrajectoryPoint& m);
 nlohmann::json toJson(const trajectory_msgs::JointTrajectoryPoint& m);
 void fromJson(const nlohmann::json& j, trajectory_msgs::JointTrajectory& m);
 nlohmann::json toJson(const trajectory_msgs::JointTrajectory& m);
+void fromJson(const nlohmann::json& j, control_msgs::JointTrajectoryControllerState& m);
+nlohmann::json toJson(const control_msgs::JointTrajectoryControllerState& m);
+void fromJson(const nlohmann::json& j, nav_msgs::Odometry& m);
+nlohmann::json toJson(const nav_msgs::Odometry& m);
 
 // The type, or nullptr when the bridge does not carry it.
 const BridgedType* findBridgedType(std::string_view type_name);

@@ -20,6 +20,8 @@ TopicBridge::TopicBridge(ros::NodeHandle& nh, NodeLink& link, RobotStateCache& s
       state_(state),
       options_(options),
       streams_(link.nodeNamespace()),
+      joint_states_topic_(link.resolve("joint_states")),
+      ground_truth_topic_(link.resolve("ground_truth/odom")),
       clock_(nh.advertise<rosgraph_msgs::Clock>("/clock", 10)) {}
 
 void TopicBridge::discover() {
@@ -77,9 +79,8 @@ void TopicBridge::forwardToRos(const json& stream_message) {
   const auto it = to_ros_.find(topic);
   if (it == to_ros_.end()) return;
   const json& msg = stream_message.at("msg");
-  const std::string& ns = link_.nodeNamespace();
-  if (topic == (ns == "/" ? "" : ns) + "/joint_states") state_.updateJoints(msg);
-  if (topic == (ns == "/" ? "" : ns) + "/ground_truth/odom") state_.updateGroundTruth(msg);
+  if (topic == joint_states_topic_) state_.updateJoints(msg);
+  if (topic == ground_truth_topic_) state_.updateGroundTruth(msg);
   try {
     it->second(msg);
   } catch (const std::exception& e) {

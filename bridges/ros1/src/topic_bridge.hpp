@@ -54,6 +54,8 @@ class TopicBridge {
   RobotStateCache& state_;
   TopicBridgeOptions options_;
   NodeLink streams_;  // a link of its own: subscriptions, discovery, the clock
+  std::string joint_states_topic_;  // what feeds `state_`
+  std::string ground_truth_topic_;
   std::map<std::string, JsonPublisher> to_ros_;
   std::map<std::string, ros::Subscriber> from_ros_;
   std::map<std::string, std::string> directions_;
