@@ -151,6 +151,20 @@ class Ros1BridgeTest : public ::testing::Test {
     return servoloop::testing::runProcess(argv, options("tool"), timeout_s);
   }
 
+  // An effort gripper controller on the seed's joint, configured with rosparam
+  // only: stiffness 500 N·m/rad against at most 9.81 · 0.5 · sin(0.3) = 1.45
+  // N·m of gravity leaves 0.003 rad of error at 0.3 rad, inside the 0.01 rad
+  // goal tolerance.
+  void loadGripperParametersIntoRos() {
+    const fs::path yaml = run_.scratch() / "gripper.yaml";
+    std::ofstream(yaml) << "joint1_gripper_controller:\n"
+                           "  type: effort_controllers/GripperActionController\n"
+                           "  joint: joint1\n"
+                           "  gains: {joint1: {p: 500.0, d: 20.0}}\n"
+                           "  goal_tolerance: 0.01\n";
+    ASSERT_EQ(run({ros("rosparam"), "load", yaml.string(), "/one_DOF_robot"}).status, 0);
+  }
+
   bool nodeAnswers() {
     const CliResult list = runCli({"control", "list", "-N", "/one_DOF_robot"}, run_.scratch());
     return list.status == 0 && list.out.find("joint1_position_controller") != std::string::npos;
@@ -327,6 +341,76 @@ TEST_F(Ros1BridgeTest, TrajectoryGoalThroughActionlib) {
   const auto position = firstPosition(run({ros("rostopic"), "echo", "-n", "1", "/one_DOF_robot/joint_states"}).out);
   ASSERT_TRUE(position.has_value());
   EXPECT_NEAR(*position, 0.5, 0.02);
+}
+
+TEST_F(Ros1BridgeTest, GripperGoalThroughActionlibWithRosParameters) {
+  // The configuration exists only on the ROS parameter server (rosparam load
+  // after the bridge started), as ros_control users keep it: load_controller
+  // reads it from there.
+  loadGripperParametersIntoRos();
+  EXPECT_THAT(runCli({"param", "get", "/one_DOF_robot/joint1_gripper_controller/type"}, run_.scratch()).out,
+              Not(HasSubstr("GripperActionController")));
+
+  const std::string services = "/one_DOF_robot/controller_manager/";
+  EXPECT_THAT(run({ros("rosservice"), "call", services + "load_controller", "name: joint1_gripper_controller"}).out,
+              HasSubstr("ok: True"));
+  EXPECT_THAT(runCli({"param", "get", "/one_DOF_robot/joint1_gripper_controller/gains/joint1/p"}, run_.scratch()).out,
+              HasSubstr("500"));
+  EXPECT_THAT(run({ros("rosservice"), "call", services + "switch_controller",
+                   "{start_controllers: [joint1_gripper_controller], stop_controllers: [joint1_position_controller], "
+                   "strictness: 2}"}).out,
+              HasSubstr("ok: True"));
+  const std::string action = "/one_DOF_robot/joint1_gripper_controller/gripper_cmd";
+  ASSERT_TRUE(waitUntil([&] { return run({ros("rostopic"), "list"}).out.find(action + "/goal") != std::string::npos; },
+                        30.0));
+
+  ChildProcess result({ros("rostopic"), "echo", "-n", "1", action + "/result"}, options("result"));
+  ASSERT_TRUE(waitUntil([&] {
+    static const std::regex subscribed(R"(Subscribers:\s*\n \* /rostopic)");
+    return std::regex_search(run({ros("rostopic"), "info", action + "/result"}).out, subscribed);
+  }, 20.0));
+  const ProcessResult sent = run({ros("rostopic"), "pub", "-1", action + "/goal", "control_msgs/GripperCommandActionGoal",
+                                  "{goal_id: {id: 'grip'}, goal: {command: {position: 0.3, max_effort: 20.0}}}"});
+  ASSERT_EQ(sent.status, 0) << sent.err;
+  // SUCCEEDED (3) with reached_goal, not stalled, at the commanded position.
+  const ProcessResult ended = result.wait(60.0);
+  ASSERT_FALSE(ended.timed_out);
+  EXPECT_THAT(ended.out, HasSubstr("id: \"grip\""));
+  EXPECT_THAT(ended.out, HasSubstr("status: 3"));
+  EXPECT_THAT(ended.out, HasSubstr("reached_goal: True"));
+  EXPECT_THAT(ended.out, HasSubstr("stalled: False"));
+  std::smatch reported;
+  ASSERT_TRUE(std::regex_search(ended.out, reported, std::regex(R"(\n\s+position: ([-+0-9.eE]+))"))) << ended.out;
+  EXPECT_NEAR(std::stod(reported[1].str()), 0.3, 0.01) << ended.out;
+  const auto position = firstPosition(run({ros("rostopic"), "echo", "-n", "1", "/one_DOF_robot/joint_states"}).out);
+  ASSERT_TRUE(position.has_value());
+  EXPECT_NEAR(*position, 0.3, 0.01);
+}
+
+TEST_F(Ros1BridgeTest, SpawnerCallSequenceLoadsStartsAndTakesDown) {
+  // ros_control's spawner, as a launch file runs it in the robot's namespace,
+  // after rosparam loaded the configuration: it loads each name (a name
+  // without configuration fails and is left out), starts the loaded ones in
+  // one STRICT switch, and on Ctrl-C stops and unloads them.
+  loadGripperParametersIntoRos();
+  ASSERT_THAT(run({ros("rosservice"), "call", "/one_DOF_robot/controller_manager/switch_controller",
+                   "{start_controllers: [], stop_controllers: [joint1_position_controller], strictness: 2}"}).out,
+              HasSubstr("ok: True"));
+  ChildProcess spawner({"/usr/bin/python3", (fs::path(SERVOLOOP_SOURCE_DIR) / "tests/ros1/spawner_calls.py").string(),
+                        "--namespace", "/one_DOF_robot", "joint1_gripper_controller", "not_configured"},
+                       options("spawner"));
+  ASSERT_TRUE(spawner.waitForOutput("started: joint1_gripper_controller", 60.0))
+      << spawner.currentOut() << spawner.currentErr();
+  EXPECT_THAT(spawner.currentOut(), HasSubstr("failed to load not_configured"));
+  EXPECT_THAT(runCli({"control", "list", "-N", "/one_DOF_robot"}, run_.scratch()).out,
+              HasSubstr("joint1_gripper_controller - effort_controllers/GripperActionController ( running )"));
+
+  spawner.signal(SIGINT);
+  ASSERT_TRUE(spawner.waitForOutput("taken down: joint1_gripper_controller", 30.0)) << spawner.currentErr();
+  EXPECT_FALSE(spawner.wait(30.0).timed_out);
+  const CliResult list = runCli({"control", "list", "-N", "/one_DOF_robot"}, run_.scratch());
+  EXPECT_THAT(list.out, Not(HasSubstr("joint1_gripper_controller")));
+  EXPECT_THAT(list.out, HasSubstr("joint_state_controller"));
 }
 
 TEST_F(Ros1BridgeTest, NeitherRoscoreNorTheBridgeEndingStopsTheNode) {

@@ -142,6 +142,24 @@ TEST(Ros1Messages, ParametersKeepTheirYamlTypes) {
   EXPECT_EQ(static_cast<double>(copy["l"][1]), 2.5);
 }
 
+TEST(Ros1Messages, RosParametersComeBackAsTheJsonTheNodeStores) {
+  // A controller's configuration as rosparam holds it, back to JSON (what
+  // load_controller hands the node): types kept, nesting kept, a quoted "2"
+  // stays a string.
+  XmlRpc::XmlRpcValue value = servoloop::ros1::yamlToXmlRpc(YAML::Load(
+      "{type: effort_controllers/GripperActionController, gains: {joint1: {p: 500, d: 20.5}}, on: true, "
+      "quoted: '2', joints: [a, b]}"));
+  const nlohmann::json expected = {{"type", "effort_controllers/GripperActionController"},
+                                   {"gains", {{"joint1", {{"p", 500}, {"d", 20.5}}}}},
+                                   {"on", true},
+                                   {"quoted", "2"},
+                                   {"joints", {"a", "b"}}};
+  const nlohmann::json json = servoloop::ros1::xmlRpcToJson(value);
+  EXPECT_EQ(json, expected) << json.dump();
+  EXPECT_TRUE(json["gains"]["joint1"]["p"].is_number_integer());
+  EXPECT_TRUE(json["quoted"].is_string());
+}
+
 TEST(Ros1GazeboServices, EffortsAddUpOverTheirWindows) {
   servoloop::ros1::EffortSchedule schedule;
   schedule.apply(2.0, 0.0, -1.0, 1.0);   // from now (1.0 s), without end

@@ -12,6 +12,8 @@
 #include <controller_manager_msgs/UnloadController.h>
 #include <ros/ros.h>
 
+#include "parameter_bridge.hpp"
+
 namespace servoloop::ros1 {
 
 using nlohmann::json;
@@ -79,6 +81,17 @@ ControllerManagerServices::ControllerManagerServices(ros::NodeHandle& nh, NodeLi
 
   servers_.push_back(nh.advertiseService<cmm::LoadController::Request, cmm::LoadController::Response>(
       base + "load_controller", [&link](cmm::LoadController::Request& request, cmm::LoadController::Response& response) {
+        // As ros_control does, the configuration is what the ROS parameter
+        // server holds when the controller is loaded.
+        try {
+          passControllerParametersOn(link, request.name);
+        } catch (const std::exception& e) {
+          ROS_ERROR("load_controller: the parameters of %s on the ROS parameter server could not be passed to "
+                    "servoloop: %s",
+                    request.name.c_str(), e.what());
+          response.ok = false;
+          return true;
+        }
         response.ok = callForOk(link, "load_controller", "control.load", {{"name", request.name}});
         return true;
       }));

@@ -75,4 +75,45 @@ ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time) {
   return copy;
 }
 
+nlohmann::json xmlRpcToJson(XmlRpc::XmlRpcValue& value) {
+  switch (value.getType()) {
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      return static_cast<bool>(value);
+    case XmlRpc::XmlRpcValue::TypeInt:
+      return static_cast<int>(value);
+    case XmlRpc::XmlRpcValue::TypeDouble:
+      return static_cast<double>(value);
+    case XmlRpc::XmlRpcValue::TypeString:
+      return static_cast<std::string>(value);
+    case XmlRpc::XmlRpcValue::TypeArray: {
+      nlohmann::json out = nlohmann::json::array();
+      for (int i = 0; i < value.size(); ++i) out.push_back(xmlRpcToJson(value[i]));
+      return out;
+    }
+    case XmlRpc::XmlRpcValue::TypeStruct: {
+      nlohmann::json out = nlohmann::json::object();
+      for (auto& [key, member] : value) out[key] = xmlRpcToJson(member);
+      return out;
+    }
+    case XmlRpc::XmlRpcValue::TypeDateTime:
+    case XmlRpc::XmlRpcValue::TypeBase64:
+      return value.toXml();
+    case XmlRpc::XmlRpcValue::TypeInvalid:
+      break;
+  }
+  return nullptr;
+}
+
+bool passControllerParametersOn(NodeLink& link, const std::string& controller) {
+  const std::string name = link.resolve(controller);
+  XmlRpc::XmlRpcValue value;
+  try {
+    if (!ros::param::get(name, value) || value.getType() != XmlRpc::XmlRpcValue::TypeStruct) return false;
+  } catch (const ros::InvalidNameException&) {
+    return false;  // not a name ROS has: the node's own parameters (and error) stand
+  }
+  link.call("param.set", {{"name", name}, {"value", xmlRpcToJson(value)}});
+  return true;
+}
+
 }  // namespace servoloop::ros1

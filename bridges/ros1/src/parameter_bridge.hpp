@@ -20,6 +20,17 @@ struct ParameterCopy {
 
 ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time);
 
+// Before load_controller: ros_control's controller manager reads a controller's
+// configuration from the ROS parameter server when it loads it, so what ROS
+// holds under <ns>/<controller> now (after a `rosparam load` or `rosparam set`
+// since the bridge started) replaces the node's copy. Returns false, leaving
+// the node's parameters as they are, when ROS holds no dictionary there.
+bool passControllerParametersOn(NodeLink& link, const std::string& controller);
+
+// An XML-RPC value (as rosparam stores it) to JSON: booleans, integers,
+// doubles, strings, lists, dictionaries; dates and binary data as strings.
+nlohmann::json xmlRpcToJson(XmlRpc::XmlRpcValue& value);
+
 // YAML (as the node's param.dump writes it) to an XML-RPC value as rosparam
 // types it: integers, doubles, booleans, strings, lists, dictionaries.
 XmlRpc::XmlRpcValue yamlToXmlRpc(const YAML::Node& node);
