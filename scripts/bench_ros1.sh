@@ -6,8 +6,14 @@
 # Needs a build with the bridge (bash scripts/install_ros1.sh, then build) and
 # runs roscore on a free port.
 #   BUILD_DIR  build folder (default: build)
+#   PIN=1      the loop thread alone on CPU 1 (the launch file's
+#              realtime.cpu_affinity), everything else (the node's other
+#              threads, ROS, the bridge, the harness) on CPU 0
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${PIN:-0}" = 1 ] && [ -z "${SERVOLOOP_BENCH_PINNED:-}" ]; then
+  SERVOLOOP_BENCH_PINNED=1 exec taskset -c 0 bash "$0" "$@"
+fi
 build=${BUILD_DIR:-build}
 bin="$build/bin"
 [ -x "$bin/servoloop_ros1_bridge" ] || { echo "no ROS 1 bridge in $build: bash scripts/install_ros1.sh, then build" >&2; exit 1; }
@@ -16,7 +22,15 @@ bin="$build/bin"
 source scripts/ros1_session.sh
 ns=/one_DOF_robot
 start_roscore
-start_background node.log "$bin/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --rtf 1
+launch_file=robots/one_dof/one_dof_w_jnt_ctl.launch.yaml
+if [ -n "${SERVOLOOP_BENCH_PINNED:-}" ]; then
+  # The seed's launch file with the loop thread on CPU 1 (paths made absolute).
+  launch_file="$scratch/pinned.launch.yaml"
+  sed -e "s|^  - urdf: |  - urdf: $PWD/robots/one_dof/|" -e "s|params: \[|params: [$PWD/robots/one_dof/|" \
+    robots/one_dof/one_dof_w_jnt_ctl.launch.yaml > "$launch_file"
+  printf 'realtime:\n  cpu_affinity: [1]\n' >> "$launch_file"
+fi
+start_background node.log "$bin/servoloop" launch "$launch_file" --rtf 1
 until "$bin/servoloop" control list -N $ns 2>/dev/null | grep -q "joint1_position_controller.*running"; do sleep 0.2; done
 
 stats() {  # the loop's compute time and the wake-up latency, p50/p99/max in us
@@ -57,4 +71,4 @@ echo "== joint states at 1 kHz in ROS"
 "$bin/servoloop" control switch -N $ns --start joint_state_controller > /dev/null
 sleep 1
 "$bin/servoloop_bench_ros1_bridge" --mode delivery --topic $ns/joint_states --period 0.001 --seconds 10
-echo "== (conditions: $(nproc) CPUs, $(uname -r), commit $(git rev-parse --short HEAD 2>/dev/null || echo '?'), $(date -u +%F))"
+echo "== (conditions: ${SERVOLOOP_BENCH_PINNED:+loop thread alone on CPU 1, the rest on CPU 0; }$(nproc --all) CPUs, $(uname -r), commit $(git rev-parse --short HEAD 2>/dev/null || echo '?'), $(date -u +%F))"
