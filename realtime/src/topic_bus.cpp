@@ -171,6 +171,7 @@ Subscription TopicBus::subscribeAny(std::string_view topic, AnyCallback callback
     auto it = core_->topics.find(name);
     if (it == core_->topics.end()) it = core_->topics.emplace(name, std::make_shared<detail::TopicBase>(name)).first;
     it->second->any_subscribers.push_back(entry);
+    it->second->updateListened();
   }
   return Subscription(core_, name, std::move(entry));
 }

@@ -91,6 +91,47 @@ TEST(TopicBus, RealtimePublishDeliversExactlyWhatWasPublishedInOrder) {
   EXPECT_EQ(bus.flush(), 0u);
 }
 
+TEST(TopicBus, APublisherNobodyListensToQueuesNothingAndListenersGetWhatFollows) {
+  TopicBus bus;
+  auto publisher = bus.advertise<std_msgs::Float64>("/robot/ctrl/state");
+  // Nobody listens: published (counted), nothing queued for delivery.
+  for (int k = 0; k < 5; ++k) EXPECT_TRUE(publisher.publish(std_msgs::Float64{static_cast<double>(k)}));
+  EXPECT_EQ(publisher.publishedCount(), 5u);
+  EXPECT_EQ(publisher.droppedCount(), 0u);
+  EXPECT_EQ(bus.flush(), 0u);
+
+  // A subscriber gets what is published from its subscription on.
+  std::vector<double> received;
+  auto subscription =
+      bus.subscribe<std_msgs::Float64>("/robot/ctrl/state", [&](const std_msgs::Float64& msg) { received.push_back(msg.data); });
+  for (int k = 10; k < 13; ++k) publisher.publish(std_msgs::Float64{static_cast<double>(k)});
+  EXPECT_EQ(bus.flush(), 3u);
+  EXPECT_EQ(received, (std::vector<double>{10.0, 11.0, 12.0}));
+
+  // Unsubscribed: nothing is queued again.
+  subscription.reset();
+  publisher.publish(std_msgs::Float64{20.0});
+  EXPECT_EQ(bus.flush(), 0u);
+  EXPECT_EQ(publisher.publishedCount(), 9u);
+
+  // A command input of the topic listens too (and so does a subscriber of any
+  // type that came before the topic had one).
+  auto input = bus.commandInput<std_msgs::Float64>("/robot/ctrl/state");
+  publisher.publish(std_msgs::Float64{30.0});
+  EXPECT_EQ(bus.flush(), 1u);
+  const std_msgs::Float64* latest = input.latest();
+  ASSERT_NE(latest, nullptr);
+  EXPECT_EQ(latest->data, 30.0);
+  input = RealtimeSubscriber<std_msgs::Float64>();
+  std::vector<std::string> types;
+  auto any = bus.subscribeAny("/robot/other", [&](Time, const MessageView& msg) { types.emplace_back(msg.type); });
+  auto other = bus.advertise<std_msgs::Float64>("/robot/other");
+  other.publish(std_msgs::Float64{1.0});
+  publisher.publish(std_msgs::Float64{40.0});  // nobody on this one any more
+  EXPECT_EQ(bus.flush(), 1u);
+  EXPECT_EQ(types, (std::vector<std::string>{std::string(std_msgs::Float64::kTypeName)}));
+}
+
 TEST(TopicBus, StalledSubscriberNeverBlocksThePublisherAndLaterSeesTheNewest) {
   TopicBus bus;
   auto publisher = bus.advertise<std_msgs::Float64>("/robot/ctrl/state");

@@ -14,6 +14,8 @@
 // prototype given to advertise), no lock, no waiting for subscribers. When
 // subscribers fall behind and the queue is full, the oldest queued message is
 // dropped, so a slow subscriber loses old messages and later gets the newest.
+// A topic nobody subscribes to costs a publisher no copy: a subscriber gets
+// what is published from its subscription on, as in ROS.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -38,8 +40,12 @@ class PublisherChannelBase {
   // Set (non-real-time) when the owning RealtimePublisher is destroyed; the
   // delivery thread delivers what is still queued and then forgets the channel.
   std::atomic<bool> closed{false};
-  std::atomic<std::uint64_t> published{0};  // messages queued
+  std::atomic<std::uint64_t> published{0};  // messages published (queued, or nobody listened)
   std::atomic<std::uint64_t> dropped{0};    // messages lost to a full queue
+  // Set by the bus (structure lock held) whenever the topic's subscribers or
+  // command inputs change: while nobody listens, a publish is counted and
+  // not copied, so the delivery side finds nothing to hand out.
+  std::atomic<bool> listened{false};
 };
 
 // The slots and queues of one real-time publisher. One publishing thread at a
@@ -64,7 +70,12 @@ class PublisherChannel : public PublisherChannelBase {
   void unlock() noexcept { staging_locked_.clear(std::memory_order_release); }
 
   // Real-time: copies msg into a slot and queues it; false if it was dropped.
+  // Nobody listening: counted as published, not copied.
   bool push(const Msg& msg) noexcept {
+    if (!listened.load(std::memory_order_acquire)) {
+      published.fetch_add(1, std::memory_order_relaxed);
+      return true;
+    }
     std::uint32_t index = 0;
     if (!acquireSlot(index)) {
       dropped.fetch_add(1, std::memory_order_relaxed);

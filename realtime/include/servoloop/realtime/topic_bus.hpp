@@ -151,7 +151,9 @@ RealtimePublisher<Msg> TopicBus::advertise(std::string_view topic, const Msg& pr
   auto channel = std::make_shared<detail::PublisherChannel<Msg>>(prototype, queue_depth, core_->clock);
   {
     std::lock_guard lock(core_->structure_mutex);
-    core_->typedTopicLocked<Msg>(name).publishers.push_back(channel);
+    detail::Topic<Msg>& target = core_->typedTopicLocked<Msg>(name);
+    target.publishers.push_back(channel);
+    target.updateListened();
   }
   return RealtimePublisher<Msg>(core_, name, std::move(channel));
 }
@@ -162,7 +164,9 @@ RealtimeSubscriber<Msg> TopicBus::commandInput(std::string_view topic, const Msg
   auto buffer = std::make_shared<RealtimeBuffer<Msg>>(prototype);
   {
     std::lock_guard lock(core_->structure_mutex);
-    core_->typedTopicLocked<Msg>(name).command_inputs.push_back(buffer);
+    detail::Topic<Msg>& target = core_->typedTopicLocked<Msg>(name);
+    target.command_inputs.push_back(buffer);
+    target.updateListened();
   }
   return RealtimeSubscriber<Msg>(core_, name, std::move(buffer));
 }
@@ -173,7 +177,9 @@ Subscription TopicBus::subscribe(std::string_view topic, std::function<void(cons
   auto entry = std::make_shared<detail::TypedSubscriberEntry<Msg>>(std::move(callback));
   {
     std::lock_guard lock(core_->structure_mutex);
-    core_->typedTopicLocked<Msg>(name).subscribers.push_back(entry);
+    detail::Topic<Msg>& target = core_->typedTopicLocked<Msg>(name);
+    target.subscribers.push_back(entry);
+    target.updateListened();
   }
   return Subscription(core_, name, std::move(entry));
 }

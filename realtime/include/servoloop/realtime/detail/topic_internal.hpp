@@ -75,7 +75,13 @@ class TopicBase {
   // msg.data points to a message of msg.type == type(); throws when untyped.
   virtual void publishViewLocked(const MessageView& msg, Time stamp);
   virtual void removeCommandInput(const void* /*buffer*/) {}
-  virtual void removeSubscriber(const void* entry) { eraseEntry(any_subscribers, entry); }
+  virtual void removeSubscriber(const void* entry) {
+    eraseEntry(any_subscribers, entry);
+    updateListened();
+  }
+  // With structure_mutex held, after subscribers, command inputs or
+  // publishers changed: tells the publishers whether anybody listens.
+  virtual void updateListened() {}
 
   // Delivery pass, structure_mutex NOT held (it is taken briefly inside):
   // hands everything pending to the subscribers; returns the message count.
@@ -119,10 +125,17 @@ class Topic final : public TopicBase {
     publishLocked(*static_cast<const Msg*>(msg.data), stamp);
   }
 
-  void removeCommandInput(const void* buffer) override { eraseEntry(command_inputs, buffer); }
+  void removeCommandInput(const void* buffer) override {
+    eraseEntry(command_inputs, buffer);
+    updateListened();
+  }
   void removeSubscriber(const void* entry) override {
     eraseEntry(subscribers, entry);
     TopicBase::removeSubscriber(entry);
+  }
+  void updateListened() override {
+    const bool listened = !subscribers.empty() || !any_subscribers.empty() || !command_inputs.empty();
+    for (const auto& channel : publishers) channel->listened.store(listened, std::memory_order_release);
   }
 
   std::size_t deliver(std::mutex& structure_mutex) override {
