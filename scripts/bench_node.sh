@@ -10,14 +10,16 @@
 #   2. simulation: `servoloop launch --duration` of the seed on bullet,
 #      free-running, against raw Bullet stepping of the same robot
 #      (servoloop_bench_loop_vs_bullet's loop/seed/raw_bullet): wall time per
-#      physics step, node ÷ raw.
+#      physics step, node ÷ raw; each round takes the median of 5 node runs,
+#      as the harness takes the median of its 5 repetitions.
 #
 #   scripts/bench_node.sh [--quick]
 #
 # Environment: BUILD_DIR (default <repo>/build), ROUNDS (default 5),
 # SECONDS_PER_RUN (default 10: wall seconds of each wall-clock run),
 # SIM_SECONDS (default 30: simulated seconds of each bullet run), PRIORITY
-# (SCHED_FIFO priority for both in part 1; default 0: the normal scheduler).
+# (SCHED_FIFO priority for both in part 1; default 0: the normal scheduler),
+# PARTS (default "1 2": which parts to run).
 # Needs python3; part 1 needs cyclictest (apt install rt-tests) and is
 # skipped without it.
 set -euo pipefail
@@ -29,6 +31,7 @@ ROUNDS="${ROUNDS:-5}"
 SECONDS_PER_RUN="${SECONDS_PER_RUN:-10}"
 SIM_SECONDS="${SIM_SECONDS:-30}"
 PRIORITY="${PRIORITY:-0}"
+PARTS="${PARTS:-1 2}"
 if [[ "${1:-}" == "--quick" ]]; then ROUNDS=2; SECONDS_PER_RUN=2; SIM_SECONDS=5; fi
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
@@ -52,7 +55,9 @@ robots:
     controllers: [joint_state_controller, joint1_position_controller]
 EOF
 
-if command -v cyclictest >/dev/null; then
+if [[ " $PARTS " != *" 1 "* ]]; then
+  echo "(part 1 not run: PARTS=$PARTS)"
+elif command -v cyclictest >/dev/null; then
   echo
   echo "== 1. wake-up latency at 1 kHz: servoloop launch --clock wall (mock) vs cyclictest"
   loops=$((SECONDS_PER_RUN * 1000))
@@ -112,13 +117,17 @@ else
 fi
 
 # --- 2. the node against raw Bullet -------------------------------------------------
+[[ " $PARTS " == *" 2 "* ]] || exit 0
 echo
 echo "== 2. seed on bullet, free-running: servoloop launch --duration $SIM_SECONDS vs raw Bullet stepping"
 for round in $(seq "$ROUNDS"); do
   "$BIN/servoloop_bench_loop_vs_bullet" --benchmark_filter='loop/seed/raw_bullet' --benchmark_repetitions=5 \
     >"$WORK/raw_$round.txt" 2>/dev/null
-  (cd "$ROOT" && "$BIN/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --duration "$SIM_SECONDS" \
-    --rtf 0 --json --pub /one_DOF_robot/joint1_position_controller/command:=1.0) >"$WORK/node_$round.json" 2>/dev/null
+  # As many node runs as the harness has repetitions; each side's median counts.
+  for rep in 1 2 3 4 5; do
+    (cd "$ROOT" && "$BIN/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --duration "$SIM_SECONDS" \
+      --rtf 0 --json --pub /one_DOF_robot/joint1_position_controller/command:=1.0) >"$WORK/node_${round}_$rep.json" 2>/dev/null
+  done
 done
 python3 - "$WORK" "$ROUNDS" <<'PY'
 import json, re, statistics, sys
@@ -127,16 +136,17 @@ rows = []
 for r in range(1, rounds + 1):
     raw = None
     for line in open(f"{work}/raw_{r}.txt"):
-        m = re.match(r"\s*loop/seed/raw_bullet\s+([0-9.]+) ns wall", line)
+        m = re.match(r"\s*loop/seed/raw_bullet\s+([0-9.]+) ns wall", line)  # the harness's median
         if m:
             raw = float(m.group(1))
-    summary = json.load(open(f"{work}/node_{r}.json"))
-    loop = summary["robots"][0]["loop"]
-    node_ns = summary["wall_time"] / summary["cycles"] * 1e9   # what the user waits for, start to end
-    loop_ns = loop["wall_time"] / loop["cycles"] * 1e9         # the loop thread's own time
+    runs = [json.load(open(f"{work}/node_{r}_{rep}.json")) for rep in range(1, 6)]
+    # what the user waits for, start to end; and the loop thread's own time
+    node_ns = statistics.median(s["wall_time"] / s["cycles"] * 1e9 for s in runs)
+    loop_ns = statistics.median(s["robots"][0]["loop"]["wall_time"] / s["robots"][0]["loop"]["cycles"] * 1e9 for s in runs)
+    rtf = statistics.median(s["real_time_factor"] for s in runs)
     rows.append((raw, node_ns, loop_ns))
     print(f"  round {r}: raw bullet {raw:7.1f} ns/step | node {node_ns:7.1f} ns/step (loop thread {loop_ns:7.1f}), "
-          f"real-time factor {summary['real_time_factor']:.0f}")
+          f"real-time factor {rtf:.0f}   (medians of 5 runs each)")
 ratios = [n / raw for raw, n, _ in rows]
 loop_ratios = [l / raw for raw, _, l in rows]
 print(f"  node / raw bullet: median {statistics.median(ratios):.3f} (rounds: {', '.join(f'{x:.3f}' for x in ratios)}); "

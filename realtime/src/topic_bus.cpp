@@ -93,6 +93,7 @@ TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view
 
 std::size_t BusCore::deliverOnce() {
   std::lock_guard delivery(delivery_mutex);
+  if (!work->exchange(false, std::memory_order_acq_rel)) return 0;  // nothing was queued since the last pass
   InDeliveryScope scope;
   std::vector<std::shared_ptr<TopicBase>> snapshot;
   {
@@ -111,6 +112,7 @@ void detachPublisher(const std::weak_ptr<BusCore>& weak_core, const std::string&
   if (auto core = weak_core.lock()) {
     std::lock_guard lock(core->structure_mutex);
     channel->closed.store(true, std::memory_order_release);
+    core->work->store(true, std::memory_order_release);
   }
 }
 
@@ -182,6 +184,7 @@ void TopicBus::publishView(std::string_view topic, const MessageView& msg) {
   detail::TopicBase& target = core_->topicForTypeLocked(name, msg.type);
   if (target.type() != msg.type) detail::throwTypeMismatch(name, target.type(), msg.type);
   target.publishViewLocked(msg, core_->clock->now());
+  core_->work->store(true, std::memory_order_release);
 }
 
 bool TopicBus::hasTopic(std::string_view topic) const {

@@ -53,14 +53,17 @@ class PublisherChannelBase {
 template <class Msg>
 class PublisherChannel : public PublisherChannelBase {
  public:
-  PublisherChannel(const Msg& prototype, std::size_t queue_depth, std::shared_ptr<const TopicClock> clock)
+  // bus_work is the bus's "something to deliver" flag, set after each queued message.
+  PublisherChannel(const Msg& prototype, std::size_t queue_depth, std::shared_ptr<const TopicClock> clock,
+                   std::shared_ptr<std::atomic<bool>> bus_work)
       : staging_(prototype),
         slots_(queue_depth + 1, Slot{prototype, Time()}),  // + the one being delivered
         ready_(queue_depth + 1),
         // One cell more than there are slots: a push into free_ then never
         // meets the cell of a pop still in progress one lap back.
         free_(queue_depth + 2),
-        clock_(std::move(clock)) {
+        clock_(std::move(clock)),
+        bus_work_(std::move(bus_work)) {
     for (std::uint32_t i = 0; i < slots_.size(); ++i) free_.push(i);
   }
 
@@ -93,9 +96,12 @@ class PublisherChannel : public PublisherChannelBase {
       // thread runs on.
       free_.push(index);
       dropped.fetch_add(1, std::memory_order_relaxed);
+      bus_work_->store(true, std::memory_order_release);
       return false;
     }
     published.fetch_add(1, std::memory_order_relaxed);
+    // After the message is in ready_: a delivery pass that sees the flag sees it.
+    bus_work_->store(true, std::memory_order_release);
     return true;
   }
 
@@ -147,6 +153,7 @@ class PublisherChannel : public PublisherChannelBase {
   RealtimeIndexQueue ready_;  // published, oldest first
   RealtimeIndexQueue free_;   // ready to be written
   std::shared_ptr<const TopicClock> clock_;
+  std::shared_ptr<std::atomic<bool>> bus_work_;
 };
 
 // Non-real-time: tells the bus (if it still exists) that a publisher is gone.

@@ -148,7 +148,7 @@ template <class Msg>
 RealtimePublisher<Msg> TopicBus::advertise(std::string_view topic, const Msg& prototype, std::size_t queue_depth) {
   const std::string name = normalizeTopicName(topic);
   if (queue_depth == 0) throw Error("advertise '" + name + "': queue_depth must be at least 1");
-  auto channel = std::make_shared<detail::PublisherChannel<Msg>>(prototype, queue_depth, core_->clock);
+  auto channel = std::make_shared<detail::PublisherChannel<Msg>>(prototype, queue_depth, core_->clock, core_->work);
   {
     std::lock_guard lock(core_->structure_mutex);
     detail::Topic<Msg>& target = core_->typedTopicLocked<Msg>(name);
@@ -189,6 +189,7 @@ void TopicBus::publish(std::string_view topic, const Msg& msg) {
   const std::string name = normalizeTopicName(topic);
   std::lock_guard lock(core_->structure_mutex);
   core_->typedTopicLocked<Msg>(name).publishLocked(msg, core_->clock->now());
+  core_->work->store(true, std::memory_order_release);
 }
 
 // The built-in message types are instantiated once, in the library, so that

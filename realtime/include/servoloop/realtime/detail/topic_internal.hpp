@@ -243,6 +243,11 @@ class BusCore {
   std::map<std::string, std::shared_ptr<TopicBase>> topics;
   std::mutex delivery_mutex;
   std::shared_ptr<TopicClock> clock;
+  // Set whenever something may wait for delivery (a real-time publisher
+  // queued a message, a non-real-time publish, a publisher went away);
+  // deliverOnce clears it and returns at once when it was clear, so a loop
+  // that flushes every few steps pays nothing while nobody listens.
+  std::shared_ptr<std::atomic<bool>> work = std::make_shared<std::atomic<bool>>(true);
 };
 
 }  // namespace detail
