@@ -94,6 +94,14 @@ TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view
 std::size_t BusCore::deliverOnce() {
   std::lock_guard delivery(delivery_mutex);
   if (!work->exchange(false, std::memory_order_acq_rel)) return 0;  // nothing was queued since the last pass
+  // A pass that throws (out of memory) has not delivered everything: the next one must look again.
+  struct RetryUnlessDone {
+    std::atomic<bool>& work;
+    bool done = false;
+    ~RetryUnlessDone() {
+      if (!done) work.exchange(true, std::memory_order_release);
+    }
+  } retry{*work};
   InDeliveryScope scope;
   std::vector<std::shared_ptr<TopicBase>> snapshot;
   {
@@ -103,6 +111,7 @@ std::size_t BusCore::deliverOnce() {
   }
   std::size_t count = 0;
   for (const auto& topic : snapshot) count += topic->deliver(structure_mutex);
+  retry.done = true;
   return count;
 }
 
@@ -112,7 +121,7 @@ void detachPublisher(const std::weak_ptr<BusCore>& weak_core, const std::string&
   if (auto core = weak_core.lock()) {
     std::lock_guard lock(core->structure_mutex);
     channel->closed.store(true, std::memory_order_release);
-    core->work->store(true, std::memory_order_release);
+    core->work->exchange(true, std::memory_order_release);
   }
 }
 
@@ -184,7 +193,7 @@ void TopicBus::publishView(std::string_view topic, const MessageView& msg) {
   detail::TopicBase& target = core_->topicForTypeLocked(name, msg.type);
   if (target.type() != msg.type) detail::throwTypeMismatch(name, target.type(), msg.type);
   target.publishViewLocked(msg, core_->clock->now());
-  core_->work->store(true, std::memory_order_release);
+  core_->work->exchange(true, std::memory_order_release);
 }
 
 bool TopicBus::hasTopic(std::string_view topic) const {

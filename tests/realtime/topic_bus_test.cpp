@@ -132,6 +132,41 @@ TEST(TopicBus, APublisherNobodyListensToQueuesNothingAndListenersGetWhatFollows)
   EXPECT_EQ(types, (std::vector<std::string>{std::string(std_msgs::Float64::kTypeName)}));
 }
 
+TEST(TopicBus, APassFindsWhatWasQueuedWhileItRanAndForgetsClosedPublishers) {
+  TopicBus bus;
+  // A publisher closed with nothing queued is forgotten by the next pass.
+  {
+    auto gone = bus.advertise<std_msgs::Float64>("/robot/gone");
+    auto listener = bus.subscribe<std_msgs::Float64>("/robot/gone", [](const std_msgs::Float64&) {});
+    EXPECT_EQ(bus.flush(), 0u);
+  }
+  bus.flush();
+  ASSERT_EQ(bus.list().size(), 1u);
+  EXPECT_EQ(bus.list()[0].publishers, 0u);
+
+  // A callback of one topic publishes in real time on a topic the same pass
+  // has already visited ("/a" comes before "/b"): the next pass delivers it.
+  auto a = bus.advertise<std_msgs::Float64>("/a");
+  auto b = bus.advertise<std_msgs::Float64>("/b");
+  std::vector<double> on_a;
+  auto sub_a = bus.subscribe<std_msgs::Float64>("/a", [&](const std_msgs::Float64& msg) { on_a.push_back(msg.data); });
+  auto sub_b = bus.subscribe<std_msgs::Float64>("/b", [&](const std_msgs::Float64& msg) { a.publish(msg); });
+  b.publish(std_msgs::Float64{7.0});
+  EXPECT_EQ(bus.flush(), 1u);  // /b's message; /a was visited before it was published
+  EXPECT_TRUE(on_a.empty());
+  EXPECT_EQ(bus.flush(), 1u);
+  EXPECT_EQ(on_a, (std::vector<double>{7.0}));
+  EXPECT_EQ(bus.flush(), 0u);
+
+  // A typed subscriber that came before the publisher listens too.
+  std::vector<double> early;
+  auto sub_c = bus.subscribe<std_msgs::Float64>("/c", [&](const std_msgs::Float64& msg) { early.push_back(msg.data); });
+  auto c = bus.advertise<std_msgs::Float64>("/c");
+  c.publish(std_msgs::Float64{3.0});
+  EXPECT_EQ(bus.flush(), 1u);
+  EXPECT_EQ(early, (std::vector<double>{3.0}));
+}
+
 TEST(TopicBus, StalledSubscriberNeverBlocksThePublisherAndLaterSeesTheNewest) {
   TopicBus bus;
   auto publisher = bus.advertise<std_msgs::Float64>("/robot/ctrl/state");

@@ -96,12 +96,14 @@ class PublisherChannel : public PublisherChannelBase {
       // thread runs on.
       free_.push(index);
       dropped.fetch_add(1, std::memory_order_relaxed);
-      bus_work_->store(true, std::memory_order_release);
+      bus_work_->exchange(true, std::memory_order_release);
       return false;
     }
     published.fetch_add(1, std::memory_order_relaxed);
-    // After the message is in ready_: a delivery pass that sees the flag sees it.
-    bus_work_->store(true, std::memory_order_release);
+    // After the message is in ready_: a delivery pass that sees the flag sees
+    // it. Every setter writes the flag with a read-modify-write, so the pass's
+    // exchange synchronises with all of them, not only with the last one.
+    bus_work_->exchange(true, std::memory_order_release);
     return true;
   }
 

@@ -189,7 +189,7 @@ void TopicBus::publish(std::string_view topic, const Msg& msg) {
   const std::string name = normalizeTopicName(topic);
   std::lock_guard lock(core_->structure_mutex);
   core_->typedTopicLocked<Msg>(name).publishLocked(msg, core_->clock->now());
-  core_->work->store(true, std::memory_order_release);
+  core_->work->exchange(true, std::memory_order_release);
 }
 
 // The built-in message types are instantiated once, in the library, so that
