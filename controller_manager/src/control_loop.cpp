@@ -37,9 +37,17 @@ const char* protectiveStopCause(HardwareCall call) noexcept {
 void ControlLoop::recordFailure(HardwareCall call, ReturnType result, Time time,
                                 std::uint64_t cycle) noexcept {
   if (hardware_errors_.record(call, result, time, cycle)) statistics_.recordHardwareError();
-  if (result == ReturnType::deactivate) deactivate_this_cycle_ = true;
   if (options_.safety != nullptr && options_.safety->hardwareFailed(call, result, time)) {
     manager_.containHardwareFailure(time, protectiveStopCause(call));
+  }
+  if (result == ReturnType::deactivate) {
+    // The loop stops at the end of this cycle (finishCycle); the fault and
+    // its containment come now, so a deactivating read() is followed by no
+    // update or command of the controllers it stops.
+    deactivate_this_cycle_ = true;
+    if (options_.safety != nullptr && options_.safety->hardwareStopped(time)) {
+      manager_.containHardwareFailure(time, "it stopped the control loop (fault)");
+    }
   }
 }
 

@@ -180,6 +180,25 @@ TEST(SafetySupervisor, DeactivateIsAFaultThatStopsTheLoop) {
   EXPECT_EQ(s.safety.state(), SafetyState::running);
 }
 
+TEST(SafetySupervisor, ADeactivatingReadIsContainedBeforeThatCyclesUpdateAndWrite) {
+  LoopFixture f(0.001);
+  SafetyLoop s(f);
+  f.hw.read_script.from = f.hw.reads + 2;
+  f.hw.read_script.result = ReturnType::deactivate;
+  f.recorder->clear();
+  s.loop->runFor(Duration(0.05));
+  EXPECT_TRUE(s.loop->hardwareAskedToStop());
+  EXPECT_EQ(s.safety.state(), SafetyState::fault);
+  EXPECT_EQ(f.controller()->state(), ControllerState::failed);
+  EXPECT_NE(s.safety.reason().find("read() returned deactivate"), std::string::npos) << s.safety.reason();
+  // Two good cycles (2.5), then the deactivating one: its write already
+  // carries the stopped controller's safe effort, and the loop ends there.
+  EXPECT_EQ(writtenEfforts(*f.recorder), (std::vector<double>{2.5, 2.5, 0.0}));
+  EXPECT_EQ(f.recorder->ofKind(EventKind::update).size(), 2u);
+  const std::vector<ControllerFault> faults = f.manager.processFaults();
+  ASSERT_EQ(faults.size(), 1u);
+}
+
 TEST(SafetySupervisor, PersistentErrorsEndInAFaultKeepingTheFirstCause) {
   LoopFixture f(0.001);
   SafetySupervisor safety(f.hw);
