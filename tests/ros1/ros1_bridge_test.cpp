@@ -165,6 +165,36 @@ class Ros1BridgeTest : public ::testing::Test {
     ASSERT_EQ(run({ros("rosparam"), "load", yaml.string(), "/one_DOF_robot"}).status, 0);
   }
 
+  // Loads `controller` and starts it in place of the seed's position
+  // controller through ros_control's services, as a ROS user would.
+  void loadAndStartThroughRos(const std::string& controller) {
+    const std::string services = "/one_DOF_robot/controller_manager/";
+    EXPECT_THAT(run({ros("rosservice"), "call", services + "load_controller", "name: " + controller}).out,
+                HasSubstr("ok: True"));
+    EXPECT_THAT(run({ros("rosservice"), "call", services + "switch_controller",
+                     "{start_controllers: [" + controller + "], stop_controllers: [joint1_position_controller], "
+                     "strictness: 2}"}).out,
+                HasSubstr("ok: True"));
+  }
+
+  // A goal as actionlib sends it (rostopic pub on <action>/goal, once the
+  // bridge serves the action), and the <action>/result that ends it, as
+  // rostopic echo sees it (its subscription registered before the goal goes).
+  ProcessResult sendGoalAndWaitForResult(const std::string& action, const std::string& type, const std::string& goal) {
+    const bool served =
+        waitUntil([&] { return run({ros("rostopic"), "list"}).out.find(action + "/goal") != std::string::npos; }, 30.0);
+    EXPECT_TRUE(served) << action << " not served";
+    ChildProcess result({ros("rostopic"), "echo", "-n", "1", action + "/result"}, options("result"));
+    const bool subscribed = waitUntil([&] {
+      static const std::regex registered(R"(Subscribers:\s*\n \* /rostopic)");
+      return std::regex_search(run({ros("rostopic"), "info", action + "/result"}).out, registered);
+    }, 20.0);
+    EXPECT_TRUE(subscribed);
+    const ProcessResult sent = run({ros("rostopic"), "pub", "-1", action + "/goal", type, goal});
+    EXPECT_EQ(sent.status, 0) << sent.err;
+    return result.wait(60.0);
+  }
+
   bool nodeAnswers() {
     const CliResult list = runCli({"control", "list", "-N", "/one_DOF_robot"}, run_.scratch());
     return list.status == 0 && list.out.find("joint1_position_controller") != std::string::npos;
@@ -308,32 +338,15 @@ TEST_F(Ros1BridgeTest, TrajectoryGoalThroughActionlib) {
                          "    gains: {joint1: {p: 100.0, i: 50.0, d: 10.0, i_clamp: 10.0}}\n"
                          "    constraints: {goal_time: 10.0, stopped_velocity_tolerance: 0.05, joint1: {goal: 0.02}}\n";
   ASSERT_EQ(runCli({"param", "load", yaml.string(), "-N", "/one_DOF_robot"}, run_.scratch()).status, 0);
-  const std::string services = "/one_DOF_robot/controller_manager/";
-  EXPECT_THAT(run({ros("rosservice"), "call", services + "load_controller", "name: joint1_trajectory_controller"}).out,
-              HasSubstr("ok: True"));
-  EXPECT_THAT(run({ros("rosservice"), "call", services + "switch_controller",
-                   "{start_controllers: [joint1_trajectory_controller], stop_controllers: [joint1_position_controller], "
-                   "strictness: 2}"}).out,
-              HasSubstr("ok: True"));
-  const std::string action = "/one_DOF_robot/joint1_trajectory_controller/follow_joint_trajectory";
-  ASSERT_TRUE(waitUntil([&] { return run({ros("rostopic"), "list"}).out.find(action + "/goal") != std::string::npos; },
-                        30.0));
+  loadAndStartThroughRos("joint1_trajectory_controller");
 
-  // The goal as actionlib sends it (on <action>/goal); the result comes on
-  // <action>/result: SUCCEEDED (status 3), error_code 0 (the controller found
+  // The result: SUCCEEDED (status 3), error_code 0 (the controller found
   // the joint within the 0.02 rad goal tolerance, settling within goal_time),
   // and the joint at the trajectory's end, 0.5 rad.
-  ChildProcess result({ros("rostopic"), "echo", "-n", "1", action + "/result"}, options("result"));
-  ASSERT_TRUE(waitUntil([&] {
-    // rostopic echo's subscription is registered (rostopic info lists it).
-    static const std::regex subscribed(R"(Subscribers:\s*\n \* /rostopic)");
-    return std::regex_search(run({ros("rostopic"), "info", action + "/result"}).out, subscribed);
-  }, 20.0));
-  const ProcessResult sent = run({ros("rostopic"), "pub", "-1", action + "/goal", "control_msgs/FollowJointTrajectoryActionGoal",
-                                  "{goal_id: {id: 'g1'}, goal: {trajectory: {joint_names: [joint1], points: "
-                                  "[{positions: [0.5], time_from_start: {secs: 2, nsecs: 0}}]}}}"});
-  ASSERT_EQ(sent.status, 0) << sent.err;
-  const ProcessResult ended = result.wait(60.0);
+  const ProcessResult ended = sendGoalAndWaitForResult(
+      "/one_DOF_robot/joint1_trajectory_controller/follow_joint_trajectory", "control_msgs/FollowJointTrajectoryActionGoal",
+      "{goal_id: {id: 'g1'}, goal: {trajectory: {joint_names: [joint1], points: "
+      "[{positions: [0.5], time_from_start: {secs: 2, nsecs: 0}}]}}}");
   ASSERT_FALSE(ended.timed_out);
   EXPECT_THAT(ended.out, HasSubstr("id: \"g1\""));
   EXPECT_THAT(ended.out, HasSubstr("status: 3"));
@@ -351,29 +364,14 @@ TEST_F(Ros1BridgeTest, GripperGoalThroughActionlibWithRosParameters) {
   EXPECT_THAT(runCli({"param", "get", "/one_DOF_robot/joint1_gripper_controller/type"}, run_.scratch()).out,
               Not(HasSubstr("GripperActionController")));
 
-  const std::string services = "/one_DOF_robot/controller_manager/";
-  EXPECT_THAT(run({ros("rosservice"), "call", services + "load_controller", "name: joint1_gripper_controller"}).out,
-              HasSubstr("ok: True"));
+  loadAndStartThroughRos("joint1_gripper_controller");
   EXPECT_THAT(runCli({"param", "get", "/one_DOF_robot/joint1_gripper_controller/gains/joint1/p"}, run_.scratch()).out,
               HasSubstr("500"));
-  EXPECT_THAT(run({ros("rosservice"), "call", services + "switch_controller",
-                   "{start_controllers: [joint1_gripper_controller], stop_controllers: [joint1_position_controller], "
-                   "strictness: 2}"}).out,
-              HasSubstr("ok: True"));
-  const std::string action = "/one_DOF_robot/joint1_gripper_controller/gripper_cmd";
-  ASSERT_TRUE(waitUntil([&] { return run({ros("rostopic"), "list"}).out.find(action + "/goal") != std::string::npos; },
-                        30.0));
 
-  ChildProcess result({ros("rostopic"), "echo", "-n", "1", action + "/result"}, options("result"));
-  ASSERT_TRUE(waitUntil([&] {
-    static const std::regex subscribed(R"(Subscribers:\s*\n \* /rostopic)");
-    return std::regex_search(run({ros("rostopic"), "info", action + "/result"}).out, subscribed);
-  }, 20.0));
-  const ProcessResult sent = run({ros("rostopic"), "pub", "-1", action + "/goal", "control_msgs/GripperCommandActionGoal",
-                                  "{goal_id: {id: 'grip'}, goal: {command: {position: 0.3, max_effort: 20.0}}}"});
-  ASSERT_EQ(sent.status, 0) << sent.err;
   // SUCCEEDED (3) with reached_goal, not stalled, at the commanded position.
-  const ProcessResult ended = result.wait(60.0);
+  const ProcessResult ended =
+      sendGoalAndWaitForResult("/one_DOF_robot/joint1_gripper_controller/gripper_cmd", "control_msgs/GripperCommandActionGoal",
+                               "{goal_id: {id: 'grip'}, goal: {command: {position: 0.3, max_effort: 20.0}}}");
   ASSERT_FALSE(ended.timed_out);
   EXPECT_THAT(ended.out, HasSubstr("id: \"grip\""));
   EXPECT_THAT(ended.out, HasSubstr("status: 3"));
