@@ -56,7 +56,9 @@ SafetySupervisor::SafetySupervisor(hardware_interface::RobotHW& hw) : hw_(hw) {
 
 SafetyState SafetySupervisor::state() const noexcept {
   if (fault_.load(std::memory_order_acquire)) return SafetyState::fault;
-  if (estop_latched_.load(std::memory_order_acquire)) return SafetyState::emergency_stop;
+  if (estop_latched_.load(std::memory_order_acquire) || hardware_input_.load(std::memory_order_acquire)) {
+    return SafetyState::emergency_stop;
+  }
   if (protective_.load(std::memory_order_acquire)) return SafetyState::protective_stop;
   return SafetyState::running;
 }
@@ -76,7 +78,16 @@ bool SafetySupervisor::releaseEmergencyStop(std::string* why) {
     }
     return false;
   }
-  estop_latched_.store(false, std::memory_order_release);
+  estop_latched_.store(false, std::memory_order_seq_cst);
+  // The input may have been pressed since the check: a poll that saw it
+  // while the latch was still set did not latch again, so latch it here.
+  // (The loop never sends commands while its last poll saw the input, latch
+  // or not: overrideCommands.)
+  if (hardware_input_.load(std::memory_order_seq_cst)) {
+    engageEmergencyStop(EmergencyStopSource::hardware);
+    if (why != nullptr) *why = "the hardware's own emergency-stop input was pressed again; release it on the robot first";
+    return false;
+  }
   return true;
 }
 
@@ -115,7 +126,7 @@ std::string SafetySupervisor::reason() const {
 
 void SafetySupervisor::pollHardwareInput() noexcept {
   const bool input = hw_.emergencyStopInput();  // noexcept
-  hardware_input_.store(input, std::memory_order_release);
+  hardware_input_.store(input, std::memory_order_seq_cst);
   if (input) engageEmergencyStop(EmergencyStopSource::hardware);
 }
 
@@ -156,7 +167,10 @@ void SafetySupervisor::latchHeldPositions() noexcept {
 }
 
 void SafetySupervisor::overrideCommands() noexcept {
-  if (!estop_latched_.load(std::memory_order_acquire)) {
+  // The input as this cycle's poll saw it counts as well as the latch: a
+  // release racing the poll can clear the latch, never this thread's own
+  // reading of the input.
+  if (!estop_latched_.load(std::memory_order_acquire) && !hardware_input_.load(std::memory_order_relaxed)) {
     holding_ = false;
     return;
   }

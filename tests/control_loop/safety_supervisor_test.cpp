@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <limits>
+#include <thread>
 
 #include "control_loop_test_support.hpp"
 #include "servoloop/controller_manager/safety_supervisor.hpp"
@@ -245,6 +246,66 @@ TEST(SafetySupervisor, TheHardwareInputLatchesTheStopAndBlocksItsRelease) {
   ASSERT_TRUE(safety.releaseEmergencyStop(&why));
   loop.cycleOnce();
   EXPECT_EQ(hw.applied_effort, 2.5);
+}
+
+// The input as the last poll saw it, and every write that carried the
+// controller's effort while it was pressed.
+class InputCheckingRobot : public FakeRobotWithEstopInput {
+ public:
+  using FakeRobotWithEstopInput::FakeRobotWithEstopInput;
+  bool emergencyStopInput() const noexcept override {
+    last_seen_ = pressed.load();
+    return last_seen_;
+  }
+  ReturnType write(Time time, Duration period) override {
+    if (last_seen_ && effort_command != 0.0) ++unsafe_writes;
+    return FakeRobotWithEstopInput::write(time, period);
+  }
+  int unsafe_writes = 0;  // loop thread only
+
+ private:
+  mutable bool last_seen_ = false;
+};
+
+TEST(SafetySupervisor, AReleaseRacingTheHardwareInputNeverLetsACommandOutWhileItIsPressed) {
+  // The input toggles every 3 cycles (on the loop thread, between cycles)
+  // while another thread asks for a release as fast as it can. A release
+  // that checked the input just before a poll saw it pressed must not clear
+  // the stop that poll relies on: no write may carry the controller's 2.5
+  // while the input is pressed.
+  LoopFixture f(0.001);
+  InputCheckingRobot hw(0.001, nullptr);
+  SafetySupervisor safety(hw);
+  ControllerManager manager(&hw, f.factory, ControllerManager::lookupIn(f.params), LoopFixture::context(), 0.0);
+  ASSERT_TRUE(manager.loadController("ctrl"));
+  SimulationLoop::Options options;
+  options.safety = &safety;
+  SimulationLoop loop(hw, manager, options);
+  ASSERT_TRUE(manager.requestSwitch(SwitchRequest{{"ctrl"}, {}, SwitchStrictness::STRICT, false, 0.0}));
+  loop.cycleOnce();
+  loop.cycleOnce();
+  ASSERT_EQ(hw.applied_effort, 2.5);
+
+  std::atomic<bool> done{false};
+  std::atomic<long> releases{0};
+  std::thread releaser([&] {
+    while (!done.load(std::memory_order_relaxed)) {
+      if (safety.releaseEmergencyStop(nullptr)) releases.fetch_add(1, std::memory_order_relaxed);
+    }
+  });
+  int commanded_writes = 0;
+  for (int cycle = 0; cycle < 200000; ++cycle) {
+    hw.pressed.store(cycle % 6 < 3);
+    loop.cycleOnce();
+    if (hw.applied_effort == 2.5) ++commanded_writes;
+  }
+  done.store(true);
+  releaser.join();
+  EXPECT_EQ(hw.unsafe_writes, 0);
+  // The test did exercise both: releases that went through, and the
+  // controller's effort reaching the hardware between presses.
+  EXPECT_GT(releases.load(), 0);
+  EXPECT_GT(commanded_writes, 0);
 }
 
 // A robot with one position-commanded joint: the held value.
