@@ -153,10 +153,10 @@ std::size_t ControllerManager::containHardwareFailure(const Time& time, const ch
       ++stopped;
     }
   }
-  // The epoch moves on even without fallbacks: a switch prepared before the
-  // stop (one that would start a controller now) is then not carried out.
-  const bool any_fallback = stopped > 0;
-  if (any_fallback) fallback_starts_.fetch_add(1, std::memory_order_acq_rel);  // odd: see containInUpdate
+  // The epoch moves on even when nothing was running: a switch prepared
+  // before the stop (one that would start a controller now, in this cycle's
+  // update) is then not carried out.
+  fallback_starts_.fetch_add(1, std::memory_order_acq_rel);  // odd: see containInUpdate
   for (detail::ControllerEntry* entry : list) {
     if (!entry->stopped_by_hardware_failure) continue;
     entry->stopped_by_hardware_failure = false;
@@ -167,7 +167,7 @@ std::size_t ControllerManager::containHardwareFailure(const Time& time, const ch
     }
     entry->fault.publish(FaultKind::hardware_failed, why, ControllerBase::kAllCommandsFinite, 0.0, started);
   }
-  if (any_fallback) fallback_starts_.fetch_add(1, std::memory_order_acq_rel);
+  fallback_starts_.fetch_add(1, std::memory_order_acq_rel);
   realtime_reading_list_.store(-1, std::memory_order_release);
   return stopped;
 }

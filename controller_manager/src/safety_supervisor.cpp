@@ -54,6 +54,10 @@ SafetySupervisor::SafetySupervisor(hardware_interface::RobotHW& hw) : hw_(hw) {
   held_positions_.assign(position_commands_.size(), 0.0);
 }
 
+bool SafetySupervisor::protectiveStopped() const noexcept {
+  return protective_.load(std::memory_order_acquire) && !fault_.load(std::memory_order_acquire);
+}
+
 SafetyState SafetySupervisor::state() const noexcept {
   if (fault_.load(std::memory_order_acquire)) return SafetyState::fault;
   if (estop_latched_.load(std::memory_order_acquire) || hardware_input_.load(std::memory_order_acquire)) {
@@ -64,9 +68,11 @@ SafetyState SafetySupervisor::state() const noexcept {
 }
 
 void SafetySupervisor::engageEmergencyStop(EmergencyStopSource source) noexcept {
-  if (estop_latched_.load(std::memory_order_acquire)) return;
+  // One engagement per latch, also when the loop's poll and a racing release
+  // both engage.
+  bool latched = false;
+  if (!estop_latched_.compare_exchange_strong(latched, true, std::memory_order_seq_cst)) return;
   estop_source_.store(source, std::memory_order_relaxed);
-  estop_latched_.store(true, std::memory_order_release);
   emergency_stops_.fetch_add(1, std::memory_order_relaxed);
 }
 

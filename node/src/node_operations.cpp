@@ -192,8 +192,13 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
         throw Error("robot '" + robot.robotNamespace() + "': " + robot.safety().reason() +
                     "; no switch can be carried out until then");
       }
-      if (safety == controller_manager::SafetyState::protective_stop && !switch_request.start_controllers.empty()) {
-        throw Error("robot '" + robot.robotNamespace() + "': " + robot.safety().reason() +
+      // Also under an emergency stop engaged on top of the protective one.
+      if (robot.safety().protectiveStopped() && !switch_request.start_controllers.empty()) {
+        const std::string why = safety == controller_manager::SafetyState::protective_stop
+                                    ? robot.safety().reason()
+                                    : "a protective stop holds under the emergency stop; after fixing its cause run "
+                                      "`servoloop control recover`";
+        throw Error("robot '" + robot.robotNamespace() + "': " + why +
                     "; no controller can start until then (stopping them is allowed)");
       }
       throwIfFailed(robot.manager().switchController(switch_request));

@@ -200,6 +200,31 @@ TEST(SafetySupervisor, ADeactivatingReadIsContainedBeforeThatCyclesUpdateAndWrit
   ASSERT_EQ(faults.size(), 1u);
 }
 
+TEST(SafetySupervisor, ASwitchWaitingWhenTheHardwareFailsStartsNothing) {
+  // Nothing commands the robot yet; a start of ctrl waits for the next
+  // update. The read before it fails (an error, then, separately, a
+  // deactivate): the waiting start is dropped, the hardware gets no command.
+  for (const ReturnType failure : {ReturnType::error, ReturnType::deactivate}) {
+    SCOPED_TRACE(failure == ReturnType::error ? "error" : "deactivate");
+    LoopFixture f(0.001);
+    SafetySupervisor safety(f.hw);
+    SimulationLoop::Options options;
+    options.safety = &safety;
+    SimulationLoop loop(f.hw, f.manager, options);
+    loop.cycleOnce();  // no controller running
+    f.hw.read_script.from = f.hw.reads;
+    f.hw.read_script.until = f.hw.reads + 1;
+    f.hw.read_script.result = failure;
+    f.requestStart();
+    f.recorder->clear();
+    loop.cycleOnce();
+    EXPECT_FALSE(f.controller()->isRunning());
+    EXPECT_TRUE(f.recorder->ofKind(EventKind::update).empty());
+    EXPECT_EQ(writtenEfforts(*f.recorder), std::vector<double>{0.0});
+    EXPECT_EQ(safety.state(), failure == ReturnType::error ? SafetyState::protective_stop : SafetyState::fault);
+  }
+}
+
 TEST(SafetySupervisor, PersistentErrorsEndInAFaultKeepingTheFirstCause) {
   LoopFixture f(0.001);
   SafetySupervisor safety(f.hw);

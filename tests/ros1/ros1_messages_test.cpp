@@ -3,7 +3,10 @@
 // generated code publishes them), and every bridged type survives JSON → ROS →
 // serialised bytes → ROS → JSON unchanged, NaN included.
 #include <cmath>
+#include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <control_msgs/JointControllerState.h>
 #include <control_msgs/FollowJointTrajectoryAction.h>
@@ -142,22 +145,36 @@ TEST(Ros1Messages, ParametersKeepTheirYamlTypes) {
   EXPECT_EQ(static_cast<double>(copy["l"][1]), 2.5);
 }
 
-TEST(Ros1Messages, RosParametersComeBackAsTheJsonTheNodeStores) {
-  // A controller's configuration as rosparam holds it, back to JSON (what
-  // load_controller hands the node): types kept, nesting kept, a quoted "2"
-  // stays a string.
+TEST(Ros1Messages, RosParametersGoBackAsYamlThatKeepsTheirTypes) {
+  // What load_controller hands the node: each value as YAML text that loads
+  // back with the type rosparam gave it.
   XmlRpc::XmlRpcValue value = servoloop::ros1::yamlToXmlRpc(YAML::Load(
-      "{type: effort_controllers/GripperActionController, gains: {joint1: {p: 500, d: 20.5}}, on: true, "
-      "quoted: '2', joints: [a, b]}"));
-  const nlohmann::json expected = {{"type", "effort_controllers/GripperActionController"},
-                                   {"gains", {{"joint1", {{"p", 500}, {"d", 20.5}}}}},
-                                   {"on", true},
-                                   {"quoted", "2"},
-                                   {"joints", {"a", "b"}}};
-  const nlohmann::json json = servoloop::ros1::xmlRpcToJson(value);
-  EXPECT_EQ(json, expected) << json.dump();
-  EXPECT_TRUE(json["gains"]["joint1"]["p"].is_number_integer());
-  EXPECT_TRUE(json["quoted"].is_string());
+      "{p: 500, d: 20.5, limit: .inf, on: true, quoted: '2', letter: 'y', joints: [a, b], third: 0.1}"));
+  const YAML::Node back = YAML::Load(servoloop::ros1::xmlRpcToYaml(value));
+  EXPECT_EQ(back["p"].as<int>(), 500);
+  EXPECT_EQ(back["d"].as<double>(), 20.5);
+  EXPECT_EQ(back["limit"].as<double>(), std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(back["on"].as<bool>());
+  EXPECT_EQ(back["quoted"].Tag(), "!");  // a quoted scalar: a string, not the number 2
+  EXPECT_EQ(back["quoted"].as<std::string>(), "2");
+  EXPECT_EQ(back["letter"].Tag(), "!");  // not yaml-cpp's boolean 'y'
+  EXPECT_EQ(back["joints"].as<std::vector<std::string>>(), (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(back["third"].as<double>(), 0.1);  // every digit: the same double
+}
+
+TEST(Ros1Messages, OnlyParametersChangedInRosSinceTheCopyArePassedOn) {
+  // The bridge copied p 100, i 1 and the type; in ROS since: i set to 2 and
+  // d added. Passed on: d and i (as YAML); p and the type are left to the
+  // node (which may have changed them itself since).
+  const YAML::Node copied = YAML::Load(
+      "{robot: {ctrl: {type: effort_controllers/JointPositionController, pid: {p: 100.0, i: 1}}}}");
+  XmlRpc::XmlRpcValue ros_value = servoloop::ros1::yamlToXmlRpc(
+      YAML::Load("{type: effort_controllers/JointPositionController, pid: {p: 100.0, i: 2, d: 5.5}}"));
+  const auto changed = servoloop::ros1::changedParameters("/robot/ctrl", ros_value, copied);
+  EXPECT_EQ(changed, (std::vector<std::pair<std::string, std::string>>{{"/robot/ctrl/pid/d", "5.5"},
+                                                                       {"/robot/ctrl/pid/i", "2"}}));
+  // Nothing copied at all (a controller configured only in ROS): everything.
+  EXPECT_EQ(servoloop::ros1::changedParameters("/robot/ctrl", ros_value, YAML::Node()).size(), 4u);
 }
 
 TEST(Ros1GazeboServices, EffortsAddUpOverTheirWindows) {

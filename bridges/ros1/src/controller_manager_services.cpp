@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <controller_manager_msgs/ListControllerTypes.h>
 #include <controller_manager_msgs/ListControllers.h>
@@ -47,7 +48,8 @@ bool callForOk(NodeLink& link, const char* service, std::string_view op, const j
 
 }  // namespace
 
-ControllerManagerServices::ControllerManagerServices(ros::NodeHandle& nh, NodeLink& link) {
+ControllerManagerServices::ControllerManagerServices(ros::NodeHandle& nh, NodeLink& link, YAML::Node copied_parameters)
+    : copied_parameters_(std::move(copied_parameters)) {
   const std::string base = link.resolve("controller_manager") + "/";
 
   servers_.push_back(nh.advertiseService<cmm::ListControllers::Request, cmm::ListControllers::Response>(
@@ -80,11 +82,13 @@ ControllerManagerServices::ControllerManagerServices(ros::NodeHandle& nh, NodeLi
       }));
 
   servers_.push_back(nh.advertiseService<cmm::LoadController::Request, cmm::LoadController::Response>(
-      base + "load_controller", [&link](cmm::LoadController::Request& request, cmm::LoadController::Response& response) {
+      base + "load_controller",
+      [this, &link](cmm::LoadController::Request& request, cmm::LoadController::Response& response) {
+        std::lock_guard lock(load_mutex_);
         // As ros_control does, the configuration is what the ROS parameter
         // server holds when the controller is loaded.
         try {
-          passControllerParametersOn(link, request.name);
+          passControllerParametersOn(link, request.name, copied_parameters_);
         } catch (const std::exception& e) {
           ROS_ERROR("load_controller: the parameters of %s on the ROS parameter server could not be passed to "
                     "servoloop: %s",

@@ -3,11 +3,13 @@
 // answered by the node's control.* operations with ros_control's request and
 // response semantics: a request the node refuses is answered ok=false (the
 // call itself succeeds) and the node's reason is logged.
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include <ros/node_handle.h>
 #include <ros/service_server.h>
+#include <yaml-cpp/yaml.h>
 
 #include "node_link.hpp"
 
@@ -15,10 +17,15 @@ namespace servoloop::ros1 {
 
 class ControllerManagerServices {
  public:
-  ControllerManagerServices(ros::NodeHandle& nh, NodeLink& link);
+  // copied_parameters: what the bridge copied to the parameter server at
+  // start (ParameterCopy::copied), against which load_controller finds the
+  // configuration changed in ROS since.
+  ControllerManagerServices(ros::NodeHandle& nh, NodeLink& link, YAML::Node copied_parameters);
 
  private:
   std::vector<ros::ServiceServer> servers_;
+  YAML::Node copied_parameters_;
+  std::mutex load_mutex_;  // one load_controller at a time, as ros_control serves them
 };
 
 // ros_control's name for a servoloop controller state.

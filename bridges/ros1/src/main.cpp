@@ -56,7 +56,7 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   // The services on a connection of their own: a switch that takes a while
   // never holds up the commands flowing from ROS on `link`.
   servoloop::ros1::NodeLink service_link(node_namespace);
-  servoloop::ros1::ControllerManagerServices services(nh, service_link);
+  servoloop::ros1::ControllerManagerServices services(nh, service_link, copy.copied);
   servoloop::ros1::RobotStateCache robot_state;
   servoloop::ros1::TopicBridge topics(nh, link, robot_state);
   // Gazebo's joint and model services, on a connection of their own.

@@ -1,5 +1,11 @@
 #include "parameter_bridge.hpp"
 
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <ros/ros.h>
 
 namespace servoloop::ros1 {
@@ -60,6 +66,7 @@ ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time) {
   ParameterCopy copy;
   const std::string yaml = link.call("param.dump", {{"namespace", "/"}}).value("yaml", "");
   const YAML::Node root = YAML::Load(yaml);
+  copy.copied = root;
   // Leaf by leaf: setting a whole tree would replace what ROS nodes keep
   // beside servoloop's parameters under the same namespace.
   setLeaves("", root, copy);
@@ -75,45 +82,120 @@ ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time) {
   return copy;
 }
 
-nlohmann::json xmlRpcToJson(XmlRpc::XmlRpcValue& value) {
+namespace {
+
+// (XmlRpcValue's typed reads are not const; nothing here changes the value.)
+void emitXmlRpc(YAML::Emitter& out, XmlRpc::XmlRpcValue& value) {
   switch (value.getType()) {
     case XmlRpc::XmlRpcValue::TypeBoolean:
-      return static_cast<bool>(value);
+      out << static_cast<bool>(value);
+      return;
     case XmlRpc::XmlRpcValue::TypeInt:
-      return static_cast<int>(value);
+      out << static_cast<int>(value);
+      return;
     case XmlRpc::XmlRpcValue::TypeDouble:
-      return static_cast<double>(value);
+      out << static_cast<double>(value);
+      return;
     case XmlRpc::XmlRpcValue::TypeString:
-      return static_cast<std::string>(value);
-    case XmlRpc::XmlRpcValue::TypeArray: {
-      nlohmann::json out = nlohmann::json::array();
-      for (int i = 0; i < value.size(); ++i) out.push_back(xmlRpcToJson(value[i]));
-      return out;
-    }
-    case XmlRpc::XmlRpcValue::TypeStruct: {
-      nlohmann::json out = nlohmann::json::object();
-      for (auto& [key, member] : value) out[key] = xmlRpcToJson(member);
-      return out;
-    }
+      out << YAML::DoubleQuoted << static_cast<std::string>(value);
+      return;
+    case XmlRpc::XmlRpcValue::TypeArray:
+      out << YAML::Flow << YAML::BeginSeq;
+      for (int i = 0; i < value.size(); ++i) emitXmlRpc(out, value[i]);
+      out << YAML::EndSeq;
+      return;
+    case XmlRpc::XmlRpcValue::TypeStruct:
+      out << YAML::Flow << YAML::BeginMap;
+      for (auto& [key, member] : value) {
+        out << YAML::Key << key << YAML::Value;
+        emitXmlRpc(out, member);
+      }
+      out << YAML::EndMap;
+      return;
     case XmlRpc::XmlRpcValue::TypeDateTime:
     case XmlRpc::XmlRpcValue::TypeBase64:
-      return value.toXml();
+      out << YAML::DoubleQuoted << value.toXml();
+      return;
     case XmlRpc::XmlRpcValue::TypeInvalid:
       break;
   }
-  return nullptr;
+  out << YAML::Null;
 }
 
-bool passControllerParametersOn(NodeLink& link, const std::string& controller) {
+// The node at a slash-separated name under root; nullopt when missing.
+std::optional<YAML::Node> childAt(const YAML::Node& root, const std::string& name) {
+  YAML::Node node;
+  node.reset(root);
+  std::size_t start = 0;
+  while (start < name.size()) {
+    std::size_t end = name.find('/', start);
+    if (end == std::string::npos) end = name.size();
+    if (end > start) {
+      if (!node.IsMap()) return std::nullopt;
+      const YAML::Node& parent = node;
+      const YAML::Node child = parent[name.substr(start, end - start)];
+      if (!child.IsDefined()) return std::nullopt;
+      node.reset(child);
+    }
+    start = end + 1;
+  }
+  return node;
+}
+
+void rosLeaves(const std::string& prefix, XmlRpc::XmlRpcValue& value,
+               std::vector<std::pair<std::string, XmlRpc::XmlRpcValue*>>& out) {
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeStruct && value.size() > 0) {
+    for (auto& [key, member] : value) rosLeaves(prefix + "/" + key, member, out);
+    return;
+  }
+  out.emplace_back(prefix, &value);
+}
+
+}  // namespace
+
+std::string xmlRpcToYaml(XmlRpc::XmlRpcValue& value) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  emitXmlRpc(out, value);
+  return out.c_str();
+}
+
+std::vector<std::pair<std::string, std::string>> changedParameters(const std::string& name,
+                                                                   XmlRpc::XmlRpcValue& ros_value,
+                                                                   const YAML::Node& copied) {
+  std::vector<std::pair<std::string, XmlRpc::XmlRpcValue*>> leaves;
+  rosLeaves(name, ros_value, leaves);
+  std::vector<std::pair<std::string, std::string>> changed;
+  for (const auto& [leaf_name, leaf] : leaves) {
+    const std::optional<YAML::Node> before = childAt(copied, leaf_name);
+    if (before && yamlToXmlRpc(*before).toXml() == leaf->toXml()) continue;  // as the bridge copied it
+    changed.emplace_back(leaf_name, xmlRpcToYaml(*leaf));
+  }
+  return changed;
+}
+
+int passControllerParametersOn(NodeLink& link, const std::string& controller, const YAML::Node& copied) {
+  if (controller.empty() || controller.front() == '~' ||
+      std::all_of(controller.begin(), controller.end(), [](char c) { return c == '/'; })) {
+    return 0;
+  }
   const std::string name = link.resolve(controller);
+  if (name == link.resolve("")) return 0;  // the namespace itself
+  for (const nlohmann::json& loaded : link.call("control.list").at("controllers")) {
+    if (loaded.value("name", "") == controller) return 0;
+  }
   XmlRpc::XmlRpcValue value;
   try {
-    if (!ros::param::get(name, value) || value.getType() != XmlRpc::XmlRpcValue::TypeStruct) return false;
+    if (!ros::param::get(name, value) || value.getType() != XmlRpc::XmlRpcValue::TypeStruct) return 0;
   } catch (const ros::InvalidNameException&) {
-    return false;  // not a name ROS has: the node's own parameters (and error) stand
+    return 0;  // not a name ROS has: the node's own parameters (and error) stand
   }
-  link.call("param.set", {{"name", name}, {"value", xmlRpcToJson(value)}});
-  return true;
+  int passed = 0;
+  for (const auto& [leaf_name, yaml] : changedParameters(name, value, copied)) {
+    link.call("param.set", {{"name", leaf_name}, {"value", yaml}});
+    ++passed;
+  }
+  return passed;
 }
 
 }  // namespace servoloop::ros1

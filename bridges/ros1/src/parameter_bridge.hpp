@@ -5,6 +5,8 @@
 // <ns>/robot_description (and /robot_description when the node runs one robot
 // and nothing is there yet), and /use_sim_time (true: the bridge publishes /clock).
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <yaml-cpp/yaml.h>
@@ -16,23 +18,33 @@ namespace servoloop::ros1 {
 struct ParameterCopy {
   int parameters = 0;  // parameters (leaves) set
   bool robot_description = false;
+  YAML::Node copied;   // the node's parameters as the bridge set them in ROS (from the root)
 };
 
 ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time);
 
-// Before load_controller: ros_control's controller manager reads a controller's
-// configuration from the ROS parameter server when it loads it, so what ROS
-// holds under <ns>/<controller> now (after a `rosparam load` or `rosparam set`
-// since the bridge started) replaces the node's copy. Returns false, leaving
-// the node's parameters as they are, when ROS holds no dictionary there.
-bool passControllerParametersOn(NodeLink& link, const std::string& controller);
+// Before load_controller: ros_control's controller manager reads a
+// controller's configuration from the ROS parameter server when it loads it.
+// Of what ROS holds under <ns>/<controller>, the values set or changed in ROS
+// since the bridge started (those that differ from `copied`) are passed to
+// the node, each as YAML text so its type survives; the node's other values
+// (a `servoloop param set` since, say) stay as they are. Returns how many were
+// passed on: none for an empty, private (~) or namespace-wide name, or for a
+// controller the node has loaded already (its load fails, as in ros_control).
+int passControllerParametersOn(NodeLink& link, const std::string& controller, const YAML::Node& copied);
 
-// An XML-RPC value (as rosparam stores it) to JSON: booleans, integers,
-// doubles, strings, lists, dictionaries; dates and binary data as strings.
-nlohmann::json xmlRpcToJson(XmlRpc::XmlRpcValue& value);
+// The leaves under `name` in `ros_value` (a dictionary as ROS holds it) that
+// are new or differ from the same names in `copied`, as (name, YAML text).
+std::vector<std::pair<std::string, std::string>> changedParameters(const std::string& name,
+                                                                   XmlRpc::XmlRpcValue& ros_value,
+                                                                   const YAML::Node& copied);
 
 // YAML (as the node's param.dump writes it) to an XML-RPC value as rosparam
 // types it: integers, doubles, booleans, strings, lists, dictionaries.
 XmlRpc::XmlRpcValue yamlToXmlRpc(const YAML::Node& node);
+
+// An XML-RPC value as YAML text (flow style) that loads back with its type:
+// strings quoted, doubles with all their digits (.inf, .nan included).
+std::string xmlRpcToYaml(XmlRpc::XmlRpcValue& value);
 
 }  // namespace servoloop::ros1

@@ -22,8 +22,10 @@
 //                    active; the robot then returns to the state under it.
 //   fault            the loop stopped for the hardware (a call returned
 //                    ReturnType::deactivate, or stop_after_failed_cycles was
-//                    reached). Controllers are contained as in a protective
-//                    stop; no command reaches the hardware. `recover` runs
+//                    reached). Controllers are contained at once, as in a
+//                    protective stop (after a read() that returned
+//                    deactivate, before that cycle's update; fallbacks then
+//                    command it), and no further cycle runs. `recover` runs
 //                    the loop again.
 //
 // The state reported is the most severe that holds: fault, then emergency
@@ -69,6 +71,9 @@ class SafetySupervisor {
   // --- Any thread ---
 
   SafetyState state() const noexcept;
+  // Whether a protective stop holds, also while an emergency stop (more
+  // severe, so what state() reports) is engaged on top of it.
+  bool protectiveStopped() const noexcept;
   bool emergencyStopLatched() const noexcept { return estop_latched_.load(std::memory_order_acquire); }
   // The hardware's input as last polled.
   bool hardwareEmergencyInput() const noexcept { return hardware_input_.load(std::memory_order_acquire); }
