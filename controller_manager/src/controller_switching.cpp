@@ -220,9 +220,11 @@ ServiceResult ControllerManager::completeSwitchLocked(bool announce) {
     switch_phase_.store(SwitchPhase::idle);
     std::string which;
     for (const ControllerFault& fault : faults) which += (which.empty() ? "" : ", ") + fault.controller;
-    return fail("switch controllers: a controller faulted (" + (which.empty() ? std::string("see above") : which) +
-                ") while the switch was being prepared (its fallback controllers, if any, started), so nothing was "
-                "switched; check `control list` and retry");
+    return fail("switch controllers: " +
+                (which.empty() ? std::string("the hardware failed (protective stop or fault)")
+                               : "a controller faulted (" + which + ")") +
+                " while the switch was being prepared (fallback controllers, if any, started), so nothing was "
+                "switched; check `control list` and `control safety`, and retry");
   }
   std::string failed_to_start;
   for (std::size_t i = 0; i < switch_plan_.start.size(); ++i) {

@@ -130,6 +130,10 @@ std::string SafetySupervisor::reason() const {
   return {};
 }
 
+void SafetySupervisor::refreshHardwareInput() noexcept {
+  hardware_input_.store(hw_.emergencyStopInput(), std::memory_order_seq_cst);
+}
+
 void SafetySupervisor::pollHardwareInput() noexcept {
   const bool input = hw_.emergencyStopInput();  // noexcept
   hardware_input_.store(input, std::memory_order_seq_cst);

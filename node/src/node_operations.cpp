@@ -196,8 +196,9 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
       if (robot.safety().protectiveStopped() && !switch_request.start_controllers.empty()) {
         const std::string why = safety == controller_manager::SafetyState::protective_stop
                                     ? robot.safety().reason()
-                                    : "a protective stop holds under the emergency stop; after fixing its cause run "
-                                      "`servoloop control recover`";
+                                    : "a protective stop holds under the emergency stop; release the emergency "
+                                      "stop, then, after fixing the protective stop's cause, run `servoloop control "
+                                      "recover`";
         throw Error("robot '" + robot.robotNamespace() + "': " + why +
                     "; no controller can start until then (stopping them is allowed)");
       }

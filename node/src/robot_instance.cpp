@@ -542,6 +542,12 @@ controller_manager::ServiceResult RobotInstance::setEmergencyStop(bool engaged,
     return controller_manager::ServiceResult::success();
   }
   std::string why;
+  {
+    // While the loop stands after a fault nothing polls the hardware's input:
+    // read it now (the loop cannot resume while this lock is held).
+    std::lock_guard recovery(recovery_mutex_);
+    if (waiting_for_recovery_) safety_->refreshHardwareInput();
+  }
   if (!safety_->releaseEmergencyStop(&why)) {
     return controller_manager::ServiceResult::failure(fmt::format("robot '{}': the emergency stop stays engaged: {}", namespace_, why));
   }
@@ -555,7 +561,9 @@ controller_manager::ServiceResult RobotInstance::setEmergencyStop(bool engaged,
 bool RobotInstance::waitForRecovery() {
   logger().error("robot '{}': {}", namespace_, safety_->reason());
   std::unique_lock lock(recovery_mutex_);
+  waiting_for_recovery_ = true;
   recovery_wake_.wait(lock, [this] { return recovery_requested_ || stop_requested_.load(); });
+  waiting_for_recovery_ = false;
   if (stop_requested_.load()) return false;
   recovery_requested_ = false;
   // Cleared here, where the loop is sure to run again (not by recover(), whose

@@ -4,6 +4,7 @@
 // serialised bytes → ROS → JSON unchanged, NaN included.
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -149,10 +150,15 @@ TEST(Ros1Messages, RosParametersGoBackAsYamlThatKeepsTheirTypes) {
   // What load_controller hands the node: each value as YAML text that loads
   // back with the type rosparam gave it.
   XmlRpc::XmlRpcValue value = servoloop::ros1::yamlToXmlRpc(YAML::Load(
-      "{p: 500, d: 20.5, limit: .inf, on: true, quoted: '2', letter: 'y', joints: [a, b], third: 0.1}"));
+      "{p: 500, d: 20.5, whole: 100.0, limit: .inf, on: true, quoted: '2', letter: 'y', joints: [a, b], "
+      "third: 0.1}"));
   const YAML::Node back = YAML::Load(servoloop::ros1::xmlRpcToYaml(value));
   EXPECT_EQ(back["p"].as<int>(), 500);
   EXPECT_EQ(back["d"].as<double>(), 20.5);
+  // A whole double stays a double (an integer conversion refuses it).
+  EXPECT_EQ(back["whole"].as<double>(), 100.0);
+  int as_int = 0;
+  EXPECT_FALSE(YAML::convert<int>::decode(back["whole"], as_int)) << back["whole"].Scalar();
   EXPECT_EQ(back["limit"].as<double>(), std::numeric_limits<double>::infinity());
   EXPECT_TRUE(back["on"].as<bool>());
   EXPECT_EQ(back["quoted"].Tag(), "!");  // a quoted scalar: a string, not the number 2
@@ -170,11 +176,21 @@ TEST(Ros1Messages, OnlyParametersChangedInRosSinceTheCopyArePassedOn) {
       "{robot: {ctrl: {type: effort_controllers/JointPositionController, pid: {p: 100.0, i: 1}}}}");
   XmlRpc::XmlRpcValue ros_value = servoloop::ros1::yamlToXmlRpc(
       YAML::Load("{type: effort_controllers/JointPositionController, pid: {p: 100.0, i: 2, d: 5.5}}"));
-  const auto changed = servoloop::ros1::changedParameters("/robot/ctrl", ros_value, copied);
+  std::map<std::string, std::string> synced;
+  const auto changed = servoloop::ros1::changedParameters("/robot/ctrl", ros_value, copied, synced);
   EXPECT_EQ(changed, (std::vector<std::pair<std::string, std::string>>{{"/robot/ctrl/pid/d", "5.5"},
                                                                        {"/robot/ctrl/pid/i", "2"}}));
   // Nothing copied at all (a controller configured only in ROS): everything.
-  EXPECT_EQ(servoloop::ros1::changedParameters("/robot/ctrl", ros_value, YAML::Node()).size(), 4u);
+  EXPECT_EQ(servoloop::ros1::changedParameters("/robot/ctrl", ros_value, YAML::Node(), synced).size(), 4u);
+
+  // i was passed on as 2 at a load; set back to 1 in ROS (the value the
+  // bridge once copied), it differs from what the node has, so it goes again;
+  // d, passed on as 5.5 and unchanged since, does not.
+  synced["/robot/ctrl/pid/i"] = ros_value["pid"]["i"].toXml();
+  synced["/robot/ctrl/pid/d"] = ros_value["pid"]["d"].toXml();
+  ros_value["pid"]["i"] = 1;
+  EXPECT_EQ(servoloop::ros1::changedParameters("/robot/ctrl", ros_value, copied, synced),
+            (std::vector<std::pair<std::string, std::string>>{{"/robot/ctrl/pid/i", "1"}}));
 }
 
 TEST(Ros1GazeboServices, EffortsAddUpOverTheirWindows) {

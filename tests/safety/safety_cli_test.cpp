@@ -283,6 +283,30 @@ TEST_F(SafetyOnHardware, AHardwareThatDeactivatesIsAFaultTheNodeSurvivesAndRecov
   ASSERT_TRUE(positionReaches(0.9, 1e-9));
 }
 
+TEST_F(SafetyOnHardware, AnEmergencyStopPressedBeforeAFaultIsReleasedWhileTheLoopStands) {
+  command(0.5);
+  ASSERT_TRUE(positionReaches(0.5, 1e-9));
+  script("estop\n");
+  ASSERT_TRUE(waitFor([&] { return state() == "emergency_stop"; }));
+  script("estop\ndeactivate\n");
+  ASSERT_TRUE(waitFor([&] { return state() == "fault"; }));
+  // The loop stands; the input is still pressed: the release is refused.
+  const CliResult refused = cli({"control", "estop", "off"});
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_THAT(refused.err, HasSubstr("input"));
+
+  // Released on the robot while the loop stands (nothing polls it now): the
+  // release reads the input itself, then recover runs the loop again.
+  script("");
+  const CliResult released = cli({"control", "estop", "off"});
+  EXPECT_EQ(released.status, 0) << released.err;
+  const CliResult recovered = cli({"control", "recover"});
+  ASSERT_EQ(recovered.status, 0) << recovered.err;
+  EXPECT_EQ(state(), "running");
+  command(0.9);
+  ASSERT_TRUE(positionReaches(0.9, 1e-9));
+}
+
 // The seed robot simulated (bullet, paced at 5 × real time), held at 1 rad by its
 // effort PID against gravity. An emergency stop sends 0 N·m (gravity swings
 // the arm away), and the release brings the controller's effort back: the

@@ -88,7 +88,7 @@ ControllerManagerServices::ControllerManagerServices(ros::NodeHandle& nh, NodeLi
         // As ros_control does, the configuration is what the ROS parameter
         // server holds when the controller is loaded.
         try {
-          passControllerParametersOn(link, request.name, copied_parameters_);
+          passControllerParametersOn(link, request.name, copied_parameters_, synced_parameters_);
         } catch (const std::exception& e) {
           ROS_ERROR("load_controller: the parameters of %s on the ROS parameter server could not be passed to "
                     "servoloop: %s",

@@ -3,6 +3,7 @@
 // answered by the node's control.* operations with ros_control's request and
 // response semantics: a request the node refuses is answered ok=false (the
 // call itself succeeds) and the node's reason is logged.
+#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -25,7 +26,8 @@ class ControllerManagerServices {
  private:
   std::vector<ros::ServiceServer> servers_;
   YAML::Node copied_parameters_;
-  std::mutex load_mutex_;  // one load_controller at a time, as ros_control serves them
+  std::map<std::string, std::string> synced_parameters_;  // passed on by earlier loads
+  std::mutex load_mutex_;  // one load_controller at a time (as ros_control serves them); guards the two above
 };
 
 // ros_control's name for a servoloop controller state.

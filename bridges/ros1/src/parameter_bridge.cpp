@@ -1,7 +1,12 @@
 #include "parameter_bridge.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <locale>
+#include <map>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -84,43 +89,69 @@ ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time) {
 
 namespace {
 
+std::string quoted(const std::string& text) {
+  YAML::Emitter out;
+  out << YAML::DoubleQuoted << text;
+  return out.c_str();
+}
+
+// The shortest text that reads back as the same double, always with a '.' or
+// an exponent (100.0, not 100, which YAML would read as an integer).
+std::string doubleText(double value) {
+  if (std::isnan(value)) return ".nan";
+  if (std::isinf(value)) return value > 0.0 ? ".inf" : "-.inf";
+  std::string text;
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::ostringstream out;
+    out.imbue(std::locale::classic());
+    out << std::setprecision(digits) << value;
+    text = out.str();
+    std::istringstream in(text);
+    in.imbue(std::locale::classic());
+    double back = 0.0;
+    if (in >> back && back == value) break;
+  }
+  if (text.find_first_of(".eE") == std::string::npos) text += ".0";
+  return text;
+}
+
+}  // namespace
+
 // (XmlRpcValue's typed reads are not const; nothing here changes the value.)
-void emitXmlRpc(YAML::Emitter& out, XmlRpc::XmlRpcValue& value) {
+std::string xmlRpcToYaml(XmlRpc::XmlRpcValue& value) {
   switch (value.getType()) {
     case XmlRpc::XmlRpcValue::TypeBoolean:
-      out << static_cast<bool>(value);
-      return;
+      return static_cast<bool>(value) ? "true" : "false";
     case XmlRpc::XmlRpcValue::TypeInt:
-      out << static_cast<int>(value);
-      return;
+      return std::to_string(static_cast<int>(value));
     case XmlRpc::XmlRpcValue::TypeDouble:
-      out << static_cast<double>(value);
-      return;
+      return doubleText(static_cast<double>(value));
     case XmlRpc::XmlRpcValue::TypeString:
-      out << YAML::DoubleQuoted << static_cast<std::string>(value);
-      return;
-    case XmlRpc::XmlRpcValue::TypeArray:
-      out << YAML::Flow << YAML::BeginSeq;
-      for (int i = 0; i < value.size(); ++i) emitXmlRpc(out, value[i]);
-      out << YAML::EndSeq;
-      return;
-    case XmlRpc::XmlRpcValue::TypeStruct:
-      out << YAML::Flow << YAML::BeginMap;
+      return quoted(static_cast<std::string>(value));
+    case XmlRpc::XmlRpcValue::TypeArray: {
+      std::string text = "[";
+      for (int i = 0; i < value.size(); ++i) text += (i > 0 ? ", " : "") + xmlRpcToYaml(value[i]);
+      return text + "]";
+    }
+    case XmlRpc::XmlRpcValue::TypeStruct: {
+      std::string text = "{";
+      bool first = true;
       for (auto& [key, member] : value) {
-        out << YAML::Key << key << YAML::Value;
-        emitXmlRpc(out, member);
+        text += (first ? "" : ", ") + quoted(key) + ": " + xmlRpcToYaml(member);
+        first = false;
       }
-      out << YAML::EndMap;
-      return;
+      return text + "}";
+    }
     case XmlRpc::XmlRpcValue::TypeDateTime:
     case XmlRpc::XmlRpcValue::TypeBase64:
-      out << YAML::DoubleQuoted << value.toXml();
-      return;
+      return quoted(value.toXml());
     case XmlRpc::XmlRpcValue::TypeInvalid:
       break;
   }
-  out << YAML::Null;
+  return "null";
 }
+
+namespace {
 
 // The node at a slash-separated name under root; nullopt when missing.
 std::optional<YAML::Node> childAt(const YAML::Node& root, const std::string& name) {
@@ -153,34 +184,37 @@ void rosLeaves(const std::string& prefix, XmlRpc::XmlRpcValue& value,
 
 }  // namespace
 
-std::string xmlRpcToYaml(XmlRpc::XmlRpcValue& value) {
-  YAML::Emitter out;
-  out.SetDoublePrecision(17);
-  emitXmlRpc(out, value);
-  return out.c_str();
-}
 
-std::vector<std::pair<std::string, std::string>> changedParameters(const std::string& name,
-                                                                   XmlRpc::XmlRpcValue& ros_value,
-                                                                   const YAML::Node& copied) {
+std::vector<std::pair<std::string, std::string>> changedParameters(
+    const std::string& name, XmlRpc::XmlRpcValue& ros_value, const YAML::Node& copied,
+    const std::map<std::string, std::string>& synced) {
   std::vector<std::pair<std::string, XmlRpc::XmlRpcValue*>> leaves;
   rosLeaves(name, ros_value, leaves);
   std::vector<std::pair<std::string, std::string>> changed;
   for (const auto& [leaf_name, leaf] : leaves) {
-    const std::optional<YAML::Node> before = childAt(copied, leaf_name);
-    if (before && yamlToXmlRpc(*before).toXml() == leaf->toXml()) continue;  // as the bridge copied it
+    // What the node was last given for this name: passed on at an earlier
+    // load, else as the bridge copied it at start.
+    std::optional<std::string> known;
+    if (const auto it = synced.find(leaf_name); it != synced.end()) {
+      known = it->second;
+    } else if (const std::optional<YAML::Node> before = childAt(copied, leaf_name)) {
+      known = yamlToXmlRpc(*before).toXml();
+    }
+    if (known && *known == leaf->toXml()) continue;
     changed.emplace_back(leaf_name, xmlRpcToYaml(*leaf));
   }
   return changed;
 }
 
-int passControllerParametersOn(NodeLink& link, const std::string& controller, const YAML::Node& copied) {
-  if (controller.empty() || controller.front() == '~' ||
-      std::all_of(controller.begin(), controller.end(), [](char c) { return c == '/'; })) {
-    return 0;
-  }
+int passControllerParametersOn(NodeLink& link, const std::string& controller, const YAML::Node& copied,
+                               std::map<std::string, std::string>& synced) {
+  if (controller.empty() || controller.front() == '~') return 0;
   const std::string name = link.resolve(controller);
-  if (name == link.resolve("")) return 0;  // the namespace itself
+  // Only a name inside the robot's namespace (not the namespace itself, one
+  // above it, or another robot's).
+  const std::string root = link.resolve("");
+  const std::string prefix = root == "/" ? root : root + "/";
+  if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) return 0;
   for (const nlohmann::json& loaded : link.call("control.list").at("controllers")) {
     if (loaded.value("name", "") == controller) return 0;
   }
@@ -190,12 +224,16 @@ int passControllerParametersOn(NodeLink& link, const std::string& controller, co
   } catch (const ros::InvalidNameException&) {
     return 0;  // not a name ROS has: the node's own parameters (and error) stand
   }
-  int passed = 0;
-  for (const auto& [leaf_name, yaml] : changedParameters(name, value, copied)) {
+  const auto changed = changedParameters(name, value, copied, synced);
+  std::vector<std::pair<std::string, XmlRpc::XmlRpcValue*>> leaves;
+  rosLeaves(name, value, leaves);
+  for (const auto& [leaf_name, yaml] : changed) {
     link.call("param.set", {{"name", leaf_name}, {"value", yaml}});
-    ++passed;
+    for (const auto& [ros_name, leaf] : leaves) {
+      if (ros_name == leaf_name) synced[leaf_name] = leaf->toXml();
+    }
   }
-  return passed;
+  return static_cast<int>(changed.size());
 }
 
 }  // namespace servoloop::ros1

@@ -4,6 +4,7 @@
 // rest of the store, under their own names), the robot's expanded URDF as
 // <ns>/robot_description (and /robot_description when the node runs one robot
 // and nothing is there yet), and /use_sim_time (true: the bridge publishes /clock).
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,26 +26,31 @@ ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time);
 
 // Before load_controller: ros_control's controller manager reads a
 // controller's configuration from the ROS parameter server when it loads it.
-// Of what ROS holds under <ns>/<controller>, the values set or changed in ROS
-// since the bridge started (those that differ from `copied`) are passed to
+// Of what ROS holds under <ns>/<controller>, the values that differ from what
+// the node was last given (passed on at an earlier load, recorded in
+// `synced`; else as the bridge copied them at start, `copied`) are passed to
 // the node, each as YAML text so its type survives; the node's other values
 // (a `servoloop param set` since, say) stay as they are. Returns how many were
-// passed on: none for an empty, private (~) or namespace-wide name, or for a
-// controller the node has loaded already (its load fails, as in ros_control).
-int passControllerParametersOn(NodeLink& link, const std::string& controller, const YAML::Node& copied);
+// passed on: none for a private (~) name, a name outside the robot's
+// namespace or the namespace itself, or a controller the node has loaded
+// already (its load fails, as in ros_control).
+int passControllerParametersOn(NodeLink& link, const std::string& controller, const YAML::Node& copied,
+                               std::map<std::string, std::string>& synced);
 
 // The leaves under `name` in `ros_value` (a dictionary as ROS holds it) that
-// are new or differ from the same names in `copied`, as (name, YAML text).
-std::vector<std::pair<std::string, std::string>> changedParameters(const std::string& name,
-                                                                   XmlRpc::XmlRpcValue& ros_value,
-                                                                   const YAML::Node& copied);
+// are new or differ from what the node was last given, as (name, YAML text).
+// `synced`: XML-RPC text of values passed on before, by name.
+std::vector<std::pair<std::string, std::string>> changedParameters(
+    const std::string& name, XmlRpc::XmlRpcValue& ros_value, const YAML::Node& copied,
+    const std::map<std::string, std::string>& synced);
 
 // YAML (as the node's param.dump writes it) to an XML-RPC value as rosparam
 // types it: integers, doubles, booleans, strings, lists, dictionaries.
 XmlRpc::XmlRpcValue yamlToXmlRpc(const YAML::Node& node);
 
 // An XML-RPC value as YAML text (flow style) that loads back with its type:
-// strings quoted, doubles with all their digits (.inf, .nan included).
+// strings quoted, doubles always with a '.' or an exponent and as many
+// digits as it takes to read back the same value (.inf, .nan included).
 std::string xmlRpcToYaml(XmlRpc::XmlRpcValue& value);
 
 }  // namespace servoloop::ros1

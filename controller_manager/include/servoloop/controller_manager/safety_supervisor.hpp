@@ -92,6 +92,11 @@ class SafetySupervisor {
   // cause run `servoloop control recover`"; empty when running.
   std::string reason() const;
 
+  // Non-real-time, only while the loop stands (after a fault, nothing polls
+  // the input): reads RobotHW::emergencyStopInput here, so that a release
+  // sees the input as it is now rather than as the last cycle saw it.
+  void refreshHardwareInput() noexcept;
+
   // --- Real-time (the loop thread) ---
 
   // Reads RobotHW::emergencyStopInput; a true input latches the stop.

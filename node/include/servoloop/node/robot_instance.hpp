@@ -219,6 +219,7 @@ class RobotInstance {
   std::condition_variable recovery_wake_;
   bool recovery_requested_ = false;
   bool resumed_ = false;  // set by the loop thread when it runs again after a fault
+  bool waiting_for_recovery_ = false;  // the loop thread stands in waitForRecovery
   // publishDiagnosticsIfDue's thread only.
   std::chrono::steady_clock::time_point next_diagnostics_{};
   std::uint64_t diagnostics_overruns_ = 0;
