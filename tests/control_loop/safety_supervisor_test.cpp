@@ -242,18 +242,34 @@ TEST(SafetySupervisor, PersistentErrorsEndInAFaultKeepingTheFirstCause) {
   EXPECT_NE(safety.reason().find("read() returned an error"), std::string::npos) << safety.reason();
 }
 
+// A robot with an emergency-stop input under the supervisor, its controller
+// started and updated once (so it commands 2.5).
+template <class Robot>
+struct EstopInputLoop {
+  EstopInputLoop(LoopFixture& f, testing::EventRecorder* recorder)
+      : hw(0.001, recorder),
+        safety(hw),
+        manager(&hw, f.factory, ControllerManager::lookupIn(f.params), LoopFixture::context(), 0.0) {
+    EXPECT_TRUE(manager.loadController("ctrl"));
+    SimulationLoop::Options options;
+    options.safety = &safety;
+    loop = std::make_unique<SimulationLoop>(hw, manager, options);
+    EXPECT_TRUE(manager.requestSwitch(SwitchRequest{{"ctrl"}, {}, SwitchStrictness::STRICT, false, 0.0}));
+    loop->cycleOnce();  // starts ctrl
+    loop->cycleOnce();  // its first update
+  }
+  Robot hw;
+  SafetySupervisor safety;
+  ControllerManager manager;
+  std::unique_ptr<SimulationLoop> loop;
+};
+
 TEST(SafetySupervisor, TheHardwareInputLatchesTheStopAndBlocksItsRelease) {
   LoopFixture f(0.001);
-  FakeRobotWithEstopInput hw(0.001, f.recorder);
-  SafetySupervisor safety(hw);
-  ControllerManager manager(&hw, f.factory, ControllerManager::lookupIn(f.params), LoopFixture::context(), 0.0);
-  ASSERT_TRUE(manager.loadController("ctrl"));
-  SimulationLoop::Options options;
-  options.safety = &safety;
-  SimulationLoop loop(hw, manager, options);
-  ASSERT_TRUE(manager.requestSwitch(SwitchRequest{{"ctrl"}, {}, SwitchStrictness::STRICT, false, 0.0}));
-  loop.cycleOnce();  // starts ctrl
-  loop.cycleOnce();  // its first update
+  EstopInputLoop<FakeRobotWithEstopInput> rig(f, f.recorder);
+  auto& hw = rig.hw;
+  auto& safety = rig.safety;
+  SimulationLoop& loop = *rig.loop;
   EXPECT_EQ(hw.applied_effort, 2.5);
 
   hw.pressed = true;
@@ -299,16 +315,10 @@ TEST(SafetySupervisor, AReleaseRacingTheHardwareInputNeverLetsACommandOutWhileIt
   // the stop that poll relies on: no write may carry the controller's 2.5
   // while the input is pressed.
   LoopFixture f(0.001);
-  InputCheckingRobot hw(0.001, nullptr);
-  SafetySupervisor safety(hw);
-  ControllerManager manager(&hw, f.factory, ControllerManager::lookupIn(f.params), LoopFixture::context(), 0.0);
-  ASSERT_TRUE(manager.loadController("ctrl"));
-  SimulationLoop::Options options;
-  options.safety = &safety;
-  SimulationLoop loop(hw, manager, options);
-  ASSERT_TRUE(manager.requestSwitch(SwitchRequest{{"ctrl"}, {}, SwitchStrictness::STRICT, false, 0.0}));
-  loop.cycleOnce();
-  loop.cycleOnce();
+  EstopInputLoop<InputCheckingRobot> rig(f, nullptr);
+  auto& hw = rig.hw;
+  auto& safety = rig.safety;
+  SimulationLoop& loop = *rig.loop;
   ASSERT_EQ(hw.applied_effort, 2.5);
 
   std::atomic<bool> done{false};
