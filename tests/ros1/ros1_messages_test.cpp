@@ -168,6 +168,13 @@ TEST(Ros1Messages, RosParametersGoBackAsYamlThatKeepsTheirTypes) {
   EXPECT_EQ(back["third"].as<double>(), 0.1);  // every digit: the same double
 }
 
+// (name, YAML text) of each parameter to pass on.
+std::vector<std::pair<std::string, std::string>> namesAndYaml(const std::vector<servoloop::ros1::ChangedParameter>& changed) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& parameter : changed) out.emplace_back(parameter.name, parameter.yaml);
+  return out;
+}
+
 TEST(Ros1Messages, OnlyParametersChangedInRosSinceTheCopyArePassedOn) {
   // The bridge copied p 100, i 1 and the type; in ROS since: i set to 2 and
   // d added. Passed on: d and i (as YAML); p and the type are left to the
@@ -178,7 +185,7 @@ TEST(Ros1Messages, OnlyParametersChangedInRosSinceTheCopyArePassedOn) {
       YAML::Load("{type: effort_controllers/JointPositionController, pid: {p: 100.0, i: 2, d: 5.5}}"));
   std::map<std::string, std::string> synced;
   const auto changed = servoloop::ros1::changedParameters("/robot/ctrl", ros_value, copied, synced);
-  EXPECT_EQ(changed, (std::vector<std::pair<std::string, std::string>>{{"/robot/ctrl/pid/d", "5.5"},
+  EXPECT_EQ(namesAndYaml(changed), (std::vector<std::pair<std::string, std::string>>{{"/robot/ctrl/pid/d", "5.5"},
                                                                        {"/robot/ctrl/pid/i", "2"}}));
   // Nothing copied at all (a controller configured only in ROS): everything.
   EXPECT_EQ(servoloop::ros1::changedParameters("/robot/ctrl", ros_value, YAML::Node(), synced).size(), 4u);
@@ -189,7 +196,7 @@ TEST(Ros1Messages, OnlyParametersChangedInRosSinceTheCopyArePassedOn) {
   synced["/robot/ctrl/pid/i"] = ros_value["pid"]["i"].toXml();
   synced["/robot/ctrl/pid/d"] = ros_value["pid"]["d"].toXml();
   ros_value["pid"]["i"] = 1;
-  EXPECT_EQ(servoloop::ros1::changedParameters("/robot/ctrl", ros_value, copied, synced),
+  EXPECT_EQ(namesAndYaml(servoloop::ros1::changedParameters("/robot/ctrl", ros_value, copied, synced)),
             (std::vector<std::pair<std::string, std::string>>{{"/robot/ctrl/pid/i", "1"}}));
 }
 

@@ -1,6 +1,5 @@
 #include "parameter_bridge.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <locale>
@@ -184,13 +183,12 @@ void rosLeaves(const std::string& prefix, XmlRpc::XmlRpcValue& value,
 
 }  // namespace
 
-
-std::vector<std::pair<std::string, std::string>> changedParameters(
-    const std::string& name, XmlRpc::XmlRpcValue& ros_value, const YAML::Node& copied,
-    const std::map<std::string, std::string>& synced) {
+std::vector<ChangedParameter> changedParameters(const std::string& name, XmlRpc::XmlRpcValue& ros_value,
+                                                const YAML::Node& copied,
+                                                const std::map<std::string, std::string>& synced) {
   std::vector<std::pair<std::string, XmlRpc::XmlRpcValue*>> leaves;
   rosLeaves(name, ros_value, leaves);
-  std::vector<std::pair<std::string, std::string>> changed;
+  std::vector<ChangedParameter> changed;
   for (const auto& [leaf_name, leaf] : leaves) {
     // What the node was last given for this name: passed on at an earlier
     // load, else as the bridge copied it at start.
@@ -200,8 +198,9 @@ std::vector<std::pair<std::string, std::string>> changedParameters(
     } else if (const std::optional<YAML::Node> before = childAt(copied, leaf_name)) {
       known = yamlToXmlRpc(*before).toXml();
     }
-    if (known && *known == leaf->toXml()) continue;
-    changed.emplace_back(leaf_name, xmlRpcToYaml(*leaf));
+    std::string xml_rpc = leaf->toXml();
+    if (known && *known == xml_rpc) continue;
+    changed.push_back({leaf_name, xmlRpcToYaml(*leaf), std::move(xml_rpc)});
   }
   return changed;
 }
@@ -224,14 +223,10 @@ int passControllerParametersOn(NodeLink& link, const std::string& controller, co
   } catch (const ros::InvalidNameException&) {
     return 0;  // not a name ROS has: the node's own parameters (and error) stand
   }
-  const auto changed = changedParameters(name, value, copied, synced);
-  std::vector<std::pair<std::string, XmlRpc::XmlRpcValue*>> leaves;
-  rosLeaves(name, value, leaves);
-  for (const auto& [leaf_name, yaml] : changed) {
-    link.call("param.set", {{"name", leaf_name}, {"value", yaml}});
-    for (const auto& [ros_name, leaf] : leaves) {
-      if (ros_name == leaf_name) synced[leaf_name] = leaf->toXml();
-    }
+  const std::vector<ChangedParameter> changed = changedParameters(name, value, copied, synced);
+  for (const ChangedParameter& parameter : changed) {
+    link.call("param.set", {{"name", parameter.name}, {"value", parameter.yaml}});
+    synced[parameter.name] = parameter.xml_rpc;
   }
   return static_cast<int>(changed.size());
 }

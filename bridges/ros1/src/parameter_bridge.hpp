@@ -6,7 +6,6 @@
 // and nothing is there yet), and /use_sim_time (true: the bridge publishes /clock).
 #include <map>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <xmlrpcpp/XmlRpcValue.h>
@@ -37,12 +36,20 @@ ParameterCopy copyParametersToRos(NodeLink& link, bool use_sim_time);
 int passControllerParametersOn(NodeLink& link, const std::string& controller, const YAML::Node& copied,
                                std::map<std::string, std::string>& synced);
 
+// A leaf to pass on: its name, its value as YAML text (for the node) and as
+// XML-RPC text (what `synced` records once it was passed on).
+struct ChangedParameter {
+  std::string name;
+  std::string yaml;
+  std::string xml_rpc;
+};
+
 // The leaves under `name` in `ros_value` (a dictionary as ROS holds it) that
-// are new or differ from what the node was last given, as (name, YAML text).
-// `synced`: XML-RPC text of values passed on before, by name.
-std::vector<std::pair<std::string, std::string>> changedParameters(
-    const std::string& name, XmlRpc::XmlRpcValue& ros_value, const YAML::Node& copied,
-    const std::map<std::string, std::string>& synced);
+// are new or differ from what the node was last given. `synced`: XML-RPC text
+// of values passed on before, by name.
+std::vector<ChangedParameter> changedParameters(const std::string& name, XmlRpc::XmlRpcValue& ros_value,
+                                                const YAML::Node& copied,
+                                                const std::map<std::string, std::string>& synced);
 
 // YAML (as the node's param.dump writes it) to an XML-RPC value as rosparam
 // types it: integers, doubles, booleans, strings, lists, dictionaries.
