@@ -64,6 +64,11 @@ ServiceResult ControllerManager::switchController(const SwitchRequest& request) 
   return waitForSwitchLocked(request.timeout_s);
 }
 
+void ControllerManager::setSwitchGuard(SwitchGuard guard) {
+  std::lock_guard<std::mutex> lock(services_mutex_);
+  switch_guard_ = std::move(guard);
+}
+
 ServiceResult ControllerManager::requestSwitch(const SwitchRequest& request) {
   std::lock_guard<std::mutex> lock(services_mutex_);
   processFaultsLocked();
@@ -101,6 +106,12 @@ ServiceResult ControllerManager::prepareSwitchLocked(const SwitchRequest& reques
   while (fallback_epoch % 2 != 0) {
     std::this_thread::yield();
     fallback_epoch = fallback_starts_.load(std::memory_order_acquire);
+  }
+  // Asked only now: a stop the guard does not see yet moves the epoch read
+  // above, and the real-time thread then drops the plan (executeSwitch).
+  if (switch_guard_) {
+    const std::string refused = switch_guard_(request);
+    if (!refused.empty()) return fail(refused);
   }
   for (const auto& name : request.start_controllers) {
     if (contains(request.stop_controllers, name)) {

@@ -23,6 +23,7 @@ void LoopStatistics::reset() noexcept {
   sim_time_s_.store(0.0, std::memory_order_relaxed);
   wall_time_ns_.store(0, std::memory_order_relaxed);
   overruns_.store(0, std::memory_order_relaxed);
+  skipped_deadlines_.store(0, std::memory_order_relaxed);
   schedule_resets_.store(0, std::memory_order_relaxed);
   hardware_errors_.store(0, std::memory_order_relaxed);
   compute_.reset();
@@ -40,6 +41,7 @@ LoopStatisticsSnapshot LoopStatistics::snapshot() const noexcept {
   s.wall_time_s = static_cast<double>(wall_time_ns_.load(std::memory_order_relaxed)) * 1e-9;
   s.real_time_factor = s.wall_time_s > 0.0 ? s.sim_time_s / s.wall_time_s : 0.0;
   s.overruns = overruns_.load(std::memory_order_relaxed);
+  s.skipped_deadlines = skipped_deadlines_.load(std::memory_order_relaxed);
   s.schedule_resets = schedule_resets_.load(std::memory_order_relaxed);
   s.hardware_errors = hardware_errors_.load(std::memory_order_relaxed);
   if (s.cycles == 0) return s;

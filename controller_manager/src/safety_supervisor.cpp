@@ -58,9 +58,20 @@ bool SafetySupervisor::protectiveStopped() const noexcept {
   return protective_.load(std::memory_order_acquire) && !fault_.load(std::memory_order_acquire);
 }
 
+bool SafetySupervisor::emergencyStopSource(EmergencyStopSource* source) const noexcept {
+  const std::uint8_t estop = estop_.load(std::memory_order_acquire);
+  if (estop == kReleased) return false;
+  if (source != nullptr) *source = static_cast<EmergencyStopSource>(estop - 1);
+  return true;
+}
+
+bool SafetySupervisor::startsForbidden() const noexcept {
+  return protective_.load(std::memory_order_acquire) || fault_.load(std::memory_order_acquire);
+}
+
 SafetyState SafetySupervisor::state() const noexcept {
   if (fault_.load(std::memory_order_acquire)) return SafetyState::fault;
-  if (estop_latched_.load(std::memory_order_acquire) || hardware_input_.load(std::memory_order_acquire)) {
+  if (emergencyStopLatched() || hardware_input_.load(std::memory_order_acquire)) {
     return SafetyState::emergency_stop;
   }
   if (protective_.load(std::memory_order_acquire)) return SafetyState::protective_stop;
@@ -70,9 +81,9 @@ SafetyState SafetySupervisor::state() const noexcept {
 void SafetySupervisor::engageEmergencyStop(EmergencyStopSource source) noexcept {
   // One engagement per latch, also when the loop's poll and a racing release
   // both engage.
-  bool latched = false;
-  if (!estop_latched_.compare_exchange_strong(latched, true, std::memory_order_seq_cst)) return;
-  estop_source_.store(source, std::memory_order_relaxed);
+  std::uint8_t released = kReleased;
+  const auto latched = static_cast<std::uint8_t>(1 + static_cast<std::uint8_t>(source));
+  if (!estop_.compare_exchange_strong(released, latched, std::memory_order_seq_cst)) return;
   emergency_stops_.fetch_add(1, std::memory_order_relaxed);
 }
 
@@ -84,7 +95,7 @@ bool SafetySupervisor::releaseEmergencyStop(std::string* why) {
     }
     return false;
   }
-  estop_latched_.store(false, std::memory_order_seq_cst);
+  estop_.store(kReleased, std::memory_order_seq_cst);
   // The input may have been pressed since the check: a poll that saw it
   // while the latch was still set did not latch again, so latch it here.
   // (The loop never sends commands while its last poll saw the input, latch
@@ -111,12 +122,14 @@ std::string SafetySupervisor::reason() const {
                        result == ReturnType::deactivate ? "deactivate" : "an error",
                        failed_time_s_.load(std::memory_order_relaxed));
   };
+  const std::uint8_t estop = estop_.load(std::memory_order_acquire);
   switch (current) {
     case SafetyState::running: return {};
     case SafetyState::emergency_stop:
       return fmt::format("emergency stop engaged by {}{}; effort and velocity commands are 0, position commands "
                          "hold; release with `servoloop control estop off`",
-                         toString(estop_source_.load(std::memory_order_relaxed)),
+                         estop == kReleased ? "the hardware's input"
+                                            : toString(static_cast<EmergencyStopSource>(estop - 1)),
                          hardware_input_.load() ? " (the hardware's input is still active)" : "");
     case SafetyState::protective_stop:
       return fmt::format("protective stop: {}; the controllers that command the robot were stopped; after fixing "
@@ -180,7 +193,7 @@ void SafetySupervisor::overrideCommands() noexcept {
   // The input as this cycle's poll saw it counts as well as the latch: a
   // release racing the poll can clear the latch, never this thread's own
   // reading of the input.
-  if (!estop_latched_.load(std::memory_order_acquire) && !hardware_input_.load(std::memory_order_relaxed)) {
+  if (estop_.load(std::memory_order_acquire) == kReleased && !hardware_input_.load(std::memory_order_relaxed)) {
     holding_ = false;
     return;
   }

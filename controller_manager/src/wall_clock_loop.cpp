@@ -69,13 +69,27 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   // SCHED_FIFO thread is. The calling thread is the loop's own.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   const std::int64_t run_start_ns = loop_clock::nowNs();
-  const std::int64_t wall_before_ns = wall_time_ns_;
+  // A run that follows one which ran its length carries on the same grid (a
+  // node runs the loop in pieces between timed publications); the first run,
+  // and one after a stop, start a grid now.
+  const bool continues = grid_.next_deadline_ns >= 0;
+  std::int64_t deadline_ns = continues ? grid_.next_deadline_ns : run_start_ns;
+  if (continues && run_start_ns > deadline_ns) {
+    // The pause between the runs missed deadlines: an overrun, skipped as below.
+    const std::int64_t missed = (run_start_ns - deadline_ns) / period_ns_ + 1;
+    mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
+    deadline_ns += missed * period_ns_;
+  }
+  // The run's length counts from its first deadline: on a continued grid
+  // that is when the time the loop reports (control time) reaches "now".
   const std::int64_t run_end_ns = run_length_ns == std::numeric_limits<std::int64_t>::max()
                                       ? run_length_ns
-                                      : run_start_ns + run_length_ns;
-  std::int64_t deadline_ns = run_start_ns;  // start of the next cycle
-  std::int64_t previous_start_ns = -1;
-  std::int64_t previous_deadline_ns = -1;
+                                      : deadline_ns + run_length_ns;
+  // Wall time goes on across the pause too, as the control time does.
+  const std::int64_t wall_before_ns = wall_time_ns_ + (continues ? run_start_ns - grid_.last_end_ns : 0);
+  std::int64_t previous_start_ns = grid_.previous_start_ns;
+  std::int64_t previous_deadline_ns = grid_.previous_deadline_ns;
+  std::int64_t last_end_ns = continues ? grid_.last_end_ns : run_start_ns;
 
   while (deadline_ns < run_end_ns && !shouldStop(external_stop)) {
     loop_clock::sleepUntilNs(deadline_ns);
@@ -115,14 +129,20 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
     mutableStatistics().recordCycle(end_ns - start_ns, true);
     deadline_ns += period_ns_;
     if (end_ns > deadline_ns) {
-      mutableStatistics().recordOverrun();
       // Skip the deadlines already missed: the next cycle starts at the first
       // one still ahead, on the original grid.
       const std::int64_t missed = (end_ns - deadline_ns) / period_ns_ + 1;
+      mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
       deadline_ns += missed * period_ns_;
     }
+    last_end_ns = end_ns;
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
     mutableStatistics().setElapsed(control_time_s_, wall_time_ns_);
+  }
+  if (shouldStop(external_stop)) {
+    grid_ = Grid{};  // stopped (or the hardware stopped it): the next run starts a grid of its own
+  } else {
+    grid_ = Grid{deadline_ns, previous_start_ns, previous_deadline_ns, last_end_ns};
   }
   consumeStopRequest();
 }

@@ -163,6 +163,7 @@ void Node::waitUntilDone(const std::function<void()>& tick, std::chrono::millise
       robot->manager().processFaults();
       robot->loop().logHardwareErrorReport();
       robot->publishDiagnosticsIfDue();
+      robot->logHardwareEmergencyStops();
       all_finished &= robot->finished();
     }
     if (tick) tick();

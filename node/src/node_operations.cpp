@@ -187,20 +187,11 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
       if (robot.finished()) {
         throw Error("robot '" + robot.robotNamespace() + "': its control loop has ended, so no switch can be carried out");
       }
-      const controller_manager::SafetyState safety = robot.safety().state();
-      if (safety == controller_manager::SafetyState::fault) {
+      // The loop stands in a fault: nothing would carry a switch out. (Starts
+      // under a protective stop are refused inside the switch: RobotInstance::switchRefusal.)
+      if (robot.safety().state() == controller_manager::SafetyState::fault) {
         throw Error("robot '" + robot.robotNamespace() + "': " + robot.safety().reason() +
                     "; no switch can be carried out until then");
-      }
-      // Also under an emergency stop engaged on top of the protective one.
-      if (robot.safety().protectiveStopped() && !switch_request.start_controllers.empty()) {
-        const std::string why = safety == controller_manager::SafetyState::protective_stop
-                                    ? robot.safety().reason()
-                                    : "a protective stop holds under the emergency stop; release the emergency "
-                                      "stop, then, after fixing the protective stop's cause, run `servoloop control "
-                                      "recover`";
-        throw Error("robot '" + robot.robotNamespace() + "': " + why +
-                    "; no controller can start until then (stopping them is allowed)");
       }
       throwIfFailed(robot.manager().switchController(switch_request));
       return json(nullptr);

@@ -163,6 +163,7 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   manager_ = std::make_unique<controller_manager::ControllerManager>(
       hw_, std::make_shared<controller_manager::PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
   safety_ = std::make_unique<controller_manager::SafetySupervisor>(*hw_);
+  manager_->setSwitchGuard([this](const controller_manager::SwitchRequest& request) { return switchRefusal(request); });
   estop_subscription_ = bus_->subscribe<std_msgs::Bool>(
       params::resolveName(namespace_, "estop"), [this](const std_msgs::Bool& msg) {
         const controller_manager::ServiceResult done =
@@ -365,8 +366,9 @@ void RobotInstance::publishDueAt(double time_s) {
 }
 
 // On the wall clock the loop runs in pieces that end at the next timed
-// publication (or the duration); each piece starts its own deadline grid
-// right away, so the pause is the microseconds a publish takes.
+// publication (or the duration); each piece carries on the previous piece's
+// deadline grid (WallClockLoop), and the publish between them takes a few
+// microseconds of the time before the next deadline.
 void RobotInstance::driveWallClockLoop(std::optional<double> duration_s) {
   const double end_s = duration_s ? *duration_s : std::numeric_limits<double>::infinity();
   const double period_s = loop_->controlPeriod().seconds;
@@ -556,6 +558,18 @@ controller_manager::ServiceResult RobotInstance::setEmergencyStop(bool engaged,
   return controller_manager::ServiceResult::success();
 }
 
+void RobotInstance::logHardwareEmergencyStops() {
+  const std::uint64_t stops = safety_->emergencyStops();
+  if (stops == emergency_stops_seen_) return;
+  emergency_stops_seen_ = stops;
+  controller_manager::EmergencyStopSource source{};
+  if (safety_->emergencyStopSource(&source) && source == controller_manager::EmergencyStopSource::hardware) {
+    logger().warn("robot '{}': emergency stop engaged by hardware input: effort and velocity commands are 0, "
+                  "position commands hold; release the input on the robot, then run `servoloop control estop off`",
+                  namespace_);
+  }
+}
+
 // Loop thread, after the hardware stopped the loop. False when the robot is
 // being stopped instead.
 bool RobotInstance::waitForRecovery() {
@@ -624,6 +638,21 @@ controller_manager::ServiceResult RobotInstance::restartStoppedControllers(std::
   }
   request.timeout_s = kRecoverySwitchTimeout_s;
   return manager_->switchController(request);
+}
+
+std::string RobotInstance::switchRefusal(const controller_manager::SwitchRequest& request) const {
+  using controller_manager::SafetyState;
+  // Stopping is always allowed (the node stops its controllers on the way out, fault or not).
+  if (request.start_controllers.empty() || !safety_->startsForbidden()) return {};
+  // The decision is taken; what follows only words it.
+  const SafetyState safety = safety_->state();
+  const std::string why =
+      safety == SafetyState::emergency_stop
+          ? "a protective stop holds under the emergency stop; release the emergency stop, then, after fixing the "
+            "protective stop's cause, run `servoloop control recover`"
+          : safety_->reason();
+  if (why.empty()) return fmt::format("robot '{}': a protective stop held when the switch was checked; try again", namespace_);
+  return fmt::format("robot '{}': {}; no controller can start until then (stopping them is allowed)", namespace_, why);
 }
 
 controller_manager::ServiceResult RobotInstance::recover() {

@@ -26,6 +26,7 @@ nlohmann::json toJson(const controller_manager::LoopStatisticsSnapshot& loop) {
           {"wakeup_latency", toJson(loop.wakeup_latency)},
           {"period_jitter", toJson(loop.period_jitter)},
           {"overruns", loop.overruns},
+          {"skipped_deadlines", loop.skipped_deadlines},
           {"schedule_resets", loop.schedule_resets},
           {"hardware_errors", loop.hardware_errors}};
 }

@@ -225,6 +225,37 @@ TEST(SafetySupervisor, ASwitchWaitingWhenTheHardwareFailsStartsNothing) {
   }
 }
 
+TEST(SafetySupervisor, AProtectiveStopBeginningWhileASwitchIsCheckedStartsNothing) {
+  // A start request is checked against the safety state (the node's guard
+  // refuses starts under a protective stop). The real-time thread's read
+  // fails right after the guard looked: the guard saw a running robot and
+  // allowed the start, yet the stop that began since must drop it.
+  LoopFixture f(0.001);
+  SafetySupervisor safety(f.hw);
+  SimulationLoop::Options options;
+  options.safety = &safety;
+  SimulationLoop loop(f.hw, f.manager, options);
+  loop.cycleOnce();  // no controller running
+  int checks = 0;
+  f.manager.setSwitchGuard([&](const SwitchRequest&) -> std::string {
+    ++checks;
+    const bool stopped = safety.protectiveStopped();
+    f.hw.read_script.from = f.hw.reads;  // the next read fails: a protective stop
+    f.hw.read_script.until = f.hw.reads + 1;
+    loop.cycleOnce();
+    return stopped ? "protective stop" : "";
+  });
+  f.requestStart();
+  ASSERT_EQ(checks, 1);
+  EXPECT_EQ(safety.state(), SafetyState::protective_stop);
+  f.recorder->clear();
+  loop.cycleOnce();
+  EXPECT_FALSE(f.controller()->isRunning());
+  EXPECT_TRUE(f.recorder->ofKind(EventKind::update).empty());
+  EXPECT_EQ(writtenEfforts(*f.recorder), std::vector<double>{0.0});
+  EXPECT_FALSE(f.manager.finishSwitch());  // says why it was dropped
+}
+
 TEST(SafetySupervisor, PersistentErrorsEndInAFaultKeepingTheFirstCause) {
   LoopFixture f(0.001);
   SafetySupervisor safety(f.hw);
@@ -263,6 +294,21 @@ struct EstopInputLoop {
   ControllerManager manager;
   std::unique_ptr<SimulationLoop> loop;
 };
+
+TEST(SafetySupervisor, TheReasonNamesWhoLatchedTheStopNotWhoPressedItLater) {
+  LoopFixture f(0.001);
+  SafetySupervisor safety(f.hw);
+  EXPECT_EQ(safety.reason(), "");
+  safety.engageEmergencyStop(EmergencyStopSource::topic);
+  safety.engageEmergencyStop(EmergencyStopSource::command);  // already latched: no second stop
+  EXPECT_EQ(safety.emergencyStops(), 1u);
+  EXPECT_NE(safety.reason().find("engaged by topic;"), std::string::npos) << safety.reason();
+  ASSERT_TRUE(safety.releaseEmergencyStop(nullptr));
+  EXPECT_EQ(safety.state(), SafetyState::running);
+  safety.engageEmergencyStop(EmergencyStopSource::command);
+  EXPECT_EQ(safety.emergencyStops(), 2u);
+  EXPECT_NE(safety.reason().find("engaged by command;"), std::string::npos) << safety.reason();
+}
 
 TEST(SafetySupervisor, TheHardwareInputLatchesTheStopAndBlocksItsRelease) {
   LoopFixture f(0.001);

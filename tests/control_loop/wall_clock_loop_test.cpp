@@ -128,6 +128,29 @@ TEST(WallClockLoop, CyclesStartOnTheDeadlineGrid) {
   EXPECT_GE(wall_s, 0.001 * static_cast<double>(stats.cycles - 1));
 }
 
+TEST(WallClockLoop, RunsOneAfterAnotherStayOnOneGrid) {
+  // A node runs the loop in pieces (runFor up to the next timed
+  // publication). The first piece's last cycle starts at 4 ms, and its next
+  // deadline, 5 ms, is past its length, so it returns right after that
+  // cycle: the second piece must wait for 5 ms, not start a cycle at once.
+  LoopFixture f(0.001, 1000.0);
+  WallClockLoop loop(f.hw, f.manager);
+  loop.runFor(Duration(0.005));
+  const std::size_t first_piece = f.recorder->ofKind(EventKind::read).size();
+  loop.runFor(Duration(0.005));
+  const std::vector<testing::Event> reads = f.recorder->ofKind(EventKind::read);
+  ASSERT_GT(first_piece, 0u);
+  ASSERT_GT(reads.size(), first_piece);
+  // Time counts from the first cycle, which started at once (its deadline
+  // was the run's start): the deadline at 5 ms cannot start earlier, however
+  // late the cycles before it woke.
+  EXPECT_GE(reads[first_piece].time_s, 0.00499) << "the second piece started off the first piece's grid";
+  // And the controllers are told the measured time since the cycle before.
+  const double gap_s = reads[first_piece].time_s - reads[first_piece - 1].time_s;
+  EXPECT_NEAR(reads[first_piece].period_s, gap_s, 1e-12);
+  EXPECT_LE(reads.size(), 10u);  // deadlines 0–4 ms, then 5–9 ms
+}
+
 TEST(WallClockLoop, SlowHardwareCountsOverrunsAndSkipsMissedDeadlines) {
   // read() takes 3 ms in a 1 ms loop: every cycle overruns, and the skipped
   // deadlines keep the cycle count at one per 3+ ms instead of a burst.

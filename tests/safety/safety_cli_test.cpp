@@ -133,6 +133,32 @@ class SafetyOnHardware : public SafetyCli {
     ASSERT_EQ(pub.status, 0) << pub.err;
   }
 
+  // The loop goes on at its 500 Hz: over the next 100 cycles, the loop's own
+  // time advanced by 2 ms per deadline of its grid (the cycles run and the
+  // deadlines an overrun skipped), up to the wake-up latency at the two ends.
+  // A loop that stopped never gets there; one on another rate is off by far.
+  void expectLoopKeepsItsRate() {
+    const auto loopStats = [&] {
+      const CliResult stats = cli({"control", "stats", "--json"});
+      EXPECT_EQ(stats.status, 0) << stats.err;
+      return stats.status == 0 ? json::parse(stats.out).at("loop") : json::object();
+    };
+    const json before = loopStats();
+    ASSERT_TRUE(before.contains("cycles"));
+    json after;
+    ASSERT_TRUE(waitFor([&] {
+      after = loopStats();
+      return after.value("cycles", 0.0) >= before.at("cycles").get<double>() + 100.0;
+    })) << "the loop stopped cycling";
+    const auto deadlines = [](const json& loop) {
+      return loop.at("cycles").get<double>() + loop.at("skipped_deadlines").get<double>();
+    };
+    const double grid = deadlines(after) - deadlines(before);
+    const double seconds = after.at("sim_time").get<double>() - before.at("sim_time").get<double>();
+    EXPECT_NEAR(seconds * 500.0, grid, 3.0 + 0.1 * grid)
+        << seconds << " s for " << grid << " deadlines (" << after.dump() << ")";
+  }
+
   fs::path control_file_;
   std::optional<CliProcess> node_;
 };
@@ -149,6 +175,7 @@ TEST_F(SafetyOnHardware, EmergencyStopByCommandTopicAndHardwareInputHoldsThePosi
   command(1.0);
   for (const json& message : jointStates(20)) EXPECT_EQ(position(message), 0.5);  // 0.2 s of states
   EXPECT_EQ(controllerState("position_controller"), "running");
+  expectLoopKeepsItsRate();
 
   // Released on the topic: the controller's command goes through.
   const CliResult release = cli({"topic", "pub", "/one_DOF_robot/estop", "std_msgs/Bool", "false"});
@@ -166,6 +193,11 @@ TEST_F(SafetyOnHardware, EmergencyStopByCommandTopicAndHardwareInputHoldsThePosi
   ASSERT_TRUE(waitFor([&] { return safety().value("hardware_emergency_input", false); }));
   EXPECT_EQ(state(), "emergency_stop");
   EXPECT_THAT(safety().value("reason", ""), HasSubstr("hardware input"));
+  // Logged on the node, like a stop by command or topic.
+  const auto nodeLog = [&] { return node_->currentOut() + node_->currentErr(); };
+  EXPECT_TRUE(waitFor([&] { return nodeLog().find("emergency stop engaged by hardware input") != std::string::npos; }))
+      << nodeLog();
+  expectLoopKeepsItsRate();
   const CliResult refused = cli({"control", "estop", "off"});
   EXPECT_EQ(refused.status, 1);
   EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
@@ -176,6 +208,7 @@ TEST_F(SafetyOnHardware, EmergencyStopByCommandTopicAndHardwareInputHoldsThePosi
   ASSERT_EQ(cli({"control", "estop", "off"}).status, 0);
   command(0.25);
   ASSERT_TRUE(positionReaches(0.25, 1e-9));
+  expectLoopKeepsItsRate();
 }
 
 TEST_F(SafetyOnHardware, ReadAndWriteErrorsAreProtectiveStopsRecoveredByCommand) {
@@ -199,6 +232,8 @@ TEST_F(SafetyOnHardware, ReadAndWriteErrorsAreProtectiveStopsRecoveredByCommand)
     EXPECT_EQ(report.at("status")[2].at("name"), "/one_DOF_robot: position_controller");
     EXPECT_EQ(report.at("status")[2].at("level"), 2);
 
+    expectLoopKeepsItsRate();  // in protective stop, the hardware still failing
+
     // Recovering while the hardware still fails: refused, still stopped.
     const CliResult early = cli({"control", "recover"});
     EXPECT_EQ(early.status, 1);
@@ -215,6 +250,7 @@ TEST_F(SafetyOnHardware, ReadAndWriteErrorsAreProtectiveStopsRecoveredByCommand)
     EXPECT_EQ(controllerState("position_controller"), "running");
     command(-0.3);
     ASSERT_TRUE(positionReaches(-0.3, 1e-9));
+    expectLoopKeepsItsRate();
   }
   // The summary counts the stops: two per failure (the first, and the one the
   // early recovery ran into).
@@ -234,6 +270,7 @@ TEST_F(SafetyOnHardware, ARefusedModeSwitchStartsNothingAndAStallOnlyOverruns) {
   EXPECT_EQ(controllerState("position_controller"), "running");
   EXPECT_EQ(state(), "running");
   script("");
+  expectLoopKeepsItsRate();
 
   // A read that takes 5 ms at 500 Hz: every cycle overruns, nothing stops;
   // `control stats` shows it in read() and the overruns, and --reset zeroes
@@ -260,6 +297,7 @@ TEST_F(SafetyOnHardware, ARefusedModeSwitchStartsNothingAndAStallOnlyOverruns) {
   EXPECT_EQ(figures.at("controllers")[1].at("name"), "position_controller");
   EXPECT_GT(figures.at("controllers")[1].at("update").at("count").get<std::uint64_t>(), 0u);
   EXPECT_EQ(cli({"control", "list"}).status, 0);
+  expectLoopKeepsItsRate();  // the stall is over
 }
 
 TEST_F(SafetyOnHardware, AHardwareThatDeactivatesIsAFaultTheNodeSurvivesAndRecovers) {
@@ -281,6 +319,7 @@ TEST_F(SafetyOnHardware, AHardwareThatDeactivatesIsAFaultTheNodeSurvivesAndRecov
   EXPECT_EQ(controllerState("position_controller"), "running");
   command(0.9);
   ASSERT_TRUE(positionReaches(0.9, 1e-9));
+  expectLoopKeepsItsRate();
 }
 
 TEST_F(SafetyOnHardware, AnEmergencyStopPressedBeforeAFaultIsReleasedWhileTheLoopStands) {

@@ -68,6 +68,9 @@ class ControllerManager {
   // The controller's parameter subtree (<ns>/<name>) for a controller name; a
   // null or undefined node when there is none.
   using ParameterLookup = std::function<YAML::Node(const std::string& controller_name)>;
+  // Why a switch may not be carried out now (empty: it may), e.g. a robot
+  // whose safety state forbids starting controllers.
+  using SwitchGuard = std::function<std::string(const SwitchRequest& request)>;
 
   // A lookup into a YAML map of controller names to their parameters (the
   // robot namespace's node of a ros_control controller YAML).
@@ -112,6 +115,12 @@ class ControllerManager {
                                  const std::vector<std::string>& stop_controllers,
                                  SwitchStrictness strictness, bool start_asap = false,
                                  double timeout_s = 0.0);
+
+  // Non-real-time. A check every later switch must pass. It is asked after
+  // the switch has read what the real-time thread last contained (see
+  // containHardwareFailure), so a stop the guard does not see yet makes the
+  // real-time thread drop the switch instead of carrying it out.
+  void setSwitchGuard(SwitchGuard guard);
 
   // Validates like switchController and hands the switch to the real-time
   // thread without waiting (timeout_s is ignored). For callers that run
@@ -231,6 +240,7 @@ class ControllerManager {
   hardware_interface::RobotHW* robot_hw_;
   std::shared_ptr<ControllerFactory> factory_;  // declared before entries_: outlives them
   ParameterLookup parameters_;
+  SwitchGuard switch_guard_;  // under services_mutex_
   ControllerContext context_template_;
   double update_rate_hz_;
 

@@ -45,6 +45,9 @@ struct LoopStatisticsSnapshot {
   double compute_p99_s = 0.0;  // from the histogram
 
   std::uint64_t overruns = 0;         // cycles that ended after their deadline
+  // Deadlines no cycle started at (the wall clock skips those an overrun
+  // missed): cycles + skipped_deadlines are the deadlines the grid had.
+  std::uint64_t skipped_deadlines = 0;
   std::uint64_t schedule_resets = 0;  // times a loop gave up catching up on a backlog
   std::uint64_t hardware_errors = 0;  // read/write/step calls that returned ReturnType::error
 
@@ -81,7 +84,11 @@ class LoopStatistics {
   }
   // The loop's cumulative simulated (control) and wall time.
   void setElapsed(double sim_time_s, std::int64_t wall_time_ns) noexcept;
-  void recordOverrun() noexcept { bump(overruns_); }
+  // An overrun; `skipped` deadlines get no cycle because of it.
+  void recordOverrun(std::uint64_t skipped = 0) noexcept {
+    bump(overruns_);
+    skipped_deadlines_.store(skipped_deadlines_.load(std::memory_order_relaxed) + skipped, std::memory_order_relaxed);
+  }
   // Phase and timing figures of the current (timed) cycle.
   void recordRead(std::int64_t ns) noexcept { read_.record(ns); }
   void recordWrite(std::int64_t ns) noexcept { write_.record(ns); }
@@ -143,6 +150,7 @@ class LoopStatistics {
   std::atomic<double> sim_time_s_{0.0};
   std::atomic<std::int64_t> wall_time_ns_{0};
   std::atomic<std::uint64_t> overruns_{0};
+  std::atomic<std::uint64_t> skipped_deadlines_{0};
   std::atomic<std::uint64_t> schedule_resets_{0};
   std::atomic<std::uint64_t> hardware_errors_{0};
   DurationStatistics compute_;

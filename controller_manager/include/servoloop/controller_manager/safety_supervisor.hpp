@@ -74,7 +74,12 @@ class SafetySupervisor {
   // Whether a protective stop holds, also while an emergency stop (more
   // severe, so what state() reports) is engaged on top of it.
   bool protectiveStopped() const noexcept;
-  bool emergencyStopLatched() const noexcept { return estop_latched_.load(std::memory_order_acquire); }
+  // Whether a protective stop or a fault holds (one reading of both): no
+  // controller may start.
+  bool startsForbidden() const noexcept;
+  bool emergencyStopLatched() const noexcept { return estop_.load(std::memory_order_acquire) != kReleased; }
+  // Who engaged the latched emergency stop; false when it is released.
+  bool emergencyStopSource(EmergencyStopSource* source) const noexcept;
   // The hardware's input as last polled.
   bool hardwareEmergencyInput() const noexcept { return hardware_input_.load(std::memory_order_acquire); }
   // Latches the emergency stop (a no-op when already latched).
@@ -122,8 +127,11 @@ class SafetySupervisor {
   std::vector<double> held_positions_;      // real-time thread: values at the stop
   bool holding_ = false;                    // real-time thread: held_positions_ are latched
 
-  std::atomic<bool> estop_latched_{false};
-  std::atomic<EmergencyStopSource> estop_source_{EmergencyStopSource::command};
+  // The emergency stop's latch and who engaged it, in one word so that a
+  // reader never sees the latch with an earlier stop's source: kReleased, or
+  // 1 + the EmergencyStopSource.
+  static constexpr std::uint8_t kReleased = 0;
+  std::atomic<std::uint8_t> estop_{kReleased};
   std::atomic<bool> hardware_input_{false};
   std::atomic<bool> protective_{false};
   std::atomic<bool> fault_{false};

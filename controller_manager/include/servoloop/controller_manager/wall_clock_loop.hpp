@@ -7,9 +7,12 @@
 //   (→ hw.step() for a simulated robot standing in for hardware, see below)
 //
 // where period is the wall time since the previous cycle started (the nominal
-// period for a run's first cycle). Cycles start at absolute deadlines
+// period for the first cycle on a grid). Cycles start at absolute deadlines
 // (clock_nanosleep, TIMER_ABSTIME) start + n · period, so the rate does not
-// drift. A cycle whose work ends after the next cycle's deadline is an
+// drift. A run that follows a run which ended at its length (runFor) goes on
+// on the same grid, so a loop run in pieces keeps its rate and its measured
+// periods; the first run, and a run after a stop (requestStop, the stop flag,
+// a hardware stop), start a new grid at once. A cycle whose work ends after the next cycle's deadline is an
 // overrun; the loop then skips the deadlines it missed (the next cycle starts
 // at the first deadline still ahead, on the original grid) rather than running
 // a burst of late cycles back to back. (schedule_resets stays 0 here: every
@@ -49,7 +52,8 @@ class WallClockLoop final : public ControlLoop {
 
   // Runs until stop_requested, requestStop(), or a hardware stop.
   void run(const std::atomic<bool>& stop_requested) override;
-  // Runs the cycles that start within `wall_time` from now, or fewer if stopped.
+  // Runs the cycles that start within `wall_time` from now (from the next
+  // deadline, on a continued grid), or fewer if stopped.
   void runFor(Duration wall_time) override;
 
  private:
@@ -60,6 +64,14 @@ class WallClockLoop final : public ControlLoop {
   hardware_interface::SimulatedRobotHW* simulated_ = nullptr;  // stepped each cycle (step_simulation)
 
   // Real-time thread only.
+  // Where the last run left the deadline grid (-1: no grid to continue).
+  struct Grid {
+    std::int64_t next_deadline_ns = -1;
+    std::int64_t previous_start_ns = -1;
+    std::int64_t previous_deadline_ns = -1;
+    std::int64_t last_end_ns = -1;  // when wall_time_ns_ was last brought up to date
+  };
+  Grid grid_;
   std::uint64_t cycles_ = 0;
   double control_time_s_ = 0.0;  // sum of the periods handed to update()
   std::int64_t wall_time_ns_ = 0;

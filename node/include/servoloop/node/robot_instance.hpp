@@ -153,6 +153,10 @@ class RobotInstance {
   // why, while the emergency stop is engaged, when a controller does not
   // start, or when the hardware fails again at once.
   controller_manager::ServiceResult recover();
+  // Non-real-time, one thread (the node's main loop). Logs an emergency stop
+  // the hardware's input engaged since the last call (a command or the topic
+  // log their own in setEmergencyStop).
+  void logHardwareEmergencyStops();
 
   // Non-real-time (the node's service thread calls it now and then).
   // Publishes the robot's diagnostics (robot_diagnostics.hpp) on
@@ -177,6 +181,10 @@ class RobotInstance {
   void startLaunchControllers();
   void reportLaunchStartFailure(const std::vector<std::string>& controllers, const std::string& why);
   bool waitForRecovery();
+  // Why the safety state forbids this switch now (empty: it is allowed): no
+  // start under a fault or a protective stop. The manager asks it
+  // (ControllerManager::setSwitchGuard).
+  std::string switchRefusal(const controller_manager::SwitchRequest& request) const;
   controller_manager::ServiceResult restartStoppedControllers(std::vector<std::string>* restarted);
   bool waitForCycles(std::uint64_t cycles, double timeout_s) const;
 
@@ -223,6 +231,7 @@ class RobotInstance {
   // publishDiagnosticsIfDue's thread only.
   std::chrono::steady_clock::time_point next_diagnostics_{};
   std::uint64_t diagnostics_overruns_ = 0;
+  std::uint64_t emergency_stops_seen_ = 0;  // logHardwareEmergencyStops
   std::function<void()> on_finished_;
   bool controllers_shut_down_ = false;
 };
