@@ -48,12 +48,14 @@ class WallClockLaunch : public ::testing::Test {
     EXPECT_GE(summary["wall_time"].get<double>(), duration_s - 0.01);
     EXPECT_NEAR(summary["sim_time"].get<double>(), duration_s, 0.05);
     EXPECT_NEAR(summary["real_time_factor"].get<double>(), 1.0, 0.1);
-    // One cycle per millisecond of wall time, fewer when the machine made the
-    // loop skip deadlines (each skip is an overrun).
+    // One deadline per millisecond on one grid, also across the pieces the
+    // node runs between timed publications: each deadline had a cycle, or an
+    // overrun made the loop skip it (counted).
     const auto cycles = robot["loop"]["cycles"].get<double>();
-    const auto overruns = robot["loop"]["overruns"].get<double>();
+    const auto skipped = robot["loop"]["skipped_deadlines"].get<double>();
     EXPECT_LE(cycles, duration_s * 1000.0 + 1.0);
-    EXPECT_GE(cycles + overruns * 50.0, duration_s * 1000.0 * 0.9) << "the loop kept its deadlines";
+    EXPECT_NEAR(cycles + skipped, duration_s * 1000.0, 1.0) << "the loop kept its deadlines";
+    EXPECT_GE(cycles, duration_s * 1000.0 * 0.5);
     const double position = robot["joints"][0]["position"].get<double>();
     EXPECT_GT(position, 0.1);
     EXPECT_LT(position, 1.0);
