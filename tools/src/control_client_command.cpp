@@ -177,9 +177,10 @@ void runStats(const ControlOptions& options) {
     std::cout << reply.dump(2) << "\n";
   } else {
     const nlohmann::json loop = reply.value("loop", nlohmann::json::object());
-    std::cout << fmt::format("{} cycles, {} overruns, {} hardware errors, real-time factor {:.3f}\n",
-                             loop.value("cycles", 0), loop.value("overruns", 0), loop.value("hardware_errors", 0),
-                             loop.value("real_time_factor", 0.0));
+    std::cout << fmt::format("{} cycles, {} overruns ({} deadlines skipped), {} hardware errors, real-time factor "
+                             "{:.3f}\n",
+                             loop.value("cycles", 0), loop.value("overruns", 0), loop.value("skipped_deadlines", 0),
+                             loop.value("hardware_errors", 0), loop.value("real_time_factor", 0.0));
     std::cout << fmt::format("{:<34} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "(us)", "count", "min", "mean", "p50",
                              "p99", "max");
     nlohmann::json cycle = loop.value("compute", nlohmann::json::object());
