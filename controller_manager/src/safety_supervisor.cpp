@@ -149,6 +149,11 @@ void SafetySupervisor::refreshHardwareInput() noexcept {
 
 void SafetySupervisor::pollHardwareInput() noexcept {
   const bool input = hw_.emergencyStopInput();  // noexcept
+  // The common case, an input that stays released, writes nothing (a
+  // sequentially consistent store is a full barrier, every cycle); a pressed
+  // input is stored every cycle, ordered before the latch it engages, as the
+  // release's check of it needs.
+  if (!input && !hardware_input_.load(std::memory_order_relaxed)) return;
   hardware_input_.store(input, std::memory_order_seq_cst);
   if (input) engageEmergencyStop(EmergencyStopSource::hardware);
 }
