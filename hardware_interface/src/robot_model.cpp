@@ -420,6 +420,15 @@ void checkInertial(const urdf::Link& link, const std::string& source_name) {
   }
 }
 
+// A missing visual mesh is reported once per process, although the node and
+// the simulated hardware each parse the description.
+void warnMissingVisualMeshOnce(const std::string& text) {
+  static std::mutex mutex;
+  static std::set<std::string> reported;
+  std::lock_guard lock(mutex);
+  if (reported.insert(text).second) logger().warn("{}", text);
+}
+
 // Returns the absolute path of an existing mesh file. A missing one throws
 // naming the link when `required` (collision: every backend needs it);
 // otherwise (visual: no backend draws it) it is one warning and the URI stays.
@@ -432,8 +441,9 @@ std::string resolveMesh(const std::string& uri, const fs::path& base_dir, const 
       candidates.push_back(resolvePackageUri(uri, base_dir, source_name));
     } catch (const ConfigError& e) {
       if (required) fail(source_name, what + " mesh '" + uri + "': " + e.what());
-      logger().warn("{}: {} mesh '{}': {}; no backend draws visual meshes, so the robot loads without it",
-                    source_name, what, uri, e.what());
+      warnMissingVisualMeshOnce(fmt::format("{}: {} mesh '{}': {}; no backend draws visual meshes, so the robot "
+                                            "loads without it",
+                                            source_name, what, uri, e.what()));
       return uri;
     }
   } else {
@@ -450,9 +460,9 @@ std::string resolveMesh(const std::string& uri, const fs::path& base_dir, const 
   }
   if (candidates.size() > 4) tried += ", ...";
   if (!required) {
-    logger().warn("{}: {} mesh '{}' not found (looked for {}); no backend draws visual meshes, so the robot loads "
-                  "without it",
-                  source_name, what, uri, tried);
+    warnMissingVisualMeshOnce(fmt::format("{}: {} mesh '{}' not found (looked for {}); no backend draws visual "
+                                          "meshes, so the robot loads without it",
+                                          source_name, what, uri, tried));
     return uri;
   }
   fail(source_name, what + " mesh '" + uri + "' not found (looked for " + tried +

@@ -9,6 +9,7 @@
 #include <string>
 #include <system_error>
 
+#include "servoloop/core/executable_path.hpp"
 #include "servoloop/core/logging.hpp"
 
 namespace servoloop::plugin {
@@ -58,9 +59,9 @@ std::vector<fs::path> pluginPathFromEnvironment() {
 std::vector<fs::path> defaultPluginDirectories() {
   std::vector<fs::path> dirs;
   std::error_code error;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  const fs::path bin = executableDirectory(error);
   if (!error) {
-    const fs::path prefix = exe.parent_path().parent_path();
+    const fs::path prefix = bin.parent_path();
     appendUnique(dirs, pluginsUnder(prefix / "lib"));
     appendUnique(dirs, pluginsUnder(prefix / SERVOLOOP_INSTALL_LIBDIR));
   }

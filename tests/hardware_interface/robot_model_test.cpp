@@ -339,6 +339,17 @@ TEST(RobotModel, MissingVisualMeshIsAWarning) {
   EXPECT_EQ(log.count("ROS package 'nopkg' not found"), 1u) << log.text();
 }
 
+// The node and the simulated hardware each parse the description: the
+// warning still comes once. (Its own mesh name: the report is per process.)
+TEST(RobotModel, AMissingVisualMeshIsReportedOnceForTwoParses) {
+  const std::string link = R"(<link name="arm">)" + kGoodInertial +
+                           R"(<visual><geometry><mesh filename="package://nopkg/forearm.dae"/></geometry></visual></link>)";
+  test::LogCapture log;
+  EXPECT_EQ(errorOf(robot(kGoodJoint, link)), "");
+  EXPECT_EQ(errorOf(robot(kGoodJoint, link)), "");
+  EXPECT_EQ(log.count("<visual> mesh 'package://nopkg/forearm.dae'"), 1u) << log.text();
+}
+
 TEST(RobotModel, MeshesResolveRelativeAndPackageUris) {
   const auto model = loadRobotModelFile(kAssetsDir + "mesh_pendulum.urdf");
   const auto bob = model->getLink("bob");

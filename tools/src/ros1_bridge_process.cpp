@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/executable_path.hpp"
 
 extern char** environ;
 
@@ -18,11 +19,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path executableDirectory() {
+fs::path programDirectory() {
   std::error_code error;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  fs::path directory = servoloop::executableDirectory(error);
   if (error) throw Error("cannot find the servoloop executable (/proc/self/exe): " + error.message());
-  return exe.parent_path();
+  return directory;
 }
 
 // Waits up to timeout_s for `pid` to end; true once it has.
@@ -40,7 +41,7 @@ bool reapWithin(pid_t pid, double timeout_s) {
 }  // namespace
 
 fs::path ros1BridgeProgram() {
-  const fs::path bridge = executableDirectory() / "servoloop_ros1_bridge";
+  const fs::path bridge = programDirectory() / "servoloop_ros1_bridge";
   if (!fs::exists(bridge)) {
     throw Error("the ROS 1 bridge is not part of this build (" + bridge.string() +
                 " is missing): install Debian's ROS 1 packages (bash scripts/install_ros1.sh) and build again; "
@@ -50,7 +51,7 @@ fs::path ros1BridgeProgram() {
 }
 
 fs::path ros1PythonPath() {
-  return (executableDirectory() / ".." / "share" / "servoloop" / "ros1" / "python").lexically_normal();
+  return (programDirectory() / ".." / "share" / "servoloop" / "ros1" / "python").lexically_normal();
 }
 
 void Ros1BridgeProcesses::start(const std::string& robot_namespace) {

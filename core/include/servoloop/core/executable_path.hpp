@@ -1,0 +1,14 @@
+#pragma once
+// Where the running program is: servoloop finds its plugins and helper
+// programs next to it (bin/, lib/servoloop/plugins, share/servoloop), in the
+// build tree and after `cmake --install` alike.
+#include <filesystem>
+#include <system_error>
+
+namespace servoloop {
+
+// The directory of the running executable (/proc/self/exe); empty, with
+// `error` set, when it cannot be read.
+std::filesystem::path executableDirectory(std::error_code& error);
+
+}  // namespace servoloop
