@@ -11,13 +11,16 @@
 #      free-running, against raw Bullet stepping of the same robot
 #      (servoloop_bench_loop_vs_bullet's loop/seed/raw_bullet): wall time per
 #      physics step, node ÷ raw; each round takes the median of 5 node runs,
-#      as the harness takes the median of its 5 repetitions.
+#      as the harness takes the median of its 5 repetitions. The node's fixed
+#      start and end (starting the loop thread, handing over to it and back;
+#      no per-step cost) is measured apart, with runs of one step.
 #
 #   scripts/bench_node.sh [--quick]
 #
 # Environment: BUILD_DIR (default <repo>/build), ROUNDS (default 5),
 # SECONDS_PER_RUN (default 10: wall seconds of each wall-clock run),
-# SIM_SECONDS (default 30: simulated seconds of each bullet run), PRIORITY
+# SIM_SECONDS (default 300: simulated seconds of each bullet run, about half a
+# second of wall time, so the fixed start and end weigh little), PRIORITY
 # (SCHED_FIFO priority for both in part 1; default 0: the normal scheduler),
 # PARTS (default "1 2": which parts to run).
 # Needs python3; part 1 needs cyclictest (apt install rt-tests) and is
@@ -29,7 +32,7 @@ BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
 BIN="$BUILD_DIR/bin"
 ROUNDS="${ROUNDS:-5}"
 SECONDS_PER_RUN="${SECONDS_PER_RUN:-10}"
-SIM_SECONDS="${SIM_SECONDS:-30}"
+SIM_SECONDS="${SIM_SECONDS:-300}"
 PRIORITY="${PRIORITY:-0}"
 PARTS="${PARTS:-1 2}"
 if [[ "${1:-}" == "--quick" ]]; then ROUNDS=2; SECONDS_PER_RUN=2; SIM_SECONDS=5; fi
@@ -127,6 +130,8 @@ for round in $(seq "$ROUNDS"); do
   for rep in 1 2 3 4 5; do
     (cd "$ROOT" && "$BIN/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --duration "$SIM_SECONDS" \
       --rtf 0 --json --pub /one_DOF_robot/joint1_position_controller/command:=1.0) >"$WORK/node_${round}_$rep.json" 2>/dev/null
+    (cd "$ROOT" && "$BIN/servoloop" launch robots/one_dof/one_dof_w_jnt_ctl.launch.yaml --duration 0.001 \
+      --rtf 0 --json) >"$WORK/fixed_${round}_$rep.json" 2>/dev/null
   done
 done
 python3 - "$WORK" "$ROUNDS" <<'PY'
@@ -144,9 +149,10 @@ for r in range(1, rounds + 1):
     node_ns = statistics.median(s["wall_time"] / s["cycles"] * 1e9 for s in runs)
     loop_ns = statistics.median(s["robots"][0]["loop"]["wall_time"] / s["robots"][0]["loop"]["cycles"] * 1e9 for s in runs)
     rtf = statistics.median(s["real_time_factor"] for s in runs)
+    fixed_ms = statistics.median(json.load(open(f"{work}/fixed_{r}_{rep}.json"))["wall_time"] * 1e3 for rep in range(1, 6))
     rows.append((raw, node_ns, loop_ns))
     print(f"  round {r}: raw bullet {raw:7.1f} ns/step | node {node_ns:7.1f} ns/step (loop thread {loop_ns:7.1f}), "
-          f"real-time factor {rtf:.0f}   (medians of 5 runs each)")
+          f"real-time factor {rtf:.0f}; a one-step run {fixed_ms:.2f} ms   (medians of 5 runs each)")
 ratios = [n / raw for raw, n, _ in rows]
 loop_ratios = [l / raw for raw, _, l in rows]
 print(f"  node / raw bullet: median {statistics.median(ratios):.3f} (rounds: {', '.join(f'{x:.3f}' for x in ratios)}); "
