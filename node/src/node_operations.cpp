@@ -164,7 +164,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     const std::string name = requireString(request, "name");
     const bool load = op == "control.load";
     return deferToWorker(request, connection, [&robot, name, load] {
-      throwIfFailed(load ? robot.manager().loadController(name) : robot.manager().unloadController(name));
+      throwIfFailed(load ? robot.loadController(name) : robot.manager().unloadController(name));
       return json(nullptr);
     });
   }

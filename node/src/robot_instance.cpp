@@ -83,7 +83,11 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
 
   // Robot description and namespace.
   robot_description_ = readRobotDescription(spec.urdf, spec.xacro_args);
-  const std::string xml = simulatableUrdf(robot_description_, spec.urdf.string()).xml;
+  SimulatableUrdf simulatable = simulatableUrdf(robot_description_, spec.urdf.string());
+  const std::string xml = std::move(simulatable.xml);
+  // A simulated robot cannot move them; a hardware robot's joints are whatever its plugin offers.
+  if (spec.hardware_type.empty()) left_out_joints_ = std::move(simulatable.skipped_joints);
+  parameters_ = &store;
   model_ = parseRobotModel(xml, spec.urdf.string());
   robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
   namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);
@@ -226,7 +230,7 @@ void RobotInstance::loadControllers(const RobotSpec& spec, const params::Paramet
   // elsewhere, the others' usually are too.
   bool hinted = false;
   const auto load = [&](const std::string& name) {
-    if (manager_->loadController(name)) return true;
+    if (loadController(name)) return true;
     launch_failures_.push_back("controller '" + name + "' did not load");
     if (!hinted) hintWhereParametersAre(name, store);
     hinted = true;
@@ -238,6 +242,33 @@ void RobotInstance::loadControllers(const RobotSpec& spec, const params::Paramet
   for (const std::string& name : spec.controllers) {
     if (load(name)) launch_controllers_.push_back(name);
   }
+}
+
+controller_manager::ServiceResult RobotInstance::loadController(const std::string& name) {
+  if (!left_out_joints_.empty() && parameters_ != nullptr) {
+    const YAML::Node params = parameters_->node(params::resolveName(namespace_, name));
+    std::vector<std::string> named;
+    if (params.IsMap()) {
+      // (A missing key gives an invalid node: test it before asking its type.)
+      if (const YAML::Node joint = params["joint"]; joint && joint.IsScalar()) named.push_back(joint.Scalar());
+      if (const YAML::Node joints = params["joints"]; joints && joints.IsSequence()) {
+        for (const YAML::Node& j : joints) {
+          if (j.IsScalar()) named.push_back(j.Scalar());
+        }
+      }
+    }
+    for (const std::string& joint : named) {
+      if (std::find(left_out_joints_.begin(), left_out_joints_.end(), joint) == left_out_joints_.end()) continue;
+      const std::string why = fmt::format(
+          "robot '{}': controller '{}' names joint '{}', which was left out of the simulation with the massless "
+          "link it moves (see the warning about it above); give that link an <inertial> with <mass value> > 0 and "
+          "an <inertia>",
+          namespace_, name, joint);
+      logger().error("{}", why);
+      return controller_manager::ServiceResult::failure(why);
+    }
+  }
+  return manager_->loadController(name);
 }
 
 // A controller whose type is not under the robot's namespace often sits

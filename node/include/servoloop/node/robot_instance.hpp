@@ -146,6 +146,11 @@ class RobotInstance {
   // Non-real-time. Engages or releases the emergency stop; a release fails
   // while the hardware's own input is active.
   controller_manager::ServiceResult setEmergencyStop(bool engaged, controller_manager::EmergencyStopSource source);
+  // Non-real-time. Loads a controller (ControllerManager::loadController),
+  // except one whose `joint` or `joints` parameter names a joint left out of
+  // the simulation (its link has no mass): that fails with why, instead of
+  // with a missing interface or handle.
+  controller_manager::ServiceResult loadController(const std::string& name);
   // Non-real-time; blocks until done. Leaves protective stop or fault: the
   // loop runs again (after a fault), the controllers the stop had stopped
   // are started again (stopping the fallbacks that took their resources),
@@ -192,6 +197,8 @@ class RobotInstance {
   std::string robot_name_;
   std::filesystem::path urdf_path_;
   std::string robot_description_;
+  std::vector<std::string> left_out_joints_;  // simulatableUrdf left them out (massless links)
+  params::ParameterStore* parameters_ = nullptr;
   std::string backend_name_;
   double real_time_factor_ = 0.0;
   RealtimeSettings realtime_;  // applied on the loop thread before its first cycle
