@@ -91,6 +91,10 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   model_ = parseRobotModel(xml, spec.urdf.string());
   robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
   namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);
+  if (const std::string ignored = ignoredLaunchNamespace(xml, spec.urdf.string(), spec.robot_namespace);
+      !ignored.empty()) {
+    logger().warn("{}", ignored);
+  }
   const bool hardware_robot = !spec.hardware_type.empty();
   if (hardware_robot) {
     // The plugin's parameters, where it reads them: <ns>/hardware.
@@ -246,7 +250,8 @@ void RobotInstance::loadControllers(const RobotSpec& spec, const params::Paramet
 
 controller_manager::ServiceResult RobotInstance::loadController(const std::string& name) {
   if (!left_out_joints_.empty() && parameters_ != nullptr) {
-    const YAML::Node params = parameters_->node(params::resolveName(namespace_, name));
+    const std::string params_name = params::resolveName(namespace_, name);
+    const YAML::Node params = parameters_->has(params_name) ? parameters_->node(params_name) : YAML::Node();
     std::vector<std::string> named;
     if (params.IsMap()) {
       // (A missing key gives an invalid node: test it before asking its type.)

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include <spdlog/fmt/fmt.h>
 #include <tinyxml2.h>
 
 #include "servoloop/params/parameter_store.hpp"
@@ -71,6 +72,26 @@ std::string resolveRobotNamespace(const std::string& urdf_xml, const std::string
                       "spawn-model: -N /my_robot)");
   }
   return resolved;
+}
+
+std::string ignoredLaunchNamespace(const std::string& urdf_xml, const std::string& source_name,
+                                   const std::string& launch_namespace) {
+  const std::string from_urdf = urdfRobotNamespace(urdf_xml, source_name);
+  if (from_urdf.empty() || launch_namespace.empty()) return {};
+  std::string asked = launch_namespace;
+  std::string resolved = from_urdf;
+  try {
+    asked = params::resolveName("/", launch_namespace);
+    resolved = params::resolveName("/", from_urdf);
+  } catch (const Error&) {
+    return {};  // resolveRobotNamespace reports a name that is not a ROS name
+  }
+  // "/" is what a ROS launch file without <group ns> gives: nothing was asked.
+  if (asked == "/" || asked == resolved) return {};
+  return fmt::format("{}: the robot's namespace is '{}' from the <robotNamespace> of its gazebo_ros_control plugin "
+                     "(it wins, as in Gazebo); the launch file's namespace '{}' is not used, and the robot's topics "
+                     "and parameters live under '{}'; remove one of the two, or make them the same",
+                     source_name, resolved, launch_namespace, resolved);
 }
 
 }  // namespace servoloop::node

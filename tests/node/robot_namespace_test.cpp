@@ -31,6 +31,15 @@ TEST(RobotNamespace, UrdfWinsOverLaunchFile) {
       "<gazebo><plugin name='gazebo_ros_control' filename='libgazebo_ros_control.so'>"
       "<robotNamespace> /left_arm </robotNamespace></plugin></gazebo>");
   EXPECT_EQ(resolveRobotNamespace(xml, "arm.urdf", "/right_arm", "arm"), "/left_arm");
+  // Said, so that a user commanding /right_arm/... knows why nothing moves.
+  const std::string warning = servoloop::node::ignoredLaunchNamespace(xml, "arm.urdf", "/right_arm");
+  EXPECT_NE(warning.find("arm.urdf: the robot's namespace is '/left_arm'"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("the launch file's namespace '/right_arm' is not used"), std::string::npos) << warning;
+  // The same namespace written differently, none, or a ROS launch file's root: nothing to say.
+  EXPECT_EQ(servoloop::node::ignoredLaunchNamespace(xml, "arm.urdf", "left_arm/"), "");
+  EXPECT_EQ(servoloop::node::ignoredLaunchNamespace(xml, "arm.urdf", ""), "");
+  EXPECT_EQ(servoloop::node::ignoredLaunchNamespace(xml, "arm.urdf", "/"), "");
+  EXPECT_EQ(servoloop::node::ignoredLaunchNamespace(urdfWithPlugin(""), "arm.urdf", "/right_arm"), "");
 }
 
 TEST(RobotNamespace, LaunchFileNamespaceWhenUrdfHasNone) {

@@ -18,4 +18,11 @@ std::string urdfRobotNamespace(const std::string& urdf_xml, const std::string& s
 std::string resolveRobotNamespace(const std::string& urdf_xml, const std::string& source_name,
                                   const std::string& launch_namespace, const std::string& robot_name);
 
+// The warning to give when the URDF's robotNamespace overrides a different
+// namespace the launch file asked for (its commands would otherwise go
+// nowhere without a word); "" when nothing was overridden. A launch
+// namespace of "/" (a ROS launch file without <group ns>) asks for nothing.
+std::string ignoredLaunchNamespace(const std::string& urdf_xml, const std::string& source_name,
+                                   const std::string& launch_namespace);
+
 }  // namespace servoloop::node
