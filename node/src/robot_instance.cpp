@@ -81,30 +81,9 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   }
   params::ParameterStore& store = *world.parameters;
 
-  // Robot description and namespace.
-  robot_description_ = readRobotDescription(spec.urdf, spec.xacro_args);
-  SimulatableUrdf simulatable = simulatableUrdf(robot_description_, spec.urdf.string());
-  const std::string xml = std::move(simulatable.xml);
-  // A simulated robot cannot move them; a hardware robot's joints are whatever its plugin offers.
-  if (spec.hardware_type.empty()) left_out_joints_ = std::move(simulatable.skipped_joints);
-  parameters_ = &store;
-  model_ = parseRobotModel(xml, spec.urdf.string());
-  robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
-  namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);
-  if (const std::string ignored = ignoredLaunchNamespace(xml, spec.urdf.string(), spec.robot_namespace);
-      !ignored.empty()) {
-    logger().warn("{}", ignored);
-  }
   const bool hardware_robot = !spec.hardware_type.empty();
-  if (hardware_robot) {
-    // The plugin's parameters, where it reads them: <ns>/hardware.
-    store.loadString(spec.hardware_params_yaml, spec.hardware_source, params::resolveName(namespace_, "hardware"));
-  } else {
-    writeWorldSettings(store, namespace_, world.world);
-  }
-  writeSpawnSettings(store, namespace_, spec);
-
-  // The hardware: a simulation backend, or the launch file's hardware plugin.
+  // The hardware first (whether it simulates decides what it is given): a
+  // simulation backend, or the launch file's hardware plugin.
   try {
     backend_ = world.plugins->create<hardware_interface::RobotHW>(backend_name_);
   } catch (const Error& e) {
@@ -125,6 +104,37 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
         "robot's `hardware: {{type: {}}}`",
         backend_name_, backend_name_));
   }
+
+  // Robot description and namespace.
+  robot_description_ = readRobotDescription(spec.urdf, spec.xacro_args);
+  // A simulator (also one standing in for hardware, `hardware: {type: mock}`)
+  // gets the description without what it cannot simulate, as in Gazebo;
+  // hardware moves every joint, massless links or not, and gets it whole.
+  std::string xml = robot_description_;
+  if (sim_hw_ != nullptr) {
+    SimulatableUrdf simulatable = simulatableUrdf(robot_description_, spec.urdf.string());
+    xml = std::move(simulatable.xml);
+    left_out_joints_ = std::move(simulatable.skipped_joints);
+  }
+  parameters_ = &store;
+  // Hardware: urdfdom's parse without the checks of what a simulator needs
+  // (every moving link's mass and inertia, collision meshes).
+  model_ = sim_hw_ != nullptr ? parseRobotModel(xml, spec.urdf.string())
+                              : parseUrdfWithUrdfdom(xml, spec.urdf.string(), /*report_warnings=*/true);
+  robot_name_ = spec.model.empty() ? model_->getName() : spec.model;
+  namespace_ = resolveRobotNamespace(xml, spec.urdf.string(), spec.robot_namespace, robot_name_);
+  if (const std::string ignored = ignoredLaunchNamespace(xml, spec.urdf.string(), spec.robot_namespace);
+      !ignored.empty()) {
+    logger().warn("{}", ignored);
+  }
+  if (hardware_robot) {
+    // The plugin's parameters, where it reads them: <ns>/hardware.
+    store.loadString(spec.hardware_params_yaml, spec.hardware_source, params::resolveName(namespace_, "hardware"));
+  } else {
+    writeWorldSettings(store, namespace_, world.world);
+  }
+  writeSpawnSettings(store, namespace_, spec);
+
   hardware_interface::HardwareInfo info;
   info.urdf_xml = xml;
   info.urdf_path = spec.urdf.string();
@@ -248,30 +258,51 @@ void RobotInstance::loadControllers(const RobotSpec& spec, const params::Paramet
   }
 }
 
+namespace {
+
+// Every scalar value in a controller's parameters (maps and sequences walked;
+// `type` left out): wherever a controller names its joints — `joint`,
+// `joints`, `left_wheel`, a plugin's own key — the names are among them.
+void collectScalars(const YAML::Node& node, std::vector<std::string>& out) {
+  if (node.IsScalar()) {
+    out.push_back(node.Scalar());
+  } else if (node.IsSequence()) {
+    for (const YAML::Node& item : node) collectScalars(item, out);
+  } else if (node.IsMap()) {
+    for (const auto& entry : node) {
+      if (entry.first.IsScalar() && entry.first.Scalar() == "type") continue;
+      collectScalars(entry.second, out);
+    }
+  }
+}
+
+}  // namespace
+
 controller_manager::ServiceResult RobotInstance::loadController(const std::string& name) {
+  std::string left_out;
   if (!left_out_joints_.empty() && parameters_ != nullptr) {
-    const std::string params_name = params::resolveName(namespace_, name);
-    const YAML::Node params = parameters_->has(params_name) ? parameters_->node(params_name) : YAML::Node();
-    std::vector<std::string> named;
-    if (params.IsMap()) {
-      // (A missing key gives an invalid node: test it before asking its type.)
-      if (const YAML::Node joint = params["joint"]; joint && joint.IsScalar()) named.push_back(joint.Scalar());
-      if (const YAML::Node joints = params["joints"]; joints && joints.IsSequence()) {
-        for (const YAML::Node& j : joints) {
-          if (j.IsScalar()) named.push_back(j.Scalar());
+    try {
+      const std::string params_name = params::resolveName(namespace_, name);
+      std::vector<std::string> values;
+      if (parameters_->has(params_name)) collectScalars(parameters_->node(params_name), values);
+      for (const std::string& value : values) {
+        if (std::find(left_out_joints_.begin(), left_out_joints_.end(), value) != left_out_joints_.end()) {
+          left_out = value;
+          break;
         }
       }
+    } catch (const std::exception&) {
+      // A name or parameters the manager refuses: its load says why.
     }
-    for (const std::string& joint : named) {
-      if (std::find(left_out_joints_.begin(), left_out_joints_.end(), joint) == left_out_joints_.end()) continue;
-      const std::string why = fmt::format(
-          "robot '{}': controller '{}' names joint '{}', which was left out of the simulation with the massless "
-          "link it moves (see the warning about it above); give that link an <inertial> with <mass value> > 0 and "
-          "an <inertia>",
-          namespace_, name, joint);
-      logger().error("{}", why);
-      return controller_manager::ServiceResult::failure(why);
-    }
+  }
+  if (!left_out.empty()) {
+    const std::string why = fmt::format(
+        "robot '{}': controller '{}' names joint '{}', which the simulation left out because the link it moves, or "
+        "a link above it, has no mass (the node's warning at start names that link); give the link an <inertial> "
+        "with <mass value> > 0 and an <inertia>",
+        namespace_, name, left_out);
+    logger().error("{}", why);
+    return controller_manager::ServiceResult::failure(why);
   }
   return manager_->loadController(name);
 }
@@ -284,10 +315,24 @@ void RobotInstance::hintWhereParametersAre(const std::string& name, const params
   if (store.has(expected)) return;
   const std::string suffix = "/" + name + "/type";
   std::string found;
+  std::string deeper;  // the extra level of a file that already nests its controllers under the namespace
+  const std::string ns_prefix = namespace_ == "/" ? "/" : namespace_ + "/";
   for (const std::string& key : store.list("/")) {
     if (key.size() >= suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) {
       found += (found.empty() ? "'" : ", '") + key + "'";
+      const std::string holder = key.substr(0, key.size() - suffix.size());
+      if (holder.size() > ns_prefix.size() && holder.compare(0, ns_prefix.size(), ns_prefix) == 0) {
+        deeper = holder.substr(ns_prefix.size());
+      }
     }
+  }
+  if (!deeper.empty()) {
+    // Loaded with ns: into the robot's namespace although the file nests its
+    // controllers under it already: the usual fix (add ns:) is what was done.
+    logger().error("robot '{}': looked for '{}' but the parameters have {}: the file nests its controllers under "
+                   "'{}:' and was loaded into '{}' too; load it without `ns:` (or remove that level from the file)",
+                   namespace_, expected, found, deeper, namespace_);
+    return;
   }
   if (found.empty()) {
     logger().error("robot '{}': no '{}' anywhere in the parameters; add the controller to a YAML file listed under "

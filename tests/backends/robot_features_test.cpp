@@ -245,6 +245,23 @@ TEST_P(FeatureRun, ControllersLoadedOutsideTheNamespaceAreFoundForTheError) {
             std::string::npos)
       << result.err;
   EXPECT_NE(result.err.find("ns: /fingers"), std::string::npos) << result.err;
+
+  // A file that already nests its controllers under the robot's name, loaded
+  // into the namespace as well: the hint says to drop the ns:, not to add it.
+  const fs::path nested = write("nested_ns.launch.yaml", R"(robots:
+  - urdf: ')" + (kAssets / "fingers.urdf").string() + R"('
+    namespace: /fingers
+    params: [{file: ')" + (kAssets / "fingers_controllers.yaml").string() + R"(', ns: /fingers/fingers}]
+    controllers: [finger_a_effort]
+)");
+  const CliResult twice = launch(nested, "--duration 0.1");
+  EXPECT_EQ(twice.status, 1) << twice.err;
+  EXPECT_NE(twice.err.find("the parameters have '/fingers/fingers/finger_a_effort/type': the file nests its "
+                           "controllers under 'fingers:'"),
+            std::string::npos)
+      << twice.err;
+  EXPECT_NE(twice.err.find("load it without `ns:`"), std::string::npos) << twice.err;
+  EXPECT_EQ(twice.err.find("ns: /fingers}"), std::string::npos) << twice.err;
 }
 
 // A floating robot's ground truth (nav_msgs/Odometry on

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <iterator>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -90,6 +91,9 @@ class SafetyCli : public ::testing::Test {
 
 class SafetyOnHardware : public SafetyCli {
  protected:
+  // The robot's description (the seed's unless a test says otherwise).
+  virtual fs::path urdf() { return kOneDof / "minimal_robot_description_w_jnt_ctl.urdf"; }
+
   void SetUp() override {
     control_file_ = scratch() / "hardware_control";
     script("");
@@ -100,7 +104,7 @@ class SafetyOnHardware : public SafetyCli {
     std::ofstream(scratch() / "hw.launch.yaml")
         << "controller_manager: {update_rate: 500}\n"
            "robots:\n"
-           "  - urdf: '" << (kOneDof / "minimal_robot_description_w_jnt_ctl.urdf").string() << "'\n"
+           "  - urdf: '" << urdf().string() << "'\n"
            "    model: one_DOF_robot\n"
            "    params: ['" << (scratch() / "controllers.yaml").string() << "']\n"
            "    hardware: {type: servoloop_test/ScriptedHardware, joints: [joint1], control_file: '"
@@ -344,6 +348,30 @@ TEST_F(SafetyOnHardware, AnEmergencyStopPressedBeforeAFaultIsReleasedWhileTheLoo
   EXPECT_EQ(state(), "running");
   command(0.9);
   ASSERT_TRUE(positionReaches(0.9, 1e-9));
+}
+
+// Real hardware moves its joints whatever the description says of the links'
+// masses: a moving link without <inertial> (common in descriptions written
+// for hardware) keeps its joint, where a simulator leaves it out.
+class MasslessLinkOnHardware : public SafetyOnHardware {
+ protected:
+  fs::path urdf() override {
+    std::ifstream in(kOneDof / "minimal_robot_description_w_jnt_ctl.urdf");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t begin = text.find("<inertial>", text.find("<link name=\"link2\">"));
+    const std::size_t end = text.find("</inertial>", begin);
+    EXPECT_NE(begin, std::string::npos);
+    if (begin != std::string::npos && end != std::string::npos) text.erase(begin, end + 11 - begin);
+    const fs::path path = scratch() / "massless_link2.urdf";
+    std::ofstream(path) << text;
+    return path;
+  }
+};
+
+TEST_F(MasslessLinkOnHardware, KeepsTheJointAndItsController) {
+  EXPECT_EQ(controllerState("position_controller"), "running");
+  command(0.5);
+  ASSERT_TRUE(positionReaches(0.5, 1e-9));
 }
 
 // The seed robot simulated (bullet, paced at 5 × real time), held at 1 rad by its
