@@ -47,6 +47,20 @@ struct SafetyLoop {
   std::unique_ptr<SimulationLoop> loop;
 };
 
+// The same under the supervisor with no controller running yet, after one cycle.
+struct IdleSafetyLoop {
+  explicit IdleSafetyLoop(LoopFixture& f) : safety(f.hw), loop(f.hw, f.manager, options()) {
+    loop.cycleOnce();
+  }
+  SimulationLoop::Options options() {
+    SimulationLoop::Options o;
+    o.safety = &safety;
+    return o;
+  }
+  SafetySupervisor safety;
+  SimulationLoop loop;
+};
+
 TEST(SafetySupervisor, EmergencyStopZeroesEffortWhileTheControllerRunsOnAndReleaseRestoresIt) {
   LoopFixture f(0.001);
   SafetyLoop s(f);
@@ -207,11 +221,9 @@ TEST(SafetySupervisor, ASwitchWaitingWhenTheHardwareFailsStartsNothing) {
   for (const ReturnType failure : {ReturnType::error, ReturnType::deactivate}) {
     SCOPED_TRACE(failure == ReturnType::error ? "error" : "deactivate");
     LoopFixture f(0.001);
-    SafetySupervisor safety(f.hw);
-    SimulationLoop::Options options;
-    options.safety = &safety;
-    SimulationLoop loop(f.hw, f.manager, options);
-    loop.cycleOnce();  // no controller running
+    IdleSafetyLoop rig(f);
+    SafetySupervisor& safety = rig.safety;
+    SimulationLoop& loop = rig.loop;
     f.hw.read_script.from = f.hw.reads;
     f.hw.read_script.until = f.hw.reads + 1;
     f.hw.read_script.result = failure;
@@ -231,11 +243,9 @@ TEST(SafetySupervisor, AProtectiveStopBeginningWhileASwitchIsCheckedStartsNothin
   // fails right after the guard looked: the guard saw a running robot and
   // allowed the start, yet the stop that began since must drop it.
   LoopFixture f(0.001);
-  SafetySupervisor safety(f.hw);
-  SimulationLoop::Options options;
-  options.safety = &safety;
-  SimulationLoop loop(f.hw, f.manager, options);
-  loop.cycleOnce();  // no controller running
+  IdleSafetyLoop rig(f);
+  SafetySupervisor& safety = rig.safety;
+  SimulationLoop& loop = rig.loop;
   int checks = 0;
   f.manager.setSwitchGuard([&](const SwitchRequest&) -> std::string {
     ++checks;
