@@ -74,17 +74,21 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   // and one after a stop, start a grid now.
   const bool continues = grid_.next_deadline_ns >= 0;
   std::int64_t deadline_ns = continues ? grid_.next_deadline_ns : run_start_ns;
+  if (origin_ns_ < 0) origin_ns_ = deadline_ns;
+  // The run covers the grid from its first deadline for its length, so
+  // pieces run one after another cover it once: a piece that ends where the
+  // control time says the next publication is due ends on that deadline.
+  const std::int64_t run_end_ns = run_length_ns == std::numeric_limits<std::int64_t>::max()
+                                      ? run_length_ns
+                                      : deadline_ns + run_length_ns;
   if (continues && run_start_ns > deadline_ns) {
     // The pause between the runs missed deadlines: an overrun, skipped as below.
     const std::int64_t missed = (run_start_ns - deadline_ns) / period_ns_ + 1;
     mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
     deadline_ns += missed * period_ns_;
+    control_time_ns_ += missed * period_ns_;
+    mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_time_ns_);
   }
-  // The run's length counts from its first deadline: on a continued grid
-  // that is when the time the loop reports (control time) reaches "now".
-  const std::int64_t run_end_ns = run_length_ns == std::numeric_limits<std::int64_t>::max()
-                                      ? run_length_ns
-                                      : deadline_ns + run_length_ns;
   // Wall time goes on across the pause too, as the control time does.
   const std::int64_t wall_before_ns = wall_time_ns_ + (continues ? run_start_ns - grid_.last_end_ns : 0);
   std::int64_t previous_start_ns = grid_.previous_start_ns;
@@ -102,7 +106,6 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
       mutableStatistics().recordPeriodJitter(off_ns < 0 ? -off_ns : off_ns);
     }
     previous_deadline_ns = deadline_ns;
-    if (origin_ns_ < 0) origin_ns_ = start_ns;
     const Time time(static_cast<double>(start_ns - origin_ns_) / kNsPerSecond);
     const Duration period(previous_start_ns < 0 ? controlPeriod().seconds
                                                 : static_cast<double>(start_ns - previous_start_ns) / kNsPerSecond);
@@ -123,21 +126,22 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
     }
     finishCycle(time);
     ++cycles_;
-    control_time_s_ += period.seconds;
 
     const std::int64_t end_ns = loop_clock::nowNs();
     mutableStatistics().recordCycle(end_ns - start_ns, true);
-    deadline_ns += period_ns_;
-    if (end_ns > deadline_ns) {
+    std::int64_t advance_ns = period_ns_;
+    if (end_ns > deadline_ns + period_ns_) {
       // Skip the deadlines already missed: the next cycle starts at the first
       // one still ahead, on the original grid.
-      const std::int64_t missed = (end_ns - deadline_ns) / period_ns_ + 1;
+      const std::int64_t missed = (end_ns - deadline_ns - period_ns_) / period_ns_ + 1;
       mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
-      deadline_ns += missed * period_ns_;
+      advance_ns += missed * period_ns_;
     }
+    deadline_ns += advance_ns;
+    control_time_ns_ += advance_ns;
     last_end_ns = end_ns;
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
-    mutableStatistics().setElapsed(control_time_s_, wall_time_ns_);
+    mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_time_ns_);
   }
   if (shouldStop(external_stop)) {
     grid_ = Grid{};  // stopped (or the hardware stopped it): the next run starts a grid of its own

@@ -141,10 +141,16 @@ TEST(WallClockLoop, RunsOneAfterAnotherStayOnOneGrid) {
   const std::vector<testing::Event> reads = f.recorder->ofKind(EventKind::read);
   ASSERT_GT(first_piece, 0u);
   ASSERT_GT(reads.size(), first_piece);
-  // Time counts from the first cycle, which started at once (its deadline
-  // was the run's start): the deadline at 5 ms cannot start earlier, however
-  // late the cycles before it woke.
-  EXPECT_GE(reads[first_piece].time_s, 0.00499) << "the second piece started off the first piece's grid";
+  // Time counts from the first deadline (the first run's start): the cycle
+  // of the deadline at 5 ms cannot start earlier, however late the cycles
+  // before it woke, the first one included.
+  EXPECT_GE(reads[first_piece].time_s, 0.005 - 1e-12) << "the second piece started off the first piece's grid";
+  // Control time is the grid the two pieces covered, one period per
+  // deadline (a cycle's or one skipped): 10 ms, whatever their cycles'
+  // wake-ups, or more if the last cycle overran past the end.
+  const LoopStatisticsSnapshot stats = loop.statistics().snapshot();
+  EXPECT_NEAR(stats.sim_time_s, 0.001 * static_cast<double>(stats.cycles + stats.skipped_deadlines), 1e-12);
+  EXPECT_GE(stats.cycles + stats.skipped_deadlines, 10u);
   // And the controllers are told the measured time since the cycle before.
   const double gap_s = reads[first_piece].time_s - reads[first_piece - 1].time_s;
   EXPECT_NEAR(reads[first_piece].period_s, gap_s, 1e-12);

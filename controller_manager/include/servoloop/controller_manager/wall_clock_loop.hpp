@@ -2,7 +2,8 @@
 // The control loop for real hardware: cycles at a fixed period on the
 // monotonic clock, each one
 //
-//   t = monotonic time since the first cycle of the loop's first run
+//   t = monotonic time since the first deadline of the loop's first run (the
+//       run's start: the first cycle reads its wake-up latency)
 //   hw.read(t, period)  →  manager.update(t, period), cycle hook  →  hw.write(t, period)
 //   (→ hw.step() for a simulated robot standing in for hardware, see below)
 //
@@ -60,7 +61,7 @@ class WallClockLoop final : public ControlLoop {
   void runCycles(std::int64_t run_length_ns, const std::atomic<bool>* external_stop);
 
   std::int64_t period_ns_ = 0;
-  std::int64_t origin_ns_ = -1;  // monotonic time of the first cycle: control time 0 (-1 before)
+  std::int64_t origin_ns_ = -1;  // the first deadline of the loop's first run: time 0 (-1 before)
   hardware_interface::SimulatedRobotHW* simulated_ = nullptr;  // stepped each cycle (step_simulation)
 
   // Real-time thread only.
@@ -73,7 +74,9 @@ class WallClockLoop final : public ControlLoop {
   };
   Grid grid_;
   std::uint64_t cycles_ = 0;
-  double control_time_s_ = 0.0;  // sum of the periods handed to update()
+  // The grid the cycles covered: one period per cycle and per deadline
+  // skipped (a stop's pause, before the next run's new grid, not counted).
+  std::int64_t control_time_ns_ = 0;
   std::int64_t wall_time_ns_ = 0;
 };
 
