@@ -3,6 +3,7 @@
 
 #include <sys/prctl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -78,19 +79,21 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   // The run covers the grid from its first deadline for its length, so
   // pieces run one after another cover it once: a piece that ends where the
   // control time says the next publication is due ends on that deadline.
-  const std::int64_t run_end_ns = run_length_ns == std::numeric_limits<std::int64_t>::max()
-                                      ? run_length_ns
-                                      : deadline_ns + run_length_ns;
+  std::int64_t run_end_ns = run_length_ns == std::numeric_limits<std::int64_t>::max()
+                                ? run_length_ns
+                                : deadline_ns + run_length_ns;
+  // Wall time goes on across the pause too, as the control time does.
+  const std::int64_t wall_before_ns = wall_time_ns_ + (continues ? run_start_ns - grid_.last_end_ns : 0);
   if (continues && run_start_ns > deadline_ns) {
     // The pause between the runs missed deadlines: an overrun, skipped as below.
     const std::int64_t missed = (run_start_ns - deadline_ns) / period_ns_ + 1;
     mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
     deadline_ns += missed * period_ns_;
     control_time_ns_ += missed * period_ns_;
-    mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_time_ns_);
+    mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_before_ns);
+    // A run the pause swallowed whole still runs its one cycle, late.
+    if (run_length_ns > 0) run_end_ns = std::max(run_end_ns, deadline_ns + 1);
   }
-  // Wall time goes on across the pause too, as the control time does.
-  const std::int64_t wall_before_ns = wall_time_ns_ + (continues ? run_start_ns - grid_.last_end_ns : 0);
   std::int64_t previous_start_ns = grid_.previous_start_ns;
   std::int64_t previous_deadline_ns = grid_.previous_deadline_ns;
   std::int64_t last_end_ns = continues ? grid_.last_end_ns : run_start_ns;

@@ -96,6 +96,13 @@ fs::path findPackage(const std::string& name, const fs::path& near, const std::s
       if (it->is_directory(type_ec) && packageXmlName(it->path()) == name) return it->path();
     }
   }
+  // Without a package.xml anywhere, a folder of the package's name serves: a
+  // ROS_PACKAGE_PATH entry (or the folder of that name in one), or one above
+  // the file (descriptions copied out of their workspace).
+  for (const auto& root : roots) {
+    if (root.filename() == name && fs::is_directory(root, ec)) return root;
+    if (fs::is_directory(root / name, ec) && packageXmlName(root / name).empty()) return root / name;
+  }
   for (const auto& folder : above) {
     if (folder.filename() == name) return folder;
     if (fs::is_directory(folder / name, ec)) return folder / name;
@@ -110,7 +117,8 @@ fs::path findPackage(const std::string& name, const fs::path& near, const std::s
             (above.empty() ? near.string() : above.front().string());
   throw ConfigError(source_name + ": ROS package '" + name + "' not found (looked in " + looked +
                     "); add the folder that holds it to ROS_PACKAGE_PATH, e.g. export ROS_PACKAGE_PATH=/path/to/"
-                    "src:$ROS_PACKAGE_PATH");
+                    "src:$ROS_PACKAGE_PATH (a package is found by the <name> of its package.xml, or as a folder '" +
+                    name + "' without one)");
 }
 
 fs::path resolvePackageUri(const std::string& uri, const fs::path& near, const std::string& source_name) {

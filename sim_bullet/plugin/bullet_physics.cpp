@@ -4,6 +4,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/sim_common/ground_penetration.hpp"
 
 namespace servoloop::sim_bullet {
 namespace {
@@ -72,6 +73,15 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   }
   applyMotorEffortLimits();
   placeAtInitialPositions();
+  warnOfGroundPenetration(settings, source_name);
+}
+
+void BulletPhysics::warnOfGroundPenetration(const sim_common::SimSettings& settings,
+                                           const std::string& source_name) const {
+  const GroundPenetration deepest = world_->deepestGroundPenetration();
+  if (deepest.depth_m <= sim_common::kGroundPenetrationWarningDepth_m) return;
+  logger().warn("{}", sim_common::groundPenetrationWarning(source_name, deepest.link, deepest.depth_m,
+                                                          settings.base_position.z()));
 }
 
 bool BulletPhysics::readBaseState(sim_common::EngineBaseState& out) const noexcept {

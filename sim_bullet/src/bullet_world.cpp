@@ -123,6 +123,8 @@ struct BulletWorld::Impl {
   std::unique_ptr<btMultiBody> body;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+  // Per collider, the URDF link of each child of its compound shape.
+  std::vector<std::vector<std::string>> collider_child_links;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints;
   std::unique_ptr<btCollisionObject> ground;
   // Per-child friction of colliders whose merged links differ (shapeFriction).
@@ -347,12 +349,15 @@ struct BulletWorld::Impl {
       auto compound = std::make_unique<btCompoundShape>();
       const Eigen::Isometry3d link_in_com = b.principal_in_link.inverse();
       auto friction = std::make_unique<std::vector<double>>();  // per compound child
+      std::vector<std::string> child_links;
       for (const auto& spec : b.shapes) {
         if (btCollisionShape* shape = makeShape(spec, b)) {
           compound->addChildShape(toBt(link_in_com * spec.pose_in_body_link), shape);
           friction->push_back(sim_common::linkFriction(settings.link_friction, spec.link_name));
+          child_links.push_back(spec.link_name);
         }
       }
+      collider_child_links.push_back(std::move(child_links));
       const bool has_geometry = compound->getNumChildShapes() > 0;
       const int link = static_cast<int>(k) - 1;
       auto collider = std::make_unique<btMultiBodyLinkCollider>(body.get(), link);
@@ -652,6 +657,28 @@ BodyMassProperties BulletWorld::bodyMassProperties(const std::string& link_name)
   if (it == w.tree.links.end()) throw Error("Bullet world: no link '" + link_name + "' in the robot");
   const detail::Body& b = w.tree.bodies[it->second.body];
   return BodyMassProperties{b.mass_kg, b.com, b.inertia_about_com};
+}
+
+GroundPenetration BulletWorld::deepestGroundPenetration() const {
+  const Impl& w = *impl_;
+  GroundPenetration deepest;
+  if (!w.ground) return deepest;
+  for (std::size_t k = 0; k < w.colliders.size(); ++k) {
+    const btMultiBodyLinkCollider& collider = *w.colliders[k];
+    if (collider.isStaticObject()) continue;
+    const auto* compound = dynamic_cast<const btCompoundShape*>(collider.getCollisionShape());
+    if (compound == nullptr) continue;  // a link without geometry
+    for (int i = 0; i < compound->getNumChildShapes(); ++i) {
+      const auto* convex = dynamic_cast<const btConvexShape*>(compound->getChildShape(i));
+      if (convex == nullptr) continue;
+      const btTransform child = collider.getWorldTransform() * compound->getChildTransform(i);
+      // The shape's lowest point: its support point in the world's -z, with the margin.
+      const btVector3 down_in_shape = child.getBasis().transpose() * btVector3(0, 0, -1);
+      const double depth = -(child * convex->localGetSupportingVertex(down_in_shape)).z();
+      if (depth > deepest.depth_m) deepest = {w.collider_child_links[k][static_cast<std::size_t>(i)], depth};
+    }
+  }
+  return deepest;
 }
 
 bool BulletWorld::usesDoublePrecision() { return std::is_same_v<btScalar, double> && sizeof(btScalar) == 8; }

@@ -10,6 +10,8 @@
 #include <mujoco/mujoco.h>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
+#include "servoloop/sim_common/ground_penetration.hpp"
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
 
 namespace servoloop::sim_mujoco {
@@ -113,6 +115,32 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   wanted_accel_.assign(count, 0.0);
   motor_efforts_.assign(count, 0.0);
   reset();
+  warnOfGroundPenetration(settings, source_name);
+}
+
+// After reset()'s mj_forward the contacts of the start pose are known: the
+// deepest one of a link with the ground plane (MuJoCo's dist < 0 is overlap).
+void MujocoPhysics::warnOfGroundPenetration(const sim_common::SimSettings& settings,
+                                           const std::string& source_name) const {
+  const mjModel& m = *model_;
+  const mjData& d = *data_;
+  const int ground = mj_name2id(&m, mjOBJ_GEOM, "servoloop_ground_plane");
+  if (ground < 0) return;
+  double depth_m = 0.0;
+  int deepest_body = -1;
+  for (int i = 0; i < d.ncon; ++i) {
+    const mjContact& contact = d.contact[i];
+    if (contact.geom1 != ground && contact.geom2 != ground) continue;
+    const int other = contact.geom1 == ground ? contact.geom2 : contact.geom1;
+    if (-contact.dist > depth_m) {
+      depth_m = -contact.dist;
+      deepest_body = m.geom_bodyid[other];
+    }
+  }
+  if (deepest_body < 0 || depth_m <= sim_common::kGroundPenetrationWarningDepth_m) return;
+  const char* link = mj_id2name(&m, mjOBJ_BODY, deepest_body);
+  logger().warn("{}", sim_common::groundPenetrationWarning(source_name, link != nullptr ? link : "?", depth_m,
+                                                          settings.base_position.z()));
 }
 
 void MujocoPhysics::placeAtInitialPositions() {

@@ -13,7 +13,9 @@
 //    their YAML, loaded into the namespace by `params: [{file, ns}]`;
 //  - bases: `fixed_base: true` holds a robot whose root has mass, and the
 //    spawn pose turns it (pitch pi/2 makes the pendulum rest at q = -pi/2); a
-//    root link without mass is a fixed base (pybullet's convention), with a note.
+//    root link without mass is a fixed base (pybullet's convention), with a note;
+//  - a robot spawned with a link in the floor gets a warning naming the link,
+//    how deep it is and the height to spawn it at.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -155,6 +157,37 @@ TEST_P(FeatureRun, FixedBaseAndSpawnPoseTurnTheHanger) {
   // Damping ratio ~0.23 at ~4.4 rad/s: the swing decays as e^(−t); after 12 s
   // it is below 1e-5 rad.
   EXPECT_NEAR(joint(result, "swing")["position"].get<double>(), -std::numbers::pi / 2, 1e-3);
+}
+
+// A robot spawned with its foot in the floor is thrown up at the first step
+// by either engine; the launch says so and how high to spawn it. The hopper:
+// a 0.2 m cube on a hip 0.1 m below its centre, a 0.4 m leg, a ball of 0.05 m
+// radius welded to its end: at z = 0.3 the ball's bottom is 0.25 m under.
+TEST_P(FeatureRun, ARobotSpawnedIntoTheFloorIsNamedWithTheHeightToSpawnItAt) {
+  const fs::path urdf = write("hopper.urdf", R"(<robot name="hopper">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
+    </inertial><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <joint name="hip" type="revolute"><parent link="base"/><child link="leg"/><origin xyz="0 0 -0.1"/>
+    <axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="10" velocity="10"/></joint>
+  <link name="leg"><inertial><origin xyz="0 0 -0.2"/><mass value="0.5"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.001"/></inertial>
+    <collision><origin xyz="0 0 -0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision></link>
+  <joint name="ankle" type="fixed"><parent link="leg"/><child link="foot"/><origin xyz="0 0 -0.4"/></joint>
+  <link name="foot"><collision><geometry><sphere radius="0.05"/></geometry></collision></link></robot>)");
+  const auto spawnedAt = [&](double z) {
+    return launch(write("hopper.launch.yaml", "world: {ground_plane: true}\nrobots:\n  - urdf: '" + urdf.string() + "'\n    pose: [0, 0, " +
+                                                  std::to_string(z) + "]\n"),
+                  "--duration 0.01");
+  };
+  const CliResult in_floor = spawnedAt(0.3);
+  ASSERT_EQ(in_floor.status, 0) << in_floor.err;
+  EXPECT_NE(in_floor.err.find("link 'foot' starts 0.250 m below the ground plane"), std::string::npos)
+      << in_floor.err;
+  EXPECT_NE(in_floor.err.find("a root z of at least 0.550 m"), std::string::npos) << in_floor.err;
+  // Standing on the ball (its bottom at 0.005 m) says nothing.
+  const CliResult standing = spawnedAt(0.555);
+  ASSERT_EQ(standing.status, 0) << standing.err;
+  EXPECT_EQ(standing.err.find("below the ground plane"), std::string::npos) << standing.err;
 }
 
 TEST_P(FeatureRun, RootWithoutMassIsAFixedBaseWithANote) {

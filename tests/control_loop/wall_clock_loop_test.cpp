@@ -157,6 +157,28 @@ TEST(WallClockLoop, RunsOneAfterAnotherStayOnOneGrid) {
   EXPECT_LE(reads.size(), 10u);  // deadlines 0–4 ms, then 5–9 ms
 }
 
+// A pause between two runs longer than the second run (the node's thread
+// held up): the deadlines it missed are skipped and counted, the run still
+// runs one cycle, at the first deadline ahead, and control time covers the
+// deadlines skipped.
+TEST(WallClockLoop, ARunThePauseBeforeItMissedWholeRunsOneCycleLate) {
+  LoopFixture f(0.001, 1000.0);
+  WallClockLoop loop(f.hw, f.manager);
+  loop.runFor(Duration(0.003));
+  const std::size_t first_piece = f.recorder->ofKind(EventKind::read).size();
+  const std::uint64_t skipped_before = loop.statistics().snapshot().skipped_deadlines;
+  // The pause itself is what is tested: 6 ms past the next deadline (3 ms)
+  // at least, so a 2 ms run starting there has no deadline of its own left.
+  std::this_thread::sleep_for(std::chrono::milliseconds(6));
+  loop.runFor(Duration(0.002));
+  const std::vector<testing::Event> reads = f.recorder->ofKind(EventKind::read);
+  ASSERT_EQ(reads.size(), first_piece + 1);
+  EXPECT_GE(reads.back().time_s, 0.009 - 1e-12);
+  const LoopStatisticsSnapshot stats = loop.statistics().snapshot();
+  EXPECT_GE(stats.skipped_deadlines - skipped_before, 6u);
+  EXPECT_NEAR(stats.sim_time_s, 0.001 * static_cast<double>(stats.cycles + stats.skipped_deadlines), 1e-12);
+}
+
 TEST(WallClockLoop, SlowHardwareCountsOverrunsAndSkipsMissedDeadlines) {
   // read() takes 3 ms in a 1 ms loop: every cycle overruns, and the skipped
   // deadlines keep the cycle count at one per 3+ ms instead of a burst.

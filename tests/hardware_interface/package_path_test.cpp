@@ -89,6 +89,22 @@ TEST(PackagePath, AFolderNamedLikeThePackageServesDescriptionsWithoutPackageXml)
             dir.path() / "copied/ur_description");
 }
 
+// $(find pkg) for a folder in ROS_PACKAGE_PATH that has no package.xml (a
+// description copied without its manifest): the folder serves, as one of that
+// name above the file does; one with another package's package.xml does not.
+TEST(PackagePath, AFolderNamedLikeThePackageInRosPackagePathServesWithoutPackageXml) {
+  TempDir dir("servoloop-pkg");
+  fs::create_directories(dir.path() / "ws/src/solo_description/urdf");
+  writePackage(dir.path() / "ws/src/other_name", "something_else");
+  PackagePathEnv env((dir.path() / "ws/src").string());
+  EXPECT_EQ(findPackage("solo_description", dir.path() / "launch", "solo.launch"),
+            dir.path() / "ws/src/solo_description");
+  EXPECT_THROW(findPackage("other_name", dir.path() / "launch", "solo.launch"), ConfigError);
+  PackagePathEnv direct((dir.path() / "ws/src/solo_description").string());
+  EXPECT_EQ(findPackage("solo_description", dir.path() / "launch", "solo.launch"),
+            dir.path() / "ws/src/solo_description");
+}
+
 TEST(PackagePath, AMissingPackageNamesItAndWhereItLooked) {
   TempDir dir("servoloop-pkg");
   PackagePathEnv env((dir.path() / "ws/src").string());

@@ -193,6 +193,23 @@ TEST(TransmissionParser, SkipsThePr2MechanismFormWithOneWarning) {
             std::string::npos);
 }
 
+// A PR2 has 30 of them: one warning names the first four and counts the rest
+// (one line per transmission buried everything else the launch printed).
+TEST(TransmissionParser, ManyTransmissionsOfThePr2MechanismFormShareOneWarning) {
+  servoloop::test::LogCapture log;
+  std::string transmissions;
+  for (int i = 1; i <= 6; ++i) {
+    transmissions += "<transmission name=\"c" + std::to_string(i) +
+                     "\" type=\"SimpleTransmission\"><actuator name=\"m" + std::to_string(i) +
+                     "\"/><joint name=\"j1\"/><mechanicalReduction>2</mechanicalReduction></transmission>";
+  }
+  const auto infos = st::parseTransmissions(robotWith(transmissions + std::string(kSimpleOk)), "pr2.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  EXPECT_EQ(log.count("the pre-ros_control form"), 1u) << log.text();
+  EXPECT_EQ(log.count("pr2.urdf: 6 transmissions 'c1', 'c2', 'c3', 'c4' and 2 more: the pre-ros_control form"), 1u)
+      << log.text();
+}
+
 // The pre-2015 form (rrbot and other older descriptions): the interface is in
 // the <actuator> only; the joint takes it, with a deprecation warning.
 TEST(TransmissionParser, TakesTheActuatorInterfacesOfThePre2015Form) {

@@ -385,6 +385,25 @@ std::string withTransmissionPrefix(const std::string& type) {
   return std::string(kTransmissionPrefix) + type;
 }
 
+// One warning naming the transmissions written in pr2_mechanism_model's form
+// (the first few of them, and how many there are).
+void warnPr2MechanismForm(const std::vector<std::string>& labels, const std::string& source_name) {
+  if (labels.empty()) return;
+  constexpr std::size_t kNamed = 4;
+  std::string names;
+  for (std::size_t i = 0; i < labels.size() && i < kNamed; ++i) names += (i == 0 ? "" : ", ") + labels[i];
+  if (labels.size() > kNamed) names += fmt::format(" and {} more", labels.size() - kNamed);
+  logger().warn(
+      "{}: {} {}: the pre-ros_control form (type=\"...\" attribute, no <hardwareInterface>) is skipped; "
+      "{} joints get the implicit SimpleTransmission (reduction 1; effort, velocity or position joint "
+      "interface) when simulated. To keep {}, write <type>transmission_interface/SimpleTransmission</type> "
+      "and put in each <joint> the interface its controller claims, e.g. "
+      "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface> (or "
+      "VelocityJointInterface, PositionJointInterface)",
+      source_name, labels.size() == 1 ? "transmission" : fmt::format("{} transmissions", labels.size()), names,
+      labels.size() == 1 ? "its" : "their", labels.size() == 1 ? "it" : "them");
+}
+
 }  // namespace
 
 std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
@@ -406,6 +425,7 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
   Problems problems(source_name);
   UsedNames used;
   std::vector<TransmissionInfo> infos;
+  std::vector<std::string> pr2_form;  // labels of transmissions in the pre-ros_control form
   int index = 0;
   for (auto* element = root->FirstChildElement("transmission"); element != nullptr;
        element = element->NextSiblingElement("transmission")) {
@@ -426,12 +446,8 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
       // The pre-ros_control form (pr2_mechanism_model: type="..." attribute, no
       // hardware interface anywhere). ros_control cannot use it either; the
       // simulation skips it and drives the joints as if it were not there.
-      logger().warn(
-          "{}: transmission {}: the pre-ros_control form (type=\"{}\" attribute, no <hardwareInterface>) is "
-          "skipped; its joints get the implicit SimpleTransmission (reduction 1; effort, velocity or position "
-          "joint interface) when simulated. To keep it, write <type>transmission_interface/SimpleTransmission</type> and put "
-          "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface> in each <joint>",
-          source_name, label, element->Attribute("type"));
+      // One warning for all of them (a PR2 has 30).
+      pr2_form.push_back(label);
       continue;
     }
 
@@ -458,6 +474,7 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
     if (rule != nullptr) validateForType(info, *rule, problems);
     infos.push_back(std::move(info));
   }
+  warnPr2MechanismForm(pr2_form, source_name);
   if (!problems.empty()) problems.raise();
   return infos;
 }

@@ -53,8 +53,10 @@ class WallClockLoop final : public ControlLoop {
 
   // Runs until stop_requested, requestStop(), or a hardware stop.
   void run(const std::atomic<bool>& stop_requested) override;
-  // Runs the cycles that start within `wall_time` from now (from the next
-  // deadline, on a continued grid), or fewer if stopped.
+  // Runs the cycles that start within `wall_time` from now, or, on a
+  // continued grid, from its next deadline (also when the pause since the
+  // last run missed it: the deadlines missed are skipped and count towards
+  // the length; a run missed whole still runs one cycle); fewer if stopped.
   void runFor(Duration wall_time) override;
 
  private:

@@ -5,9 +5,10 @@
 // SimulationLoop in lockstep with the physics, or a WallClockLoop for
 // hardware (and for a simulated robot on the wall clock, world.clock: wall).
 //
-// On the wall clock, time is wall time since the loop's first cycle: timed
-// publications and --duration count it, and controllers get the measured
-// period. What follows about simulated time holds for the SimulationLoop.
+// On the wall clock, time is wall time since the loop's start (its first
+// deadline); timed publications and --duration count the deadlines the loop
+// covered (one period each, a cycle's or one an overrun skipped), and
+// controllers get the measured period. What follows about simulated time holds for the SimulationLoop.
 //
 // Threads. The robot's loop thread is its real-time thread. It runs the loop
 // in segments (SimulationLoop::runFor) and between two segments, with no
@@ -130,7 +131,7 @@ class RobotInstance {
   const std::string& backendName() const { return backend_name_; }
 
   // Any thread: control time the loop has advanced, s (simulated time, or
-  // wall time on the wall clock).
+  // on the wall clock the deadlines covered × the period).
   double simTime() const;
   // Joint state from the joint state interface. Exact once the loop has
   // stopped; while it runs, values may be one cycle apart.

@@ -57,6 +57,12 @@ struct BaseState {
   Eigen::Vector3d angular_velocity{Eigen::Vector3d::Zero()};      // rad/s
 };
 
+// The robot's collision geometry that reaches deepest below the ground plane.
+struct GroundPenetration {
+  std::string link;    // the URDF link whose <collision> it is ("" when none is below)
+  double depth_m = 0;  // how far below z = 0 its lowest point is (0 when none is)
+};
+
 // Mass properties of one simulated body (a moving link with the links fixed to
 // it merged in), in that link's frame. For tests and diagnostics.
 struct BodyMassProperties {
@@ -152,6 +158,13 @@ class BulletWorld {
   // frame of that body's first link (the one its joint moves). The URDF's:
   // without the rotor inertia added for the body's joint.
   BodyMassProperties bodyMassProperties(const std::string& link_name) const;
+
+  // In the current pose: the moving link whose collision geometry (margin
+  // included) reaches deepest below the ground plane, e.g. a robot spawned
+  // with its feet in the floor, which the contacts throw up at the first
+  // step. Nothing without a ground plane; a fixed base is not counted (it
+  // does not collide with the ground). Not for the real-time path.
+  GroundPenetration deepestGroundPenetration() const;
 
   // Checks on Bullet's settings, for tests: true when btScalar is double.
   static bool usesDoublePrecision();

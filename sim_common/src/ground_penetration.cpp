@@ -1,0 +1,17 @@
+#include "servoloop/sim_common/ground_penetration.hpp"
+
+#include "servoloop/core/logging.hpp"  // fmt, through spdlog
+
+namespace servoloop::sim_common {
+
+std::string groundPenetrationWarning(const std::string& source_name, const std::string& link, double depth_m,
+                                     double base_z_m) {
+  return fmt::format(
+      "{}: link '{}' starts {:.3f} m below the ground plane (z = 0) at its spawn pose and start positions; the "
+      "contacts push it out with a jolt at the first step (a free-standing robot is thrown up). Spawn it "
+      "higher: a root z of at least {:.3f} m (launch file: pose: [x, y, z]; spawn-model and roslaunch's "
+      "spawn_model: -z), or take the floor away (world: ground_plane: false)",
+      source_name, link, depth_m, base_z_m + depth_m);
+}
+
+}  // namespace servoloop::sim_common
