@@ -114,6 +114,19 @@ void SafetySupervisor::clearStop() noexcept {
   protective_.store(false, std::memory_order_release);
 }
 
+std::string SafetySupervisor::emergencyStopText() const {
+  const std::uint8_t estop = estop_.load(std::memory_order_acquire);
+  const bool input = hardware_input_.load(std::memory_order_acquire);
+  if (estop == kReleased && !input) return {};
+  const EmergencyStopSource source =
+      estop == kReleased ? EmergencyStopSource::hardware : static_cast<EmergencyStopSource>(estop - 1);
+  return fmt::format("emergency stop engaged by {}: effort and velocity commands are 0, position commands hold; {}",
+                     toString(source),
+                     input ? "the hardware's input is still active: release it on the robot, then run `servoloop "
+                             "control estop off`"
+                           : "release with `servoloop control estop off`");
+}
+
 std::string SafetySupervisor::reason() const {
   const SafetyState current = state();
   const auto cause = [this] {
@@ -122,15 +135,9 @@ std::string SafetySupervisor::reason() const {
                        result == ReturnType::deactivate ? "deactivate" : "an error",
                        failed_time_s_.load(std::memory_order_relaxed));
   };
-  const std::uint8_t estop = estop_.load(std::memory_order_acquire);
   switch (current) {
     case SafetyState::running: return {};
-    case SafetyState::emergency_stop:
-      return fmt::format("emergency stop engaged by {}{}; effort and velocity commands are 0, position commands "
-                         "hold; release with `servoloop control estop off`",
-                         estop == kReleased ? "the hardware's input"
-                                            : toString(static_cast<EmergencyStopSource>(estop - 1)),
-                         hardware_input_.load() ? " (the hardware's input is still active)" : "");
+    case SafetyState::emergency_stop: return emergencyStopText();
     case SafetyState::protective_stop:
       return fmt::format("protective stop: {}; the controllers that command the robot were stopped; after fixing "
                          "the cause run `servoloop control recover`",

@@ -99,8 +99,9 @@ fs::path findPackage(const std::string& name, const fs::path& near, const std::s
   // Without a package.xml anywhere, a folder of the package's name serves: a
   // ROS_PACKAGE_PATH entry (or the folder of that name in one), or one above
   // the file (descriptions copied out of their workspace).
-  for (const auto& root : roots) {
-    if (root.filename() == name && fs::is_directory(root, ec)) return root;
+  for (fs::path root : roots) {
+    if (!root.has_filename()) root = root.parent_path();  // "/ws/src/pkg/"
+    if (root.filename() == name && fs::is_directory(root, ec) && packageXmlName(root).empty()) return root;
     if (fs::is_directory(root / name, ec) && packageXmlName(root / name).empty()) return root / name;
   }
   for (const auto& folder : above) {

@@ -617,11 +617,7 @@ controller_manager::ServiceResult RobotInstance::setEmergencyStop(bool engaged,
   if (engaged) {
     const bool was_latched = safety_->emergencyStopLatched();
     safety_->engageEmergencyStop(source);
-    if (!was_latched) {
-      logger().warn("robot '{}': emergency stop engaged by {}: effort and velocity commands are 0, position "
-                    "commands hold; release with `servoloop control estop off`",
-                    namespace_, controller_manager::toString(source));
-    }
+    if (!was_latched) logger().warn("robot '{}': {}", namespace_, safety_->emergencyStopText());
     return controller_manager::ServiceResult::success();
   }
   std::string why;
@@ -645,9 +641,7 @@ void RobotInstance::logHardwareEmergencyStops() {
   emergency_stops_seen_ = stops;
   controller_manager::EmergencyStopSource source{};
   if (safety_->emergencyStopSource(&source) && source == controller_manager::EmergencyStopSource::hardware) {
-    logger().warn("robot '{}': emergency stop engaged by hardware input: effort and velocity commands are 0, "
-                  "position commands hold; release the input on the robot, then run `servoloop control estop off`",
-                  namespace_);
+    logger().warn("robot '{}': {}", namespace_, safety_->emergencyStopText());
   }
 }
 

@@ -666,11 +666,12 @@ GroundPenetration BulletWorld::deepestGroundPenetration() const {
   for (std::size_t k = 0; k < w.colliders.size(); ++k) {
     const btMultiBodyLinkCollider& collider = *w.colliders[k];
     if (collider.isStaticObject()) continue;
-    const auto* compound = dynamic_cast<const btCompoundShape*>(collider.getCollisionShape());
-    if (compound == nullptr) continue;  // a link without geometry
+    const btCollisionShape* shape = collider.getCollisionShape();
+    if (!shape->isCompound()) continue;  // a link without geometry
+    const auto* compound = static_cast<const btCompoundShape*>(shape);
     for (int i = 0; i < compound->getNumChildShapes(); ++i) {
-      const auto* convex = dynamic_cast<const btConvexShape*>(compound->getChildShape(i));
-      if (convex == nullptr) continue;
+      if (!compound->getChildShape(i)->isConvex()) continue;
+      const auto* convex = static_cast<const btConvexShape*>(compound->getChildShape(i));
       const btTransform child = collider.getWorldTransform() * compound->getChildTransform(i);
       // The shape's lowest point: its support point in the world's -z, with the margin.
       const btVector3 down_in_shape = child.getBasis().transpose() * btVector3(0, 0, -1);

@@ -5,13 +5,20 @@
 namespace servoloop::sim_common {
 
 std::string groundPenetrationWarning(const std::string& source_name, const std::string& link, double depth_m,
-                                     double base_z_m) {
+                                     double base_z_m, bool root_is_world) {
+  const std::string fix =
+      root_is_world
+          ? "The robot hangs from its root link 'world', which the spawn pose does not move: raise it where the "
+            "URDF fixes it to 'world' (that joint's <origin>), or start the joints elsewhere (<ns>/sim/"
+            "initial_positions)"
+          : fmt::format("Spawn it higher: a root z of at least {:.3f} m (launch file: pose: [x, y, z]; "
+                        "spawn-model and roslaunch's spawn_model: -z)",
+                        base_z_m + depth_m);
   return fmt::format(
       "{}: link '{}' starts {:.3f} m below the ground plane (z = 0) at its spawn pose and start positions; the "
-      "contacts push it out with a jolt at the first step (a free-standing robot is thrown up). Spawn it "
-      "higher: a root z of at least {:.3f} m (launch file: pose: [x, y, z]; spawn-model and roslaunch's "
-      "spawn_model: -z), or take the floor away (world: ground_plane: false)",
-      source_name, link, depth_m, base_z_m + depth_m);
+      "contacts push it out with a jolt at the first step (a free-standing robot is thrown up). {}, or take the "
+      "floor away (world: ground_plane: false)",
+      source_name, link, depth_m, fix);
 }
 
 }  // namespace servoloop::sim_common

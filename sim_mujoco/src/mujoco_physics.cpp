@@ -115,12 +115,12 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   wanted_accel_.assign(count, 0.0);
   motor_efforts_.assign(count, 0.0);
   reset();
-  warnOfGroundPenetration(settings, source_name);
+  warnOfGroundPenetration(settings, model.getRoot() && model.getRoot()->name == "world", source_name);
 }
 
 // After reset()'s mj_forward the contacts of the start pose are known: the
 // deepest one of a link with the ground plane (MuJoCo's dist < 0 is overlap).
-void MujocoPhysics::warnOfGroundPenetration(const sim_common::SimSettings& settings,
+void MujocoPhysics::warnOfGroundPenetration(const sim_common::SimSettings& settings, bool root_is_world,
                                            const std::string& source_name) const {
   const mjModel& m = *model_;
   const mjData& d = *data_;
@@ -140,7 +140,7 @@ void MujocoPhysics::warnOfGroundPenetration(const sim_common::SimSettings& setti
   if (deepest_body < 0 || depth_m <= sim_common::kGroundPenetrationWarningDepth_m) return;
   const char* link = mj_id2name(&m, mjOBJ_BODY, deepest_body);
   logger().warn("{}", sim_common::groundPenetrationWarning(source_name, link != nullptr ? link : "?", depth_m,
-                                                          settings.base_position.z()));
+                                                          settings.base_position.z(), root_is_world));
 }
 
 void MujocoPhysics::placeAtInitialPositions() {

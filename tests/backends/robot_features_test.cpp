@@ -164,7 +164,7 @@ TEST_P(FeatureRun, FixedBaseAndSpawnPoseTurnTheHanger) {
 // a 0.2 m cube on a hip 0.1 m below its centre, a 0.4 m leg, a ball of 0.05 m
 // radius welded to its end: at z = 0.3 the ball's bottom is 0.25 m under.
 TEST_P(FeatureRun, ARobotSpawnedIntoTheFloorIsNamedWithTheHeightToSpawnItAt) {
-  const fs::path urdf = write("hopper.urdf", R"(<robot name="hopper">
+  const std::string hopper = R"(
   <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
     </inertial><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
   <joint name="hip" type="revolute"><parent link="base"/><child link="leg"/><origin xyz="0 0 -0.1"/>
@@ -173,21 +173,34 @@ TEST_P(FeatureRun, ARobotSpawnedIntoTheFloorIsNamedWithTheHeightToSpawnItAt) {
     <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.001"/></inertial>
     <collision><origin xyz="0 0 -0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision></link>
   <joint name="ankle" type="fixed"><parent link="leg"/><child link="foot"/><origin xyz="0 0 -0.4"/></joint>
-  <link name="foot"><collision><geometry><sphere radius="0.05"/></geometry></collision></link></robot>)");
-  const auto spawnedAt = [&](double z) {
-    return launch(write("hopper.launch.yaml", "world: {ground_plane: true}\nrobots:\n  - urdf: '" + urdf.string() + "'\n    pose: [0, 0, " +
-                                                  std::to_string(z) + "]\n"),
+  <link name="foot"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>)";
+  const fs::path urdf = write("hopper.urdf", "<robot name=\"hopper\">" + hopper + "</robot>");
+  const auto spawnedAt = [&](const fs::path& robot, double z) {
+    return launch(write("hopper.launch.yaml", "world: {ground_plane: true}\nrobots:\n  - urdf: '" + robot.string() +
+                                                  "'\n    pose: [0, 0, " + std::to_string(z) + "]\n"),
                   "--duration 0.01");
   };
-  const CliResult in_floor = spawnedAt(0.3);
+  const CliResult in_floor = spawnedAt(urdf, 0.3);
   ASSERT_EQ(in_floor.status, 0) << in_floor.err;
   EXPECT_NE(in_floor.err.find("link 'foot' starts 0.250 m below the ground plane"), std::string::npos)
       << in_floor.err;
   EXPECT_NE(in_floor.err.find("a root z of at least 0.550 m"), std::string::npos) << in_floor.err;
   // Standing on the ball (its bottom at 0.005 m) says nothing.
-  const CliResult standing = spawnedAt(0.555);
+  const CliResult standing = spawnedAt(urdf, 0.555);
   ASSERT_EQ(standing.status, 0) << standing.err;
   EXPECT_EQ(standing.err.find("below the ground plane"), std::string::npos) << standing.err;
+  // Hung from a root link 'world' 0.3 m up the pose moves nothing: the fix is
+  // in the URDF, and the warning does not offer a z.
+  const fs::path hung = write("hung_hopper.urdf", "<robot name=\"hopper\"><link name=\"world\"/><joint "
+                                                  "name=\"mount\" type=\"fixed\"><parent link=\"world\"/><child "
+                                                  "link=\"base\"/><origin xyz=\"0 0 0.3\"/></joint>" +
+                                                  hopper + "</robot>");
+  const CliResult hanging = spawnedAt(hung, 0.6);
+  ASSERT_EQ(hanging.status, 0) << hanging.err;
+  EXPECT_NE(hanging.err.find("link 'foot' starts 0.250 m below the ground plane"), std::string::npos) << hanging.err;
+  EXPECT_NE(hanging.err.find("root link 'world', which the spawn pose does not move"), std::string::npos)
+      << hanging.err;
+  EXPECT_EQ(hanging.err.find("a root z of at least"), std::string::npos) << hanging.err;
 }
 
 TEST_P(FeatureRun, RootWithoutMassIsAFixedBaseWithANote) {

@@ -312,12 +312,12 @@ TEST(SafetySupervisor, TheReasonNamesWhoLatchedTheStopNotWhoPressedItLater) {
   safety.engageEmergencyStop(EmergencyStopSource::topic);
   safety.engageEmergencyStop(EmergencyStopSource::command);  // already latched: no second stop
   EXPECT_EQ(safety.emergencyStops(), 1u);
-  EXPECT_NE(safety.reason().find("engaged by topic;"), std::string::npos) << safety.reason();
+  EXPECT_NE(safety.reason().find("engaged by topic:"), std::string::npos) << safety.reason();
   ASSERT_TRUE(safety.releaseEmergencyStop(nullptr));
   EXPECT_EQ(safety.state(), SafetyState::running);
   safety.engageEmergencyStop(EmergencyStopSource::command);
   EXPECT_EQ(safety.emergencyStops(), 2u);
-  EXPECT_NE(safety.reason().find("engaged by command;"), std::string::npos) << safety.reason();
+  EXPECT_NE(safety.reason().find("engaged by command:"), std::string::npos) << safety.reason();
 }
 
 TEST(SafetySupervisor, TheHardwareInputLatchesTheStopAndBlocksItsRelease) {
@@ -335,10 +335,21 @@ TEST(SafetySupervisor, TheHardwareInputLatchesTheStopAndBlocksItsRelease) {
   std::string why;
   EXPECT_FALSE(safety.releaseEmergencyStop(&why));
   EXPECT_NE(why.find("input is still active"), std::string::npos) << why;
+  // What the node logs and `control stats` shows: who, what it does, how to release it.
+  EXPECT_NE(safety.emergencyStopText().find("engaged by hardware input: effort and velocity commands are 0, "
+                                            "position commands hold; the hardware's input is still active: "
+                                            "release it on the robot"),
+            std::string::npos)
+      << safety.emergencyStopText();
+  EXPECT_EQ(safety.reason(), safety.emergencyStopText());
 
   hw.pressed = false;
   loop.cycleOnce();
   EXPECT_EQ(safety.state(), SafetyState::emergency_stop);  // latched until released
+  EXPECT_NE(safety.reason().find("engaged by hardware input: effort and velocity commands are 0, position commands "
+                                 "hold; release with `servoloop control estop off`"),
+            std::string::npos)
+      << safety.reason();
   EXPECT_EQ(hw.applied_effort, 0.0);
   ASSERT_TRUE(safety.releaseEmergencyStop(&why));
   loop.cycleOnce();

@@ -100,9 +100,11 @@ TEST(PackagePath, AFolderNamedLikeThePackageInRosPackagePathServesWithoutPackage
   EXPECT_EQ(findPackage("solo_description", dir.path() / "launch", "solo.launch"),
             dir.path() / "ws/src/solo_description");
   EXPECT_THROW(findPackage("other_name", dir.path() / "launch", "solo.launch"), ConfigError);
-  PackagePathEnv direct((dir.path() / "ws/src/solo_description").string());
+  PackagePathEnv direct((dir.path() / "ws/src/solo_description/").string());
   EXPECT_EQ(findPackage("solo_description", dir.path() / "launch", "solo.launch"),
             dir.path() / "ws/src/solo_description");
+  PackagePathEnv other((dir.path() / "ws/src/other_name").string());
+  EXPECT_THROW(findPackage("other_name", dir.path() / "launch", "solo.launch"), ConfigError);
 }
 
 TEST(PackagePath, AMissingPackageNamesItAndWhereItLooked) {

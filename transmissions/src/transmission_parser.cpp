@@ -387,20 +387,24 @@ std::string withTransmissionPrefix(const std::string& type) {
 
 // One warning naming the transmissions written in pr2_mechanism_model's form
 // (the first few of them, and how many there are).
-void warnPr2MechanismForm(const std::vector<std::string>& labels, const std::string& source_name) {
+void warnPr2MechanismForm(const std::vector<std::string>& labels, const std::vector<std::string>& types,
+                          const std::string& source_name) {
   if (labels.empty()) return;
   constexpr std::size_t kNamed = 4;
   std::string names;
   for (std::size_t i = 0; i < labels.size() && i < kNamed; ++i) names += (i == 0 ? "" : ", ") + labels[i];
   if (labels.size() > kNamed) names += fmt::format(" and {} more", labels.size() - kNamed);
+  std::string type_list;
+  for (const std::string& type : types) type_list += (type_list.empty() ? "" : "\", type=\"") + type;
   logger().warn(
-      "{}: {} {}: the pre-ros_control form (type=\"...\" attribute, no <hardwareInterface>) is skipped; "
+      "{}: {} {}: the pre-ros_control form (type=\"{}\" attribute, no <hardwareInterface>) is skipped; "
       "{} joints get the implicit SimpleTransmission (reduction 1; effort, velocity or position joint "
       "interface) when simulated. To keep {}, write <type>transmission_interface/SimpleTransmission</type> "
       "and put in each <joint> the interface its controller claims, e.g. "
       "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface> (or "
       "VelocityJointInterface, PositionJointInterface)",
       source_name, labels.size() == 1 ? "transmission" : fmt::format("{} transmissions", labels.size()), names,
+      type_list,
       labels.size() == 1 ? "its" : "their", labels.size() == 1 ? "it" : "them");
 }
 
@@ -425,7 +429,8 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
   Problems problems(source_name);
   UsedNames used;
   std::vector<TransmissionInfo> infos;
-  std::vector<std::string> pr2_form;  // labels of transmissions in the pre-ros_control form
+  std::vector<std::string> pr2_form;   // labels of transmissions in the pre-ros_control form
+  std::vector<std::string> pr2_types;  // their type attributes, each once
   int index = 0;
   for (auto* element = root->FirstChildElement("transmission"); element != nullptr;
        element = element->NextSiblingElement("transmission")) {
@@ -448,6 +453,8 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
       // simulation skips it and drives the joints as if it were not there.
       // One warning for all of them (a PR2 has 30).
       pr2_form.push_back(label);
+      const std::string type = element->Attribute("type");
+      if (std::find(pr2_types.begin(), pr2_types.end(), type) == pr2_types.end()) pr2_types.push_back(type);
       continue;
     }
 
@@ -474,7 +481,7 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
     if (rule != nullptr) validateForType(info, *rule, problems);
     infos.push_back(std::move(info));
   }
-  warnPr2MechanismForm(pr2_form, source_name);
+  warnPr2MechanismForm(pr2_form, pr2_types, source_name);
   if (!problems.empty()) problems.raise();
   return infos;
 }

@@ -96,6 +96,12 @@ class SafetySupervisor {
   // hardware's read() returned an error at t = 1.234 s; after fixing the
   // cause run `servoloop control recover`"; empty when running.
   std::string reason() const;
+  // Non-real-time. What the emergency stop does and how to release it, e.g.
+  // "emergency stop engaged by topic: effort and velocity commands are 0,
+  // position commands hold; release with `servoloop control estop off`";
+  // empty when neither the latch nor the hardware's input holds it. The
+  // node logs it on every engagement; reason() gives it in emergency stop.
+  std::string emergencyStopText() const;
 
   // Non-real-time, only while the loop stands (after a fault, nothing polls
   // the input): reads RobotHW::emergencyStopInput here, so that a release

@@ -13,8 +13,10 @@ namespace servoloop::sim_common {
 inline constexpr double kGroundPenetrationWarningDepth_m = 0.01;
 
 // "<source>: link 'foot' starts 0.230 m below the ground plane ...; spawn it
-// higher: a root z of at least ... m ...". `base_z_m` is the spawn pose's z.
+// higher: a root z of at least ... m ...". `base_z_m` is the spawn pose's z;
+// `root_is_world`: the URDF's root link is `world`, which the spawn pose does
+// not move (the fix is then in the URDF or the start positions).
 std::string groundPenetrationWarning(const std::string& source_name, const std::string& link, double depth_m,
-                                     double base_z_m);
+                                     double base_z_m, bool root_is_world);
 
 }  // namespace servoloop::sim_common

@@ -106,7 +106,8 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
     double applied_effort = 0.0;      // during the last step
   };
 
-  void warnOfGroundPenetration(const sim_common::SimSettings& settings, const std::string& source_name) const;
+  void warnOfGroundPenetration(const sim_common::SimSettings& settings, bool root_is_world,
+                               const std::string& source_name) const;
   void placeAtInitialPositions();
   // Sets the efforts of the first `motors` entries of motor_joints_.
   void solveMotorEfforts(std::size_t motors) noexcept;
