@@ -73,15 +73,8 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   }
   applyMotorEffortLimits();
   placeAtInitialPositions();
-  warnOfGroundPenetration(settings, model.getRoot() && model.getRoot()->name == "world", source_name);
-}
-
-void BulletPhysics::warnOfGroundPenetration(const sim_common::SimSettings& settings, bool root_is_world,
-                                           const std::string& source_name) const {
   const GroundPenetration deepest = world_->deepestGroundPenetration();
-  if (deepest.depth_m <= sim_common::kGroundPenetrationWarningDepth_m) return;
-  logger().warn("{}", sim_common::groundPenetrationWarning(source_name, deepest.link, deepest.depth_m,
-                                                          settings.base_position.z(), root_is_world));
+  sim_common::warnIfStartsBelowGround(model, settings, source_name, deepest.link, deepest.depth_m);
 }
 
 bool BulletPhysics::readBaseState(sim_common::EngineBaseState& out) const noexcept {

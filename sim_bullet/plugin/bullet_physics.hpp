@@ -54,8 +54,6 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
   const BulletWorld* world() const { return world_.get(); }
 
  private:
-  void warnOfGroundPenetration(const sim_common::SimSettings& settings, bool root_is_world,
-                               const std::string& source_name) const;
   void placeAtInitialPositions();
   void applyMotorEffortLimits();
 

@@ -1,11 +1,13 @@
 #include "servoloop/sim_common/ground_penetration.hpp"
 
-#include "servoloop/core/logging.hpp"  // fmt, through spdlog
+#include "servoloop/core/logging.hpp"
 
 namespace servoloop::sim_common {
 
-std::string groundPenetrationWarning(const std::string& source_name, const std::string& link, double depth_m,
-                                     double base_z_m, bool root_is_world) {
+void warnIfStartsBelowGround(const urdf::ModelInterface& model, const SimSettings& settings,
+                             const std::string& source_name, const std::string& link, double depth_m) {
+  if (!(depth_m > kGroundPenetrationWarningDepth_m)) return;
+  const bool root_is_world = model.getRoot() && model.getRoot()->name == "world";
   const std::string fix =
       root_is_world
           ? "The robot hangs from its root link 'world', which the spawn pose does not move: raise it where the "
@@ -13,8 +15,8 @@ std::string groundPenetrationWarning(const std::string& source_name, const std::
             "initial_positions)"
           : fmt::format("Spawn it higher: a root z of at least {:.3f} m (launch file: pose: [x, y, z]; "
                         "spawn-model and roslaunch's spawn_model: -z)",
-                        base_z_m + depth_m);
-  return fmt::format(
+                        settings.base_position.z() + depth_m);
+  logger().warn(
       "{}: link '{}' starts {:.3f} m below the ground plane (z = 0) at its spawn pose and start positions; the "
       "contacts push it out with a jolt at the first step (a free-standing robot is thrown up). {}, or take the "
       "floor away (world: ground_plane: false)",

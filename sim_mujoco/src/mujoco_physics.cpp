@@ -10,7 +10,6 @@
 #include <mujoco/mujoco.h>
 
 #include "servoloop/core/errors.hpp"
-#include "servoloop/core/logging.hpp"
 #include "servoloop/sim_common/ground_penetration.hpp"
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
 
@@ -115,12 +114,13 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   wanted_accel_.assign(count, 0.0);
   motor_efforts_.assign(count, 0.0);
   reset();
-  warnOfGroundPenetration(settings, model.getRoot() && model.getRoot()->name == "world", source_name);
+  warnOfGroundPenetration(model, settings, source_name);
 }
 
 // After reset()'s mj_forward the contacts of the start pose are known: the
 // deepest one of a link with the ground plane (MuJoCo's dist < 0 is overlap).
-void MujocoPhysics::warnOfGroundPenetration(const sim_common::SimSettings& settings, bool root_is_world,
+void MujocoPhysics::warnOfGroundPenetration(const urdf::ModelInterface& model,
+                                           const sim_common::SimSettings& settings,
                                            const std::string& source_name) const {
   const mjModel& m = *model_;
   const mjData& d = *data_;
@@ -137,10 +137,9 @@ void MujocoPhysics::warnOfGroundPenetration(const sim_common::SimSettings& setti
       deepest_body = m.geom_bodyid[other];
     }
   }
-  if (deepest_body < 0 || depth_m <= sim_common::kGroundPenetrationWarningDepth_m) return;
+  if (deepest_body < 0) return;
   const char* link = mj_id2name(&m, mjOBJ_BODY, deepest_body);
-  logger().warn("{}", sim_common::groundPenetrationWarning(source_name, link != nullptr ? link : "?", depth_m,
-                                                          settings.base_position.z(), root_is_world));
+  sim_common::warnIfStartsBelowGround(model, settings, source_name, link != nullptr ? link : "?", depth_m);
 }
 
 void MujocoPhysics::placeAtInitialPositions() {

@@ -160,21 +160,12 @@ TEST_P(FeatureRun, FixedBaseAndSpawnPoseTurnTheHanger) {
 }
 
 // A robot spawned with its foot in the floor is thrown up at the first step
-// by either engine; the launch says so and how high to spawn it. The hopper:
-// a 0.2 m cube on a hip 0.1 m below its centre, a 0.4 m leg, a ball of 0.05 m
-// radius welded to its end: at z = 0.3 the ball's bottom is 0.25 m under.
+// by either engine; the launch says so and how high to spawn it. The hopper
+// (tests/assets/features/hopper.urdf): a 0.2 m cube on a hip 0.1 m below its
+// centre, a 0.4 m leg, a ball of 0.05 m radius welded to its end: at z = 0.3
+// the ball's bottom is 0.25 m under.
 TEST_P(FeatureRun, ARobotSpawnedIntoTheFloorIsNamedWithTheHeightToSpawnItAt) {
-  const std::string hopper = R"(
-  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
-    </inertial><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
-  <joint name="hip" type="revolute"><parent link="base"/><child link="leg"/><origin xyz="0 0 -0.1"/>
-    <axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="10" velocity="10"/></joint>
-  <link name="leg"><inertial><origin xyz="0 0 -0.2"/><mass value="0.5"/>
-    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.001"/></inertial>
-    <collision><origin xyz="0 0 -0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision></link>
-  <joint name="ankle" type="fixed"><parent link="leg"/><child link="foot"/><origin xyz="0 0 -0.4"/></joint>
-  <link name="foot"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>)";
-  const fs::path urdf = write("hopper.urdf", "<robot name=\"hopper\">" + hopper + "</robot>");
+  const fs::path urdf = kAssets / "hopper.urdf";
   const auto spawnedAt = [&](const fs::path& robot, double z) {
     return launch(write("hopper.launch.yaml", "world: {ground_plane: true}\nrobots:\n  - urdf: '" + robot.string() +
                                                   "'\n    pose: [0, 0, " + std::to_string(z) + "]\n"),
@@ -191,10 +182,12 @@ TEST_P(FeatureRun, ARobotSpawnedIntoTheFloorIsNamedWithTheHeightToSpawnItAt) {
   EXPECT_EQ(standing.err.find("below the ground plane"), std::string::npos) << standing.err;
   // Hung from a root link 'world' 0.3 m up the pose moves nothing: the fix is
   // in the URDF, and the warning does not offer a z.
-  const fs::path hung = write("hung_hopper.urdf", "<robot name=\"hopper\"><link name=\"world\"/><joint "
-                                                  "name=\"mount\" type=\"fixed\"><parent link=\"world\"/><child "
-                                                  "link=\"base\"/><origin xyz=\"0 0 0.3\"/></joint>" +
-                                                  hopper + "</robot>");
+  std::ifstream in(urdf);
+  std::string hung_xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  hung_xml.insert(hung_xml.find("<link name=\"base\">"),
+                  "<link name=\"world\"/><joint name=\"mount\" type=\"fixed\"><parent link=\"world\"/>"
+                  "<child link=\"base\"/><origin xyz=\"0 0 0.3\"/></joint>\n  ");
+  const fs::path hung = write("hung_hopper.urdf", hung_xml);
   const CliResult hanging = spawnedAt(hung, 0.6);
   ASSERT_EQ(hanging.status, 0) << hanging.err;
   EXPECT_NE(hanging.err.find("link 'foot' starts 0.250 m below the ground plane"), std::string::npos) << hanging.err;

@@ -169,28 +169,18 @@ TEST(BulletWorldBody, ColladaAndObjBoxesLandAsConvexHulls) {
   EXPECT_NEAR(restingHeight(scaled, "scaled.urdf"), 0.15, kContactTolerance);
 }
 
-// A floating base (0.2 m cube) with a 0.4 m leg on a hip 0.1 m below its
-// centre and a foot ball (r = 0.05 m) welded to the leg's end.
-const char* kHopperUrdf = R"(<robot name="hopper">
-  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
-    </inertial><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
-  <joint name="hip" type="revolute"><parent link="base"/><child link="leg"/><origin xyz="0 0 -0.1"/>
-    <axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="10" velocity="10"/></joint>
-  <link name="leg"><inertial><origin xyz="0 0 -0.2"/><mass value="0.5"/>
-    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.001"/></inertial>
-    <collision><origin xyz="0 0 -0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision></link>
-  <joint name="ankle" type="fixed"><parent link="leg"/><child link="foot"/><origin xyz="0 0 -0.4"/></joint>
-  <link name="foot"><collision><geometry><sphere radius="0.05"/></geometry></collision></link></robot>)";
-
-// Spawned at z = 0.3 the ball's bottom is at 0.3 − 0.1 − 0.4 − 0.05 = −0.25
-// m; the leg's box ends at −0.2. With the leg swung level (q = pi/2) nothing
+// The hopper (a 0.2 m cube, a 0.4 m leg on a hip 0.1 m below its centre, a
+// foot ball of r = 0.05 m welded to the leg's end). Spawned at z = 0.3 the
+// ball's bottom is at 0.3 − 0.1 − 0.4 − 0.05 = −0.25 m; the leg's box ends at −0.2. With the leg swung level (q = pi/2) nothing
 // is below the floor: the base's bottom is at 0.2, the leg's side at 0.175,
 // the ball's bottom at 0.15.
+const std::string kHopperUrdf = kAssetsDir + "features/hopper.urdf";
+
 TEST(BulletWorldBody, DeepestGroundPenetrationOfTheSpawnPoseByHand) {
   WorldSettings settings;
   settings.ground_plane = true;
   settings.initial_base_position = Eigen::Vector3d(0, 0, 0.3);
-  BulletWorld world(*parseRobotModel(kHopperUrdf, "hopper.urdf"), settings);
+  BulletWorld world(*loadRobotModelFile(kHopperUrdf), settings);
   GroundPenetration deepest = world.deepestGroundPenetration();
   EXPECT_EQ(deepest.link, "foot");  // the welded link, not the body it is merged into
   EXPECT_NEAR(deepest.depth_m, 0.25, 1e-9);
@@ -203,10 +193,10 @@ TEST(BulletWorldBody, DeepestGroundPenetrationOfTheSpawnPoseByHand) {
   // Turned upside down (roll pi) the leg points up: the cube's bottom is at
   // 0.3 − 0.1 = 0.2; and nothing is below a floor that is not there.
   settings.initial_base_orientation = Eigen::Quaterniond(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitX()));
-  EXPECT_EQ(BulletWorld(*parseRobotModel(kHopperUrdf, "hopper.urdf"), settings).deepestGroundPenetration().link, "");
+  EXPECT_EQ(BulletWorld(*loadRobotModelFile(kHopperUrdf), settings).deepestGroundPenetration().link, "");
   settings.initial_base_orientation = Eigen::Quaterniond::Identity();
   settings.ground_plane = false;
-  EXPECT_EQ(BulletWorld(*parseRobotModel(kHopperUrdf, "hopper.urdf"), settings).deepestGroundPenetration().link, "");
+  EXPECT_EQ(BulletWorld(*loadRobotModelFile(kHopperUrdf), settings).deepestGroundPenetration().link, "");
 }
 
 TEST(BulletWorldBody, MeshPendulumAssetLoads) {

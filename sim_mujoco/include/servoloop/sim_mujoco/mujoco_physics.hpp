@@ -106,7 +106,7 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
     double applied_effort = 0.0;      // during the last step
   };
 
-  void warnOfGroundPenetration(const sim_common::SimSettings& settings, bool root_is_world,
+  void warnOfGroundPenetration(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                                const std::string& source_name) const;
   void placeAtInitialPositions();
   // Sets the efforts of the first `motors` entries of motor_joints_.
