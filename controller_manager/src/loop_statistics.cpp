@@ -1,6 +1,8 @@
 // LoopStatistics: single-writer counters and a fixed log-linear histogram.
 #include "servoloop/controller_manager/loop_statistics.hpp"
 
+#include <thread>
+
 #include <spdlog/fmt/fmt.h>
 
 namespace servoloop::controller_manager {
@@ -33,7 +35,23 @@ void LoopStatistics::reset() noexcept {
   period_jitter_.reset();
 }
 
-LoopStatisticsSnapshot LoopStatistics::snapshot() const noexcept {
+LoopStatisticsSnapshot LoopStatistics::snapshot(std::chrono::nanoseconds max_wait) const noexcept {
+  const auto give_up = std::chrono::steady_clock::now() + max_wait;
+  while (true) {
+    const std::uint64_t before = update_sequence_.load(std::memory_order_acquire);
+    if (before % 2 == 0) {
+      const LoopStatisticsSnapshot s = readFields();
+      // The reads above before the check below: a group the writer opened
+      // meanwhile changed the sequence.
+      std::atomic_thread_fence(std::memory_order_acquire);
+      if (update_sequence_.load(std::memory_order_relaxed) == before) return s;
+    }
+    if (std::chrono::steady_clock::now() >= give_up) return readFields();
+    std::this_thread::yield();
+  }
+}
+
+LoopStatisticsSnapshot LoopStatistics::readFields() const noexcept {
   LoopStatisticsSnapshot s;
   s.cycles = cycles_.load(std::memory_order_acquire);
   s.control_updates = control_updates_.load(std::memory_order_relaxed);

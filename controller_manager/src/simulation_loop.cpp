@@ -152,6 +152,7 @@ void SimulationLoop::publishElapsed() noexcept {
 
 ReturnType SimulationLoop::cycleOnce() noexcept {
   syncHardwareStep();
+  mutableStatistics().beginUpdate();
   applyRequestedStatisticsReset();
   setPhaseTiming(true);
   const std::int64_t start_ns = loop_clock::nowNs();
@@ -161,6 +162,7 @@ ReturnType SimulationLoop::cycleOnce() noexcept {
   mutableStatistics().recordCycle(compute_ns, control_updated);
   wall_time_ns_ += compute_ns;
   publishElapsed();
+  mutableStatistics().endUpdate();
   return result;
 }
 
@@ -190,6 +192,8 @@ void SimulationLoop::runFreeCycles(std::uint64_t max_cycles, const std::atomic<b
       mutableStatistics().recordUntimedCycle(control_updated);
       continue;
     }
+    // A timed cycle's figures are one group (the untimed ones are only counted).
+    mutableStatistics().beginUpdate();
     applyRequestedStatisticsReset();
     setPhaseTiming(true);
     const std::int64_t start_ns = loop_clock::cycleClockNs();
@@ -199,9 +203,12 @@ void SimulationLoop::runFreeCycles(std::uint64_t max_cycles, const std::atomic<b
     mutableStatistics().recordCycle(end_ns - start_ns, control_updated);
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
     publishElapsed();
+    mutableStatistics().endUpdate();
   }
   wall_time_ns_ = wall_before_ns + (loop_clock::cycleClockNs() - run_start_ns);
+  mutableStatistics().beginUpdate();
   publishElapsed();
+  mutableStatistics().endUpdate();
 }
 
 void SimulationLoop::runPacedCycles(std::uint64_t max_cycles, const std::atomic<bool>* external_stop) {
@@ -222,6 +229,9 @@ void SimulationLoop::runPacedCycles(std::uint64_t max_cycles, const std::atomic<
   setPhaseTiming(true);
   for (std::uint64_t n = 0; n < max_cycles && !shouldStop(external_stop); ++n) {
     bool control_updated = false;
+    // The cycle's figures are one group, closed across the sleep below (a
+    // snapshot waits for the work, not for the pacing).
+    mutableStatistics().beginUpdate();
     applyRequestedStatisticsReset();
     runCycle(&control_updated);
     std::int64_t end_ns = loop_clock::nowNs();
@@ -238,11 +248,14 @@ void SimulationLoop::runPacedCycles(std::uint64_t max_cycles, const std::atomic<
         mutableStatistics().recordScheduleReset();
       }
     } else {
+      mutableStatistics().endUpdate();
       loop_clock::sleepUntilNs(deadline_ns);
       end_ns = loop_clock::nowNs();
+      mutableStatistics().beginUpdate();
     }
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
     publishElapsed();
+    mutableStatistics().endUpdate();
     cycle_start_ns = end_ns;
   }
 }

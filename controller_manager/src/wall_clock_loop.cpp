@@ -87,10 +87,12 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   if (continues && run_start_ns > deadline_ns) {
     // The pause between the runs missed deadlines: an overrun, skipped as below.
     const std::int64_t missed = (run_start_ns - deadline_ns) / period_ns_ + 1;
-    mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
     deadline_ns += missed * period_ns_;
     control_time_ns_ += missed * period_ns_;
+    mutableStatistics().beginUpdate();
+    mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
     mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_before_ns);
+    mutableStatistics().endUpdate();
     // A run the pause swallowed whole still runs its one cycle, late.
     if (run_length_ns > 0) run_end_ns = std::max(run_end_ns, deadline_ns + 1);
   }
@@ -101,6 +103,8 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   while (deadline_ns < run_end_ns && !shouldStop(external_stop)) {
     loop_clock::sleepUntilNs(deadline_ns);
     const std::int64_t start_ns = loop_clock::nowNs();
+    // The cycle's figures, from here to its elapsed times, are one group.
+    mutableStatistics().beginUpdate();
     applyRequestedStatisticsReset();
     mutableStatistics().recordWakeupLatency(start_ns - deadline_ns);
     if (previous_start_ns >= 0) {
@@ -145,6 +149,7 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
     last_end_ns = end_ns;
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
     mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_time_ns_);
+    mutableStatistics().endUpdate();
   }
   if (shouldStop(external_stop)) {
     grid_ = Grid{};  // stopped (or the hardware stopped it): the next run starts a grid of its own

@@ -1,7 +1,9 @@
 // LoopStatistics: the histogram's bucket layout, percentiles of a known
-// distribution, and reading while another thread records.
+// distribution, and reading while another thread records (whole cycles).
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -119,6 +121,77 @@ TEST(LoopStatistics, SnapshotsFromAnotherThreadAreConsistentWhileRecording) {
   writer.join();
   EXPECT_EQ(inconsistent, 0) << "of " << snapshots << " snapshots";
   EXPECT_EQ(stats.snapshot().cycles, 200000u);
+}
+
+TEST(LoopStatistics, ASnapshotShowsACycleWholeOrNotAtAll) {
+  // The writer records cycles as a wall-clock loop does — wake-up latency,
+  // read, write, the cycle, its elapsed times — each cycle one group, and
+  // waits after each for the reader's next snapshot (or 10 ms), so snapshots
+  // keep landing on open groups. Every snapshot must show whole cycles: as
+  // many latencies, reads and writes as cycles, and 1 ms of control time per
+  // cycle. (Read field by field, a snapshot overlapping a group would count
+  // a latency, a read or a write ahead of its cycle.)
+  constexpr std::uint64_t kCycles = 2000;
+  LoopStatistics stats;
+  std::atomic<std::uint64_t> snapshots_taken{0};
+  std::atomic<bool> done{false};
+  std::thread writer([&] {
+    for (std::uint64_t k = 0; k < kCycles; ++k) {
+      const std::uint64_t seen = snapshots_taken.load();
+      stats.beginUpdate();
+      stats.recordWakeupLatency(20'000);
+      stats.recordRead(3'000);
+      // The work of the cycle: a few microseconds inside the group.
+      const auto work_end = std::chrono::steady_clock::now() + std::chrono::microseconds(3);
+      while (std::chrono::steady_clock::now() < work_end) {}
+      stats.recordWrite(2'000);
+      stats.recordCycle(9'000, true);
+      stats.setElapsed(static_cast<double>(k + 1) * 1e-3, static_cast<std::int64_t>(k + 1) * 1'000'000);
+      stats.endUpdate();
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::milliseconds(10);
+      while (snapshots_taken.load() == seen && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    }
+    done.store(true);
+  });
+  // Checked after the join, so a failure cannot leave the writer running.
+  std::uint64_t mid_run = 0;
+  std::uint64_t torn = 0;
+  std::string first_torn;
+  while (!done.load()) {
+    const LoopStatisticsSnapshot s = stats.snapshot(std::chrono::seconds(10));
+    snapshots_taken.fetch_add(1);
+    if (s.cycles > 0 && s.cycles < kCycles) ++mid_run;
+    const bool whole = s.wakeup_latency.count == s.cycles && s.read.count == s.cycles &&
+                       s.write.count == s.cycles && s.timed_cycles == s.cycles &&
+                       std::abs(s.sim_time_s - static_cast<double>(s.cycles) * 1e-3) < 1e-9;
+    if (!whole && torn++ == 0) {
+      first_torn = std::to_string(s.cycles) + " cycles, " + std::to_string(s.wakeup_latency.count) +
+                   " latencies, " + std::to_string(s.read.count) + " reads, " + std::to_string(s.write.count) +
+                   " writes, " + std::to_string(s.sim_time_s) + " s";
+    }
+  }
+  writer.join();
+  EXPECT_EQ(torn, 0u) << "first: " << first_torn;
+  EXPECT_GE(mid_run, kCycles / 4) << "snapshots taken while the writer ran";
+  EXPECT_EQ(stats.snapshot().wakeup_latency.count, kCycles);
+}
+
+TEST(LoopStatistics, ASnapshotDoesNotWaitLongerThanAskedForAGroupLeftOpen) {
+  // A writer stuck inside a cycle (a hardware read that hangs) holds its group
+  // open: the reader gives up after its wait and reads the figures as they are.
+  LoopStatistics stats;
+  stats.recordCycle(1'000, true);
+  stats.beginUpdate();
+  stats.recordWakeupLatency(5'000);
+  const auto start = std::chrono::steady_clock::now();
+  const LoopStatisticsSnapshot s = stats.snapshot(std::chrono::milliseconds(20));
+  const auto waited = std::chrono::steady_clock::now() - start;
+  EXPECT_GE(waited, std::chrono::milliseconds(20));
+  EXPECT_EQ(s.cycles, 1u);
+  EXPECT_EQ(s.wakeup_latency.count, 1u);  // the open cycle's, as it is
+  stats.recordCycle(1'000, true);
+  stats.endUpdate();
+  EXPECT_EQ(stats.snapshot(std::chrono::milliseconds(0)).cycles, 2u);
 }
 
 }  // namespace

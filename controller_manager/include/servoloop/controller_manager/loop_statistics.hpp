@@ -5,10 +5,14 @@
 //
 // Threads. The loop's real-time thread is the only writer (the record*/set*
 // calls: lock-free, allocation-free). Any thread may call snapshot() at any
-// time: every field is an atomic, so each value read is one the writer stored;
-// fields of one snapshot may be a cycle apart (a free-running simulation loop
-// publishes its elapsed times with its timed cycles: up to
-// SimulationLoop::kFreeRunningTimingStride cycles apart).
+// time: every field is an atomic, so each value read is one the writer stored.
+// The writer groups a cycle's records between beginUpdate() and endUpdate()
+// (a sequence lock: the writer never waits); a snapshot that overlaps an open
+// group reads again, so its figures all come from between two cycles — the
+// wake-up latency count is the cycle count. Records outside a group (a
+// free-running simulation loop's untimed cycles: it counts them, and publishes
+// its elapsed times with its timed cycles, up to
+// SimulationLoop::kFreeRunningTimingStride cycles apart) are read as they are.
 //
 // Not every cycle need be timed: a free-running simulation loop times one
 // cycle in kFreeRunningTimingStride and only counts the others
@@ -18,6 +22,7 @@
 // from a histogram preallocated inside the object, so recording never
 // allocates.
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -74,6 +79,16 @@ class LoopStatistics {
 
   // --- Writer side (real-time thread only) ---
 
+  // Open and close a group of records snapshot() shows whole or not at all
+  // (one cycle's). Groups do not nest; every beginUpdate has its endUpdate.
+  void beginUpdate() noexcept {
+    update_sequence_.store(update_sequence_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+    std::atomic_thread_fence(std::memory_order_release);
+  }
+  void endUpdate() noexcept {
+    update_sequence_.store(update_sequence_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+  }
+
   // One finished cycle that took compute_ns of work; control_update: the
   // manager was updated in it.
   void recordCycle(std::int64_t compute_ns, bool control_update) noexcept;
@@ -119,7 +134,13 @@ class LoopStatistics {
 
   // --- Reader side (any thread) ---
 
-  LoopStatisticsSnapshot snapshot() const noexcept;
+  // How long snapshot() waits, by default, for a group the writer has open
+  // (a cycle takes microseconds; a hardware read that hangs must not hang the
+  // reader): after it, the figures are read as they are, a cycle apart.
+  static constexpr std::chrono::milliseconds kSnapshotMaxWait{50};
+
+  // Not for the real-time thread (it may yield while the writer's group is open).
+  LoopStatisticsSnapshot snapshot(std::chrono::nanoseconds max_wait = kSnapshotMaxWait) const noexcept;
   // Two figures alone, without reading the histograms: cycles so far, and
   // the control time the loop advanced.
   std::uint64_t cycles() const noexcept { return cycles_.load(std::memory_order_acquire); }
@@ -145,6 +166,11 @@ class LoopStatistics {
     counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
   }
 
+  // Every field read at once, as it is now.
+  LoopStatisticsSnapshot readFields() const noexcept;
+
+  // Odd while the writer has a group open (beginUpdate/endUpdate).
+  std::atomic<std::uint64_t> update_sequence_{0};
   std::atomic<std::uint64_t> cycles_{0};
   std::atomic<std::uint64_t> control_updates_{0};
   std::atomic<double> sim_time_s_{0.0};
