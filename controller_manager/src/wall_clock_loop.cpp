@@ -71,19 +71,39 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   const std::int64_t run_start_ns = loop_clock::nowNs();
   // A run that follows one which ran its length carries on the same grid (a
-  // node runs the loop in pieces between timed publications); the first run,
-  // and one after a stop, start a grid now.
+  // node runs the loop in pieces between timed publications); the first run
+  // starts the grid now. A run after a stop (a fault, until `control
+  // recover`) resumes the grid at its first deadline from now: control time
+  // stays the time since the loop's start, as the controllers' time is, and
+  // the deadlines the loop stood still for are skipped (not overruns).
   const bool continues = grid_.next_deadline_ns >= 0;
-  std::int64_t deadline_ns = continues ? grid_.next_deadline_ns : run_start_ns;
-  if (origin_ns_ < 0) origin_ns_ = deadline_ns;
+  const bool resumes = !continues && origin_ns_ >= 0;
+  std::int64_t deadline_ns = run_start_ns;
+  if (continues) {
+    deadline_ns = grid_.next_deadline_ns;
+  } else if (resumes) {
+    deadline_ns = origin_ns_ + (run_start_ns - origin_ns_ + period_ns_ - 1) / period_ns_ * period_ns_;
+    deadline_ns = std::max(deadline_ns, origin_ns_ + control_time_ns_);  // not on the grid already covered
+  } else {
+    origin_ns_ = deadline_ns;
+  }
   // The run covers the grid from its first deadline for its length, so
   // pieces run one after another cover it once: a piece that ends where the
   // control time says the next publication is due ends on that deadline.
   std::int64_t run_end_ns = run_length_ns == std::numeric_limits<std::int64_t>::max()
                                 ? run_length_ns
                                 : deadline_ns + run_length_ns;
-  // Wall time goes on across the pause too, as the control time does.
-  const std::int64_t wall_before_ns = wall_time_ns_ + (continues ? run_start_ns - grid_.last_end_ns : 0);
+  // Wall time goes on across the pause (or the stop) too, as the control time does.
+  const std::int64_t wall_before_ns = wall_time_ns_ + (grid_.last_end_ns >= 0 ? run_start_ns - grid_.last_end_ns : 0);
+  wall_time_ns_ = wall_before_ns;  // up to date at run_start_ns
+  if (resumes && deadline_ns - origin_ns_ > control_time_ns_) {
+    const std::int64_t stood_ns = deadline_ns - origin_ns_ - control_time_ns_;
+    control_time_ns_ += stood_ns;
+    mutableStatistics().beginUpdate();
+    mutableStatistics().recordSkippedDeadlines(static_cast<std::uint64_t>(stood_ns / period_ns_));
+    mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_before_ns);
+    mutableStatistics().endUpdate();
+  }
   if (continues && run_start_ns > deadline_ns) {
     // The pause between the runs missed deadlines: an overrun, skipped as below.
     const std::int64_t missed = (run_start_ns - deadline_ns) / period_ns_ + 1;
@@ -98,7 +118,7 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   }
   std::int64_t previous_start_ns = grid_.previous_start_ns;
   std::int64_t previous_deadline_ns = grid_.previous_deadline_ns;
-  std::int64_t last_end_ns = continues ? grid_.last_end_ns : run_start_ns;
+  std::int64_t last_end_ns = run_start_ns;
 
   while (deadline_ns < run_end_ns && !shouldStop(external_stop)) {
     loop_clock::sleepUntilNs(deadline_ns);
@@ -152,7 +172,10 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
     mutableStatistics().endUpdate();
   }
   if (shouldStop(external_stop)) {
-    grid_ = Grid{};  // stopped (or the hardware stopped it): the next run starts a grid of its own
+    // Stopped (or the hardware stopped it): the next run resumes the grid at
+    // a deadline of its own, and counts the wall time from here.
+    grid_ = Grid{};
+    grid_.last_end_ns = last_end_ns;
   } else {
     grid_ = Grid{deadline_ns, previous_start_ns, previous_deadline_ns, last_end_ns};
   }

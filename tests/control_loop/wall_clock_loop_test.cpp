@@ -179,6 +179,38 @@ TEST(WallClockLoop, ARunThePauseBeforeItMissedWholeRunsOneCycleLate) {
   EXPECT_NEAR(stats.sim_time_s, 0.001 * static_cast<double>(stats.cycles + stats.skipped_deadlines), 1e-12);
 }
 
+// A stop (a hardware fault, until `control recover`) and a run after it: the
+// loop resumes its grid at the first deadline from now, so control time is
+// again the time since the loop's start, as the controllers' time is; the
+// deadlines it stood still for are skipped, and the wall time counts the stop.
+TEST(WallClockLoop, AfterAStopTheLoopResumesItsGrid) {
+  LoopFixture f(0.001, 1000.0);
+  WallClockLoop loop(f.hw, f.manager);
+  loop.runFor(Duration(0.003));
+  loop.requestStop();
+  loop.runFor(Duration(0.003));  // stopped at once: the grid is left
+  const std::size_t before = f.recorder->ofKind(EventKind::read).size();
+  const std::uint64_t skipped_before = loop.statistics().snapshot().skipped_deadlines;
+  // The stop itself is what is tested: 10 ms standing still.
+  std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  loop.runFor(Duration(0.003));
+  const std::vector<testing::Event> reads = f.recorder->ofKind(EventKind::read);
+  ASSERT_GT(before, 0u);
+  ASSERT_GT(reads.size(), before);
+  // 3 ms of grid before the stop and 10 ms standing: the first cycle after it
+  // is at 13 ms or later.
+  EXPECT_GE(reads[before].time_s, 0.013 - 1e-12);
+  const LoopStatisticsSnapshot stats = loop.statistics().snapshot();
+  EXPECT_GE(stats.skipped_deadlines - skipped_before, 10u);
+  EXPECT_NEAR(stats.sim_time_s, 0.001 * static_cast<double>(stats.cycles + stats.skipped_deadlines), 1e-12);
+  // The last cycle's time (its deadline and its wake-up latency) is before
+  // the control time the loop reached with it: the deadline after it, or the
+  // first one ahead if it overran. (Control time that did not count the stop
+  // would be 10 ms behind.)
+  EXPECT_GT(stats.sim_time_s, reads.back().time_s);
+  EXPECT_GE(stats.wall_time_s, 0.013);
+}
+
 TEST(WallClockLoop, SlowHardwareCountsOverrunsAndSkipsMissedDeadlines) {
   // read() takes 3 ms in a 1 ms loop: every cycle overruns, and the skipped
   // deadlines keep the cycle count at one per 3+ ms instead of a burst.

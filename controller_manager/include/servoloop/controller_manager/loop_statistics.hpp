@@ -50,8 +50,9 @@ struct LoopStatisticsSnapshot {
   double compute_p99_s = 0.0;  // from the histogram
 
   std::uint64_t overruns = 0;         // cycles that ended after their deadline
-  // Deadlines no cycle started at (the wall clock skips those an overrun
-  // missed): cycles + skipped_deadlines are the deadlines the grid had.
+  // Deadlines no cycle started at (the wall clock skips those an overrun or
+  // a pause missed, and those of a stop): cycles + skipped_deadlines are the
+  // deadlines the grid had.
   std::uint64_t skipped_deadlines = 0;
   std::uint64_t schedule_resets = 0;  // times a loop gave up catching up on a backlog
   std::uint64_t hardware_errors = 0;  // read/write/step calls that returned ReturnType::error
@@ -102,6 +103,10 @@ class LoopStatistics {
   // An overrun; `skipped` deadlines get no cycle because of it.
   void recordOverrun(std::uint64_t skipped = 0) noexcept {
     bump(overruns_);
+    recordSkippedDeadlines(skipped);
+  }
+  // Deadlines no cycle started at without an overrun (a stopped loop's).
+  void recordSkippedDeadlines(std::uint64_t skipped) noexcept {
     skipped_deadlines_.store(skipped_deadlines_.load(std::memory_order_relaxed) + skipped, std::memory_order_relaxed);
   }
   // Phase and timing figures of the current (timed) cycle.

@@ -57,6 +57,8 @@ class WallClockLoop final : public ControlLoop {
   // continued grid, from its next deadline (also when the pause since the
   // last run missed it: the deadlines missed are skipped and count towards
   // the length; a run missed whole still runs one cycle); fewer if stopped.
+  // A run after a stop resumes the grid at its first deadline from now, the
+  // deadlines in between skipped.
   void runFor(Duration wall_time) override;
 
  private:
@@ -76,8 +78,9 @@ class WallClockLoop final : public ControlLoop {
   };
   Grid grid_;
   std::uint64_t cycles_ = 0;
-  // The grid the cycles covered: one period per cycle and per deadline
-  // skipped (a stop's pause, before the next run's new grid, not counted).
+  // The grid the cycles covered since the origin: one period per cycle and
+  // per deadline skipped (missed by an overrun or a pause, or stood still for
+  // in a stop).
   std::int64_t control_time_ns_ = 0;
   std::int64_t wall_time_ns_ = 0;
 };
