@@ -4,15 +4,32 @@
 #include <memory>
 #include <string>
 
+#include <spdlog/details/null_mutex.h>
+#include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 #include "servoloop/core/errors.hpp"
 
 namespace servoloop {
 namespace {
+// The innermost ThreadLogCapture of this thread, if any.
+thread_local ThreadLogCapture* t_capture = nullptr;
+
+// Hands warnings and errors to the calling thread's capture. Each thread
+// touches only its own capture, so the sink needs no lock.
+class CaptureSink final : public spdlog::sinks::base_sink<spdlog::details::null_mutex> {
+ protected:
+  void sink_it_(const spdlog::details::log_msg& msg) override {
+    if (t_capture == nullptr || msg.level < spdlog::level::warn) return;
+    t_capture->add(std::string(msg.payload.begin(), msg.payload.end()));
+  }
+  void flush_() override {}
+};
+
 std::shared_ptr<spdlog::logger> makeLogger() {
-  auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
-  auto log = std::make_shared<spdlog::logger>("servoloop", sink);
+  const spdlog::sinks_init_list sinks = {std::make_shared<spdlog::sinks::stderr_color_sink_mt>(),
+                                         std::make_shared<CaptureSink>()};
+  auto log = std::make_shared<spdlog::logger>("servoloop", sinks);
   log->set_pattern("[%L] %v");
   log->set_level(spdlog::level::info);
   if (const char* env = std::getenv("SERVOLOOP_LOG_LEVEL")) {
@@ -28,6 +45,10 @@ spdlog::logger& logger() {
   static std::shared_ptr<spdlog::logger> instance = makeLogger();
   return *instance;
 }
+
+ThreadLogCapture::ThreadLogCapture() : outer_(t_capture) { t_capture = this; }
+
+ThreadLogCapture::~ThreadLogCapture() { t_capture = outer_; }
 
 void setLogLevel(std::string_view level) {
   const std::string name(level);

@@ -548,7 +548,11 @@ json NodeOperations::modelSpawn(const json& request) {
     if (!request["fixed_base"].is_boolean()) throw Error("'model.spawn': fixed_base must be true or false");
     spec.fixed_base = request["fixed_base"].get<bool>();
   }
-  return {{"namespace", node_.spawnRobot(spec)}};
+  // What the spawn warned about (a robot starting in the floor, a URDF that
+  // needed mending) goes back to the client too, not only to the node's log.
+  const ThreadLogCapture capture;
+  const std::string robot_namespace = node_.spawnRobot(spec);
+  return {{"namespace", robot_namespace}, {"warnings", capture.warnings()}};
 }
 
 }  // namespace servoloop::node

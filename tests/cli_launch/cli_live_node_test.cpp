@@ -2,10 +2,11 @@
 // the mock backend in real time (serving its socket), then `servoloop plot
 // --topic`, `topic list` and, once it has ended, the "no node" error — each
 // bounded in time, on a private SERVOLOOP_RUN_DIR; and control, param and topic
-// commands against a node on the wall clock.
+// commands against a node on the wall clock; spawn-model's warnings.
 #include <csignal>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -141,6 +142,41 @@ TEST(CliLiveNode, ClientCommandsAgainstAWallClockNode) {
   ASSERT_FALSE(launched.timed_out);
   EXPECT_EQ(launched.status, 0) << launched.err;
   EXPECT_THAT(launched.err, HasSubstr("runs on the wall clock at 1000 Hz"));
+}
+
+// `spawn-model` into a running world shows what the node warned about while
+// spawning — here the hopper (tests/assets/features/hopper.urdf) spawned at
+// z = 0.3 with its foot 0.25 m in the floor — not only the node's log.
+TEST(CliLiveNode, SpawnModelShowsTheWarningsOfTheSpawn) {
+  ScopedRunDir run_dir;
+  const fs::path& scratch = run_dir.scratch();
+  const fs::path world = scratch / "floor.launch.yaml";
+  std::ofstream(world) << "world: {ground_plane: true}\n";
+  CliProcess launch({"launch", world.string()}, scratch);
+  const std::string hopper = (fs::path(SERVOLOOP_SOURCE_DIR) / "tests" / "assets" / "features" / "hopper.urdf").string();
+  CliResult spawn;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  do {  // until the world serves its socket
+    spawn = runCli({"spawn-model", "--urdf", hopper, "--model", "hopper", "-z", "0.3"}, scratch, 30.0);
+    if (spawn.status == 0 || spawn.err.find("no servoloop world is running") == std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  } while (std::chrono::steady_clock::now() < deadline);
+  ASSERT_EQ(spawn.status, 0) << spawn.err << launch.currentOut();
+  EXPECT_THAT(spawn.out, HasSubstr("Spawned model 'hopper' in namespace /hopper"));
+  EXPECT_THAT(spawn.err, HasSubstr("warning: " + hopper + ": link 'foot' starts 0.250 m below the ground plane"));
+  EXPECT_THAT(spawn.err, HasSubstr("a root z of at least 0.550 m"));
+  EXPECT_EQ(lineCount(spawn.err), 1) << spawn.err;
+
+  // Standing on its foot: nothing to say.
+  const CliResult standing =
+      runCli({"spawn-model", "--urdf", hopper, "--model", "hopper2", "-x", "2", "-z", "0.6"}, scratch, 30.0);
+  ASSERT_EQ(standing.status, 0) << standing.err;
+  EXPECT_EQ(standing.err, "");
+
+  launch.signal(SIGINT);
+  const CliResult launched = launch.wait(30.0);
+  ASSERT_FALSE(launched.timed_out);
+  EXPECT_EQ(launched.status, 0) << launched.err;
 }
 
 }  // namespace

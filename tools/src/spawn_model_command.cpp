@@ -50,6 +50,9 @@ void runSpawnModel(const SpawnModelOptions& options) {
 
   servoloop::ipc::IpcClient client = connectToWorld();
   const auto reply = client.call("model.spawn", request, kSpawnCallTimeoutS);
+  for (const auto& warning : reply.value("warnings", nlohmann::json::array())) {
+    if (warning.is_string()) std::cerr << "warning: " << warning.get<std::string>() << "\n";
+  }
   std::cout << "Spawned model '" << options.model << "' in namespace "
             << reply.value("namespace", normalizeNamespace(options.ns)) << "\n";
 }
