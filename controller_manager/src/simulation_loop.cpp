@@ -229,8 +229,9 @@ void SimulationLoop::runPacedCycles(std::uint64_t max_cycles, const std::atomic<
   setPhaseTiming(true);
   for (std::uint64_t n = 0; n < max_cycles && !shouldStop(external_stop); ++n) {
     bool control_updated = false;
-    // The cycle's figures are one group, closed across the sleep below (a
-    // snapshot waits for the work, not for the pacing).
+    // The cycle's figures, its control time included, are one group, closed
+    // before the sleep below (a snapshot waits for the work, not for the
+    // pacing); the wall time the sleep adds is a group of its own.
     mutableStatistics().beginUpdate();
     applyRequestedStatisticsReset();
     runCycle(&control_updated);
@@ -247,15 +248,18 @@ void SimulationLoop::runPacedCycles(std::uint64_t max_cycles, const std::atomic<
         anchor_cycle = n + 1;
         mutableStatistics().recordScheduleReset();
       }
-    } else {
-      mutableStatistics().endUpdate();
-      loop_clock::sleepUntilNs(deadline_ns);
-      end_ns = loop_clock::nowNs();
-      mutableStatistics().beginUpdate();
     }
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
     publishElapsed();
     mutableStatistics().endUpdate();
+    if (end_ns <= deadline_ns) {
+      loop_clock::sleepUntilNs(deadline_ns);
+      end_ns = loop_clock::nowNs();
+      wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
+      mutableStatistics().beginUpdate();
+      publishElapsed();
+      mutableStatistics().endUpdate();
+    }
     cycle_start_ns = end_ns;
   }
 }

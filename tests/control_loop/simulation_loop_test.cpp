@@ -3,7 +3,9 @@
 // hardware errors — against the fake simulated robot of the support header.
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <future>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -224,6 +226,32 @@ TEST(SimulationLoop, RealTimeFactorTwoTakesAtLeastHalfTheSimulatedTime) {
   loop.runFor(Duration(0.2));
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GE(wall_s, 0.1);
+}
+
+// A paced loop sleeps most of each step; a snapshot taken meanwhile shows the
+// control time of the steps it counts (1 ms each), not one step behind.
+TEST(SimulationLoop, APacedLoopsSnapshotsCountItsStepsAndTheirTime) {
+  LoopFixture f(0.001);
+  f.recorder->enabled = false;
+  SimulationLoop::Options options;
+  options.real_time_factor = 1.0;
+  SimulationLoop loop(f.hw, f.manager, options);
+  auto running = std::async(std::launch::async, [&] { loop.runFor(Duration(0.2)); });
+  std::uint64_t mid_run = 0;
+  std::uint64_t off = 0;
+  std::string first_off;
+  while (running.wait_for(std::chrono::milliseconds(0)) != std::future_status::ready) {
+    const LoopStatisticsSnapshot s = loop.statistics().snapshot(std::chrono::seconds(10));
+    if (s.cycles == 0) continue;
+    ++mid_run;
+    if (std::abs(s.sim_time_s - 0.001 * static_cast<double>(s.cycles)) > 1e-12 && off++ == 0) {
+      first_off = std::to_string(s.cycles) + " cycles, " + std::to_string(s.sim_time_s) + " s";
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));  // a few snapshots per step
+  }
+  running.get();
+  EXPECT_GT(mid_run, 0u);
+  EXPECT_EQ(off, 0u) << "of " << mid_run << "; first: " << first_off;
 }
 
 TEST(SimulationLoop, PacedLoopThatStallsDropsTheBacklogInsteadOfBursting) {
