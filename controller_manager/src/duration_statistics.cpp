@@ -77,20 +77,22 @@ std::int64_t DurationStatistics::bucketUpper(std::size_t index) noexcept {
 
 void DurationStatistics::record(std::int64_t value_ns) noexcept {
   value_ns = std::max<std::int64_t>(value_ns, 0);
-  if (value_ns < min_ns_.load(std::memory_order_relaxed)) min_ns_.store(value_ns, std::memory_order_relaxed);
-  if (value_ns > max_ns_.load(std::memory_order_relaxed)) max_ns_.store(value_ns, std::memory_order_relaxed);
-  sum_ns_.store(sum_ns_.load(std::memory_order_relaxed) + value_ns, std::memory_order_relaxed);
+  // Single writer: a relaxed load and a release store is an atomic update
+  // here. Every store is a release (free on x86): a reader that sees the count
+  // sees the min/max/sum before it, and a reader that sees any of them sees
+  // the LoopStatistics group it belongs to open (its sequence lock needs no fence).
+  if (value_ns < min_ns_.load(std::memory_order_relaxed)) min_ns_.store(value_ns, std::memory_order_release);
+  if (value_ns > max_ns_.load(std::memory_order_relaxed)) max_ns_.store(value_ns, std::memory_order_release);
+  sum_ns_.store(sum_ns_.load(std::memory_order_relaxed) + value_ns, std::memory_order_release);
   std::atomic<std::uint64_t>& bucket = histogram_[bucketIndex(value_ns)];
-  // Single writer: a relaxed load and a release store is an atomic increment
-  // here; a reader that sees the count sees the min/max/sum before it.
   bucket.store(bucket.load(std::memory_order_relaxed) + 1, std::memory_order_release);
 }
 
 void DurationStatistics::reset() noexcept {
-  min_ns_.store(kUnsetMin, std::memory_order_relaxed);
-  max_ns_.store(0, std::memory_order_relaxed);
-  sum_ns_.store(0, std::memory_order_relaxed);
-  for (auto& bucket : histogram_) bucket.store(0, std::memory_order_relaxed);
+  min_ns_.store(kUnsetMin, std::memory_order_release);
+  max_ns_.store(0, std::memory_order_release);
+  sum_ns_.store(0, std::memory_order_release);
+  for (auto& bucket : histogram_) bucket.store(0, std::memory_order_release);
 }
 
 DurationSnapshot DurationStatistics::snapshot() const noexcept {
@@ -101,9 +103,9 @@ DurationSnapshot DurationStatistics::snapshot() const noexcept {
     counts[i] = histogram_[i].load(std::memory_order_acquire);
     total += counts[i];
   }
-  const std::int64_t min_ns = min_ns_.load(std::memory_order_relaxed);
-  const std::int64_t max_ns = max_ns_.load(std::memory_order_relaxed);
-  const std::int64_t sum_ns = sum_ns_.load(std::memory_order_relaxed);
+  const std::int64_t min_ns = min_ns_.load(std::memory_order_acquire);
+  const std::int64_t max_ns = max_ns_.load(std::memory_order_acquire);
+  const std::int64_t sum_ns = sum_ns_.load(std::memory_order_acquire);
   // (A first value counted in the histogram but not yet in the minimum is
   // still being recorded: as if it were not there yet.)
   if (total == 0 || min_ns == kUnsetMin) return s;

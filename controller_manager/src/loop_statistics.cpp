@@ -15,19 +15,19 @@ void LoopStatistics::recordCycle(std::int64_t compute_ns, bool control_update) n
 }
 
 void LoopStatistics::setElapsed(double sim_time_s, std::int64_t wall_time_ns) noexcept {
-  sim_time_s_.store(sim_time_s, std::memory_order_relaxed);
-  wall_time_ns_.store(wall_time_ns, std::memory_order_relaxed);
+  sim_time_s_.store(sim_time_s, std::memory_order_release);
+  wall_time_ns_.store(wall_time_ns, std::memory_order_release);
 }
 
 void LoopStatistics::reset() noexcept {
-  cycles_.store(0, std::memory_order_relaxed);
-  control_updates_.store(0, std::memory_order_relaxed);
-  sim_time_s_.store(0.0, std::memory_order_relaxed);
-  wall_time_ns_.store(0, std::memory_order_relaxed);
-  overruns_.store(0, std::memory_order_relaxed);
-  skipped_deadlines_.store(0, std::memory_order_relaxed);
-  schedule_resets_.store(0, std::memory_order_relaxed);
-  hardware_errors_.store(0, std::memory_order_relaxed);
+  cycles_.store(0, std::memory_order_release);
+  control_updates_.store(0, std::memory_order_release);
+  sim_time_s_.store(0.0, std::memory_order_release);
+  wall_time_ns_.store(0, std::memory_order_release);
+  overruns_.store(0, std::memory_order_release);
+  skipped_deadlines_.store(0, std::memory_order_release);
+  schedule_resets_.store(0, std::memory_order_release);
+  hardware_errors_.store(0, std::memory_order_release);
   compute_.reset();
   read_.reset();
   write_.reset();
@@ -37,31 +37,36 @@ void LoopStatistics::reset() noexcept {
 
 LoopStatisticsSnapshot LoopStatistics::snapshot(std::chrono::nanoseconds max_wait) const noexcept {
   const auto give_up = std::chrono::steady_clock::now() + max_wait;
-  while (true) {
+  for (int attempt = 0;; ++attempt) {
     const std::uint64_t before = update_sequence_.load(std::memory_order_acquire);
     if (before % 2 == 0) {
       const LoopStatisticsSnapshot s = readFields();
-      // The reads above before the check below: a group the writer opened
-      // meanwhile changed the sequence.
-      std::atomic_thread_fence(std::memory_order_acquire);
+      // readFields' acquire loads keep this load after them: a group the
+      // writer opened meanwhile, and wrote any of them in, changed the sequence.
       if (update_sequence_.load(std::memory_order_relaxed) == before) return s;
     }
     if (std::chrono::steady_clock::now() >= give_up) return readFields();
-    std::this_thread::yield();
+    // A cycle takes microseconds: yield a few times, then stop spinning (a
+    // hardware call that hangs keeps the group open).
+    if (attempt < 8) {
+      std::this_thread::yield();
+    } else {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
   }
 }
 
 LoopStatisticsSnapshot LoopStatistics::readFields() const noexcept {
   LoopStatisticsSnapshot s;
   s.cycles = cycles_.load(std::memory_order_acquire);
-  s.control_updates = control_updates_.load(std::memory_order_relaxed);
-  s.sim_time_s = sim_time_s_.load(std::memory_order_relaxed);
-  s.wall_time_s = static_cast<double>(wall_time_ns_.load(std::memory_order_relaxed)) * 1e-9;
+  s.control_updates = control_updates_.load(std::memory_order_acquire);
+  s.sim_time_s = sim_time_s_.load(std::memory_order_acquire);
+  s.wall_time_s = static_cast<double>(wall_time_ns_.load(std::memory_order_acquire)) * 1e-9;
   s.real_time_factor = s.wall_time_s > 0.0 ? s.sim_time_s / s.wall_time_s : 0.0;
-  s.overruns = overruns_.load(std::memory_order_relaxed);
-  s.skipped_deadlines = skipped_deadlines_.load(std::memory_order_relaxed);
-  s.schedule_resets = schedule_resets_.load(std::memory_order_relaxed);
-  s.hardware_errors = hardware_errors_.load(std::memory_order_relaxed);
+  s.overruns = overruns_.load(std::memory_order_acquire);
+  s.skipped_deadlines = skipped_deadlines_.load(std::memory_order_acquire);
+  s.schedule_resets = schedule_resets_.load(std::memory_order_acquire);
+  s.hardware_errors = hardware_errors_.load(std::memory_order_acquire);
   if (s.cycles == 0) return s;
   const DurationSnapshot compute = compute_.snapshot();
   s.timed_cycles = compute.count;

@@ -192,8 +192,9 @@ void SimulationLoop::runFreeCycles(std::uint64_t max_cycles, const std::atomic<b
       mutableStatistics().recordUntimedCycle(control_updated);
       continue;
     }
-    // A timed cycle's figures are one group (the untimed ones are only counted).
-    mutableStatistics().beginUpdate();
+    // No groups here (LoopStatistics::beginUpdate): one would open every
+    // kFreeRunningTimingStride cycles, a few microseconds apart, and a reader
+    // would hardly ever fit between two; the figures are read as they are.
     applyRequestedStatisticsReset();
     setPhaseTiming(true);
     const std::int64_t start_ns = loop_clock::cycleClockNs();
@@ -203,12 +204,9 @@ void SimulationLoop::runFreeCycles(std::uint64_t max_cycles, const std::atomic<b
     mutableStatistics().recordCycle(end_ns - start_ns, control_updated);
     wall_time_ns_ = wall_before_ns + (end_ns - run_start_ns);
     publishElapsed();
-    mutableStatistics().endUpdate();
   }
   wall_time_ns_ = wall_before_ns + (loop_clock::cycleClockNs() - run_start_ns);
-  mutableStatistics().beginUpdate();
   publishElapsed();
-  mutableStatistics().endUpdate();
 }
 
 void SimulationLoop::runPacedCycles(std::uint64_t max_cycles, const std::atomic<bool>* external_stop) {

@@ -97,6 +97,13 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   const std::int64_t wall_before_ns = wall_time_ns_ + (grid_.last_end_ns >= 0 ? run_start_ns - grid_.last_end_ns : 0);
   wall_time_ns_ = wall_before_ns;  // up to date at run_start_ns
   if (resumes && deadline_ns - origin_ns_ > control_time_ns_) {
+    // The deadlines of the stop count towards the run's length, as a pause's
+    // do: a node's run up to a publication that fell due during the stop runs
+    // one cycle and ends, and the publication goes out.
+    if (run_length_ns != std::numeric_limits<std::int64_t>::max()) {
+      run_end_ns = origin_ns_ + control_time_ns_ + run_length_ns;
+      if (run_length_ns > 0) run_end_ns = std::max(run_end_ns, deadline_ns + 1);
+    }
     const std::int64_t stood_ns = deadline_ns - origin_ns_ - control_time_ns_;
     control_time_ns_ += stood_ns;
     mutableStatistics().beginUpdate();

@@ -6,13 +6,14 @@
 // Threads. The loop's real-time thread is the only writer (the record*/set*
 // calls: lock-free, allocation-free). Any thread may call snapshot() at any
 // time: every field is an atomic, so each value read is one the writer stored.
-// The writer groups a cycle's records between beginUpdate() and endUpdate()
-// (a sequence lock: the writer never waits); a snapshot that overlaps an open
-// group reads again, so its figures all come from between two cycles — the
-// wake-up latency count is the cycle count. Records outside a group (a
-// free-running simulation loop's untimed cycles: it counts them, and publishes
-// its elapsed times with its timed cycles, up to
-// SimulationLoop::kFreeRunningTimingStride cycles apart) are read as they are.
+// A paced loop (the wall clock; a simulation at a real-time factor) groups a
+// cycle's records between beginUpdate() and endUpdate() (a sequence lock: the
+// writer never waits); a snapshot that overlaps an open group reads again, so
+// its figures all come from between two cycles — the wake-up latency count is
+// the cycle count. A free-running simulation loop records without groups (a
+// reader would hardly ever fit between two): its figures are read as they are,
+// fields up to SimulationLoop::kFreeRunningTimingStride cycles apart (it
+// counts untimed cycles, and publishes its elapsed times with its timed ones).
 //
 // Not every cycle need be timed: a free-running simulation loop times one
 // cycle in kFreeRunningTimingStride and only counts the others
@@ -82,9 +83,12 @@ class LoopStatistics {
 
   // Open and close a group of records snapshot() shows whole or not at all
   // (one cycle's). Groups do not nest; every beginUpdate has its endUpdate.
+  // No fence: every record is a release store and every read an acquire load,
+  // so a reader that reads any record of an open group then reads the
+  // sequence changed (and ThreadSanitizer, which has no model of standalone
+  // fences, sees every ordering it relies on).
   void beginUpdate() noexcept {
     update_sequence_.store(update_sequence_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
-    std::atomic_thread_fence(std::memory_order_release);
   }
   void endUpdate() noexcept {
     update_sequence_.store(update_sequence_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
@@ -107,7 +111,7 @@ class LoopStatistics {
   }
   // Deadlines no cycle started at without an overrun (a stopped loop's).
   void recordSkippedDeadlines(std::uint64_t skipped) noexcept {
-    skipped_deadlines_.store(skipped_deadlines_.load(std::memory_order_relaxed) + skipped, std::memory_order_relaxed);
+    skipped_deadlines_.store(skipped_deadlines_.load(std::memory_order_relaxed) + skipped, std::memory_order_release);
   }
   // Phase and timing figures of the current (timed) cycle.
   void recordRead(std::int64_t ns) noexcept { read_.record(ns); }
@@ -149,7 +153,7 @@ class LoopStatistics {
   // Two figures alone, without reading the histograms: cycles so far, and
   // the control time the loop advanced.
   std::uint64_t cycles() const noexcept { return cycles_.load(std::memory_order_acquire); }
-  double simTime() const noexcept { return sim_time_s_.load(std::memory_order_relaxed); }
+  double simTime() const noexcept { return sim_time_s_.load(std::memory_order_acquire); }
 
   // Non-real-time. The end-of-run summary, e.g.
   //   "loop: 1000 cycles (1000 control updates), 1.000 s simulated in 1.002 s wall
@@ -166,9 +170,10 @@ class LoopStatistics {
   static std::int64_t bucketUpper(std::size_t index) noexcept { return DurationStatistics::bucketUpper(index); }
 
  private:
-  // Single writer: a relaxed load and store is an atomic increment here.
+  // Single writer: a relaxed load and a store is an atomic increment here
+  // (a release store, as every record: see beginUpdate).
   static void bump(std::atomic<std::uint64_t>& counter) noexcept {
-    counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+    counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_release);
   }
 
   // Every field read at once, as it is now.

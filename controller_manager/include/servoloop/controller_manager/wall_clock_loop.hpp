@@ -12,8 +12,10 @@
 // (clock_nanosleep, TIMER_ABSTIME) start + n · period, so the rate does not
 // drift. A run that follows a run which ended at its length (runFor) goes on
 // on the same grid, so a loop run in pieces keeps its rate and its measured
-// periods; the first run, and a run after a stop (requestStop, the stop flag,
-// a hardware stop), start a new grid at once. A cycle whose work ends after the next cycle's deadline is an
+// periods; the first run starts the grid. A run after a stop (requestStop, the
+// stop flag, a hardware stop) resumes it at its first deadline from then, the
+// deadlines of the stop skipped, so t and the control time stay the time since
+// the first deadline. A cycle whose work ends after the next cycle's deadline is an
 // overrun; the loop then skips the deadlines it missed (the next cycle starts
 // at the first deadline still ahead, on the original grid) rather than running
 // a burst of late cycles back to back. (schedule_resets stays 0 here: every
@@ -58,7 +60,8 @@ class WallClockLoop final : public ControlLoop {
   // last run missed it: the deadlines missed are skipped and count towards
   // the length; a run missed whole still runs one cycle); fewer if stopped.
   // A run after a stop resumes the grid at its first deadline from now, the
-  // deadlines in between skipped.
+  // deadlines in between skipped (and counted towards the length, as a
+  // pause's are).
   void runFor(Duration wall_time) override;
 
  private:
