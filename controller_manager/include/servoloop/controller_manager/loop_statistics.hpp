@@ -6,7 +6,8 @@
 // Threads. The loop's real-time thread is the only writer (the record*/set*
 // calls: lock-free, allocation-free). Any thread may call snapshot() at any
 // time: every field is an atomic, so each value read is one the writer stored.
-// A paced loop (the wall clock; a simulation at a real-time factor) groups a
+// A paced loop (the wall clock; a simulation at a real-time factor, or driven
+// one cycle at a time by SimulationLoop::cycleOnce) groups a
 // cycle's records between beginUpdate() and endUpdate() (a sequence lock: the
 // writer never waits); a snapshot that overlaps an open group reads again, so
 // its figures all come from between two cycles — the wake-up latency count is
