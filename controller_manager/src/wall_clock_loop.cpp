@@ -70,57 +70,42 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
   // SCHED_FIFO thread is. The calling thread is the loop's own.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   const std::int64_t run_start_ns = loop_clock::nowNs();
-  // A run that follows one which ran its length carries on the same grid (a
-  // node runs the loop in pieces between timed publications); the first run
-  // starts the grid now. A run after a stop (a fault, until `control
-  // recover`) resumes the grid at its first deadline from now: control time
-  // stays the time since the loop's start, as the controllers' time is, and
-  // the deadlines the loop stood still for are skipped (not overruns).
-  const bool continues = grid_.next_deadline_ns >= 0;
-  const bool resumes = !continues && origin_ns_ >= 0;
-  std::int64_t deadline_ns = run_start_ns;
-  if (continues) {
-    deadline_ns = grid_.next_deadline_ns;
-  } else if (resumes) {
-    deadline_ns = origin_ns_ + (run_start_ns - origin_ns_ + period_ns_ - 1) / period_ns_ * period_ns_;
-    deadline_ns = std::max(deadline_ns, origin_ns_ + control_time_ns_);  // not on the grid already covered
-  } else {
-    origin_ns_ = deadline_ns;
-  }
-  // The run covers the grid from its first deadline for its length, so
-  // pieces run one after another cover it once: a piece that ends where the
-  // control time says the next publication is due ends on that deadline.
+  // The loop keeps one deadline grid from its first run's start (the origin):
+  // control time is how far along it the loop is, so its next deadline is
+  // origin + control time. A run that follows one which ran its length
+  // carries on from there (a node runs the loop in pieces between timed
+  // publications); so does a run after a stop (a fault, until `control
+  // recover`): control time stays the time since the origin, as the
+  // controllers' time is.
+  if (origin_ns_ < 0) origin_ns_ = run_start_ns;
+  std::int64_t deadline_ns = origin_ns_ + control_time_ns_;
+  // The run covers the grid from there for its length, so pieces run one
+  // after another cover it once: a piece that ends where the control time
+  // says the next publication is due ends on that deadline.
   std::int64_t run_end_ns = run_length_ns == std::numeric_limits<std::int64_t>::max()
                                 ? run_length_ns
                                 : deadline_ns + run_length_ns;
   // Wall time goes on across the pause (or the stop) too, as the control time does.
   const std::int64_t wall_before_ns = wall_time_ns_ + (grid_.last_end_ns >= 0 ? run_start_ns - grid_.last_end_ns : 0);
   wall_time_ns_ = wall_before_ns;  // up to date at run_start_ns
-  if (resumes && deadline_ns - origin_ns_ > control_time_ns_) {
-    // The deadlines of the stop count towards the run's length, as a pause's
-    // do: a node's run up to a publication that fell due during the stop runs
-    // one cycle and ends, and the publication goes out.
-    if (run_length_ns != std::numeric_limits<std::int64_t>::max()) {
-      run_end_ns = origin_ns_ + control_time_ns_ + run_length_ns;
-      if (run_length_ns > 0) run_end_ns = std::max(run_end_ns, deadline_ns + 1);
-    }
-    const std::int64_t stood_ns = deadline_ns - origin_ns_ - control_time_ns_;
-    control_time_ns_ += stood_ns;
-    mutableStatistics().beginUpdate();
-    mutableStatistics().recordSkippedDeadlines(static_cast<std::uint64_t>(stood_ns / period_ns_));
-    mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_before_ns);
-    mutableStatistics().endUpdate();
-  }
-  if (continues && run_start_ns > deadline_ns) {
-    // The pause between the runs missed deadlines: an overrun, skipped as below.
+  if (run_start_ns > deadline_ns) {
+    // Deadlines passed while no run ran: a pause between two runs missed
+    // them (an overrun), or the loop stood stopped (skipped, not an overrun).
+    // Skipped as below, the next cycle at the first deadline ahead; they
+    // count towards the length, so a run they swallowed whole still runs its
+    // one cycle, late (a node's run up to a publication that fell due in a
+    // stop runs one cycle and ends, and the publication goes out).
     const std::int64_t missed = (run_start_ns - deadline_ns) / period_ns_ + 1;
     deadline_ns += missed * period_ns_;
     control_time_ns_ += missed * period_ns_;
     mutableStatistics().beginUpdate();
-    mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
+    if (grid_.continues) {
+      mutableStatistics().recordOverrun(static_cast<std::uint64_t>(missed));
+    } else {
+      mutableStatistics().recordSkippedDeadlines(static_cast<std::uint64_t>(missed));
+    }
     mutableStatistics().setElapsed(static_cast<double>(control_time_ns_) / kNsPerSecond, wall_before_ns);
     mutableStatistics().endUpdate();
-    // A run the pause swallowed whole still runs its one cycle, late.
     if (run_length_ns > 0) run_end_ns = std::max(run_end_ns, deadline_ns + 1);
   }
   std::int64_t previous_start_ns = grid_.previous_start_ns;
@@ -184,7 +169,7 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
     grid_ = Grid{};
     grid_.last_end_ns = last_end_ns;
   } else {
-    grid_ = Grid{deadline_ns, previous_start_ns, previous_deadline_ns, last_end_ns};
+    grid_ = Grid{true, previous_start_ns, previous_deadline_ns, last_end_ns};
   }
   consumeStopRequest();
 }

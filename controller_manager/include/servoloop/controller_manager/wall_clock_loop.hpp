@@ -72,9 +72,9 @@ class WallClockLoop final : public ControlLoop {
   hardware_interface::SimulatedRobotHW* simulated_ = nullptr;  // stepped each cycle (step_simulation)
 
   // Real-time thread only.
-  // Where the last run left the deadline grid (-1: no grid to continue).
+  // How the last run left the deadline grid (-1: not known).
   struct Grid {
-    std::int64_t next_deadline_ns = -1;
+    bool continues = false;  // it ran its length: the next run carries on from it (no stop between)
     std::int64_t previous_start_ns = -1;
     std::int64_t previous_deadline_ns = -1;
     std::int64_t last_end_ns = -1;  // when wall_time_ns_ was last brought up to date
