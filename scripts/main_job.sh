@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The seed tutorial's joint servo, end to end: install what is missing, build
-# only what the run needs (the `servoloop` command and its plugins; the tests
-# and benchmarks are built by scripts/test.sh), then run the one-DOF robot
+# only what the run needs (the `servoloop` command, the Bullet backend and the
+# two controller plugins the seed loads; everything else is built by
+# scripts/test.sh), then run the one-DOF robot
 # with its PID position controller on the Bullet backend for 30 s of simulated
 # time with a 1.0 rad command, recording the joint states and the command and
 # plotting them.
@@ -11,7 +12,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 build_dir=${BUILD_DIR:-build}
 cmake -S . -B "$build_dir" -G Ninja
-cmake --build "$build_dir" --parallel 2 --target servoloop_runtime
+cmake --build "$build_dir" --parallel 2 --target servoloop_main_job
 
 out_dir="$build_dir/main_job"
 mkdir -p "$out_dir"

@@ -10,7 +10,7 @@
 namespace servoloop::controller_manager::testing {
 namespace {
 
-const char* kYaml = R"(
+const char* kFallbackYaml = R"(
 hold: {type: test_controllers/EffortController, joint: joint1, output: 1.5, record_events: false}
 other_joint: {type: test_controllers/EffortController, joint: joint2, output: 2.0, record_events: false}
 velocity_hold: {type: test_controllers/VelocityController, joint: joint1, output: 0.0, record_events: false}
@@ -31,7 +31,7 @@ not_a_list: {type: test_controllers/EffortController, joint: joint1, fallback_co
 
 class FallbackTest : public ::testing::TestWithParam<const char*> {
  protected:
-  FallbackTest() : f(kYaml) {}
+  FallbackTest() : f(kFallbackYaml) {}
   ManagerFixture f;
 };
 
@@ -69,7 +69,7 @@ TEST_P(FallbackTest, FaultStartsTheFallbackInTheSameCycle) {
 INSTANTIATE_TEST_SUITE_P(EveryKindOfUpdateFault, FallbackTest, ::testing::Values("throws", "errors", "writes_nan"));
 
 TEST(Fallback, AHealthyControllerNeverStartsItsFallback) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kFallbackYaml);
   ASSERT_TRUE(f.manager.loadController("hold"));
   ASSERT_TRUE(f.manager.loadController("healthy"));
   ASSERT_TRUE(f.switchNow({"healthy"}, {}));
@@ -83,7 +83,7 @@ TEST(Fallback, AHealthyControllerNeverStartsItsFallback) {
 }
 
 TEST(Fallback, LoadChecksTheFallbacks) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kFallbackYaml);
   ASSERT_TRUE(f.manager.loadController("hold"));
   ASSERT_TRUE(f.manager.loadController("other_joint"));
   ASSERT_TRUE(f.manager.loadController("velocity_hold"));
@@ -100,7 +100,7 @@ TEST(Fallback, LoadChecksTheFallbacks) {
 }
 
 TEST(Fallback, AFallbackIsUnloadedAfterItsController) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kFallbackYaml);
   ASSERT_TRUE(f.manager.loadController("hold"));
   ASSERT_TRUE(f.manager.loadController("healthy"));
   const ServiceResult refused = f.manager.unloadController("hold");
@@ -117,7 +117,7 @@ TEST(Fallback, AFallbackIsUnloadedAfterItsController) {
 // collides with a fallback start is refused (never half done), and in the end
 // the two never run together. (The ThreadSanitizer lane runs this test.)
 TEST(Fallback, SwitchesRacingFaultsAndFallbackStarts) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kFallbackYaml);
   eventLogEnabled() = false;
   ASSERT_TRUE(f.manager.loadController("hold"));
   ASSERT_TRUE(f.manager.loadController("errors"));

@@ -10,7 +10,7 @@
 namespace servoloop::controller_manager::testing {
 namespace {
 
-const char* kYaml = R"(
+const char* kFaultYaml = R"(
 healthy: {type: test_controllers/EffortController, joint: joint2, output: 2.0, record_events: false}
 init_throws: {type: test_controllers/EffortController, joint: joint1, fail_in: init}
 starting_throws: {type: test_controllers/EffortController, joint: joint1, output: 5.0, fail_in: starting, record_events: false}
@@ -22,7 +22,7 @@ position_nan: {type: test_controllers/PositionController, joint: joint3, output:
 
 class FaultTest : public ::testing::Test {
  protected:
-  FaultTest() : f(kYaml) {}
+  FaultTest() : f(kFaultYaml) {}
   void SetUp() override { ASSERT_TRUE(f.manager.loadController("healthy")); }
 
   // Loads `name`, starts it with the healthy controller, runs 10 cycles.

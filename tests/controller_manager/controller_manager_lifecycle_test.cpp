@@ -7,7 +7,7 @@
 namespace servoloop::controller_manager::testing {
 namespace {
 
-const char* kYaml = R"(
+const char* kLifecycleYaml = R"(
 effort1: {type: test_controllers/EffortController, joint: joint1}
 effort2: {type: test_controllers/EffortController, joint: joint2}
 state: {type: test_controllers/StateController, joints: [joint1, joint2, joint3]}
@@ -21,7 +21,7 @@ velocity: {type: test_controllers/VelocityController, joint: joint1}
 )";
 
 TEST(ControllerManagerLoad, LoadedControllerIsListedInitializedWithItsClaims) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kLifecycleYaml);
   ASSERT_TRUE(f.manager.loadController("effort1"));
   ASSERT_TRUE(f.manager.loadController("multi"));
   const auto specs = f.manager.listControllers();
@@ -39,7 +39,7 @@ TEST(ControllerManagerLoad, LoadedControllerIsListedInitializedWithItsClaims) {
 }
 
 TEST(ControllerManagerLoad, ControllerSeesItsNameParamsAndTheManagerRate) {
-  ManagerFixture f(kYaml, 500.0);
+  ManagerFixture f(kLifecycleYaml, 500.0);
   ASSERT_TRUE(f.manager.loadController("effort2"));
   auto* controller = f.get<EffortTestController>("effort2");
   ASSERT_NE(controller, nullptr);
@@ -49,7 +49,7 @@ TEST(ControllerManagerLoad, ControllerSeesItsNameParamsAndTheManagerRate) {
 }
 
 TEST(ControllerManagerLoad, DuplicateNameFails) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kLifecycleYaml);
   ASSERT_TRUE(f.manager.loadController("effort1"));
   const ServiceResult again = f.manager.loadController("effort1");
   EXPECT_FALSE(again);
@@ -59,7 +59,7 @@ TEST(ControllerManagerLoad, DuplicateNameFails) {
 }
 
 TEST(ControllerManagerLoad, MissingTypeParameterNamesThePath) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kLifecycleYaml);
   const ServiceResult result = f.manager.loadController("no_type");
   EXPECT_FALSE(result);
   EXPECT_TRUE(contains(result.message, "'/test_robot/no_type/type' is missing")) << result.message;
@@ -71,7 +71,7 @@ TEST(ControllerManagerLoad, MissingTypeParameterNamesThePath) {
 }
 
 TEST(ControllerManagerLoad, UnknownTypeIsNamedWithTheKnownTypes) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kLifecycleYaml);
   const ServiceResult result = f.manager.loadController("bad_type");
   EXPECT_FALSE(result);
   EXPECT_TRUE(contains(result.message, "unknown controller type 'nope/NoSuchController'")) << result.message;
@@ -79,7 +79,7 @@ TEST(ControllerManagerLoad, UnknownTypeIsNamedWithTheKnownTypes) {
 }
 
 TEST(ControllerManagerLoad, InitExceptionIsAFailedLoadCarryingItsMessageAndTheManagerGoesOn) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kLifecycleYaml);
   const int destroyed_before = EffortTestController::destroyed().load();
   const ServiceResult result = f.manager.loadController("throws");
   EXPECT_FALSE(result);
@@ -92,7 +92,7 @@ TEST(ControllerManagerLoad, InitExceptionIsAFailedLoadCarryingItsMessageAndTheMa
 }
 
 TEST(ControllerManagerLoad, InitReturningFalseOrBadJointOrMissingInterfaceFails) {
-  ManagerFixture f(kYaml, 1000.0, /*offer_velocity=*/false);
+  ManagerFixture f(kLifecycleYaml, 1000.0, /*offer_velocity=*/false);
   const ServiceResult says_no = f.manager.loadController("says_no");
   EXPECT_FALSE(says_no);
   EXPECT_TRUE(contains(says_no.message, "init returned false")) << says_no.message;
@@ -115,7 +115,7 @@ TEST(ControllerManagerLoad, NonNumericUpdateRateFails) {
 }
 
 TEST(ControllerManagerUnload, UnknownOrRunningFailsStoppedIsDestroyed) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kLifecycleYaml);
   EXPECT_FALSE(f.manager.unloadController("effort1"));
   ASSERT_TRUE(f.manager.loadController("effort1"));
   ASSERT_TRUE(f.switchNow({"effort1"}, {}));
@@ -136,7 +136,7 @@ TEST(ControllerManagerUnload, UnknownOrRunningFailsStoppedIsDestroyed) {
 }
 
 TEST(ControllerManagerList, TypesComeFromTheFactorySorted) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kLifecycleYaml);
   const auto types = f.manager.listControllerTypes();
   EXPECT_EQ(types, (std::vector<std::string>{
                        "test_controllers/EffortController", "test_controllers/MultiController",
@@ -145,7 +145,7 @@ TEST(ControllerManagerList, TypesComeFromTheFactorySorted) {
 }
 
 TEST(ControllerManagerReload, RefusesWhileLoadedUnlessForceKill) {
-  ManagerFixture f(kYaml);
+  ManagerFixture f(kLifecycleYaml);
   ASSERT_TRUE(f.manager.loadController("effort1"));
   ASSERT_TRUE(f.manager.loadController("state"));
   ASSERT_TRUE(f.switchNow({"effort1"}, {}));

@@ -38,14 +38,14 @@ TEST(ChooseUpdateRate, DivisorsAndNearestAchievableRates) {
   EXPECT_TRUE(chooseUpdateRate(0.0, 0.0).exact);
 }
 
-const char* kYaml = R"(
+const char* kRateYaml = R"(
 fast: {type: test_controllers/EffortController, joint: joint1, record_events: false}
 slow: {type: test_controllers/EffortController, joint: joint2, update_rate: 100, record_events: false}
 odd: {type: test_controllers/EffortController, joint: joint3, update_rate: 300, record_events: false}
 )";
 
 TEST(ControllerManagerRate, HundredHertzInAThousandHertzManagerUpdatesTenTimesLessWithPeriodOneHundredth) {
-  ManagerFixture f(kYaml, 1000.0);
+  ManagerFixture f(kRateYaml, 1000.0);
   ASSERT_TRUE(f.manager.loadController("fast"));
   ASSERT_TRUE(f.manager.loadController("slow"));
   ASSERT_TRUE(f.switchNow({"fast", "slow"}, {}));
@@ -67,7 +67,7 @@ TEST(ControllerManagerRate, HundredHertzInAThousandHertzManagerUpdatesTenTimesLe
 }
 
 TEST(ControllerManagerRate, NonDivisorRateUsesTheNearestDivisorWithAWarning) {
-  ManagerFixture f(kYaml, 1000.0);
+  ManagerFixture f(kRateYaml, 1000.0);
   std::string log;
   {
     LogCapture capture;
@@ -88,7 +88,7 @@ TEST(ControllerManagerRate, NonDivisorRateUsesTheNearestDivisorWithAWarning) {
 }
 
 TEST(ControllerManagerRate, PeriodIsTheTrueTimeSinceTheLastUpdate) {
-  ManagerFixture f(kYaml, 1000.0);
+  ManagerFixture f(kRateYaml, 1000.0);
   ASSERT_TRUE(f.manager.loadController("slow"));
   ASSERT_TRUE(f.manager.requestSwitch(SwitchRequest{{"slow"}, {}, SwitchStrictness::STRICT, false, 0}));
   // Uneven control times (a loop that overran): the period is the difference
@@ -109,7 +109,7 @@ TEST(ControllerManagerRate, PeriodIsTheTrueTimeSinceTheLastUpdate) {
 }
 
 TEST(ControllerManagerRate, RestartedControllerCountsFromItsNewStart) {
-  ManagerFixture f(kYaml, 1000.0);
+  ManagerFixture f(kRateYaml, 1000.0);
   ASSERT_TRUE(f.manager.loadController("slow"));
   ASSERT_TRUE(f.switchNow({"slow"}, {}));
   f.cycles_n(15);

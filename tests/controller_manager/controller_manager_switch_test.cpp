@@ -11,7 +11,7 @@
 namespace servoloop::controller_manager::testing {
 namespace {
 
-const char* kYaml = R"(
+const char* kSwitchYaml = R"(
 a: {type: test_controllers/EffortController, joint: joint1, output: 1.0}
 b: {type: test_controllers/EffortController, joint: joint2, output: 2.0}
 a_too: {type: test_controllers/EffortController, joint: joint1, output: 3.0}
@@ -21,7 +21,7 @@ quitter: {type: test_controllers/EffortController, joint: joint3, fail_in: deact
 
 class SwitchTest : public ::testing::Test {
  protected:
-  SwitchTest() : f(kYaml) {}
+  SwitchTest() : f(kSwitchYaml) {}
   void SetUp() override {
     for (const char* name : {"a", "b", "a_too", "state", "quitter"}) {
       ASSERT_TRUE(f.manager.loadController(name)) << name;
@@ -79,7 +79,7 @@ TEST_F(SwitchTest, HardwareFirstThenStopListThenStartList) {
 TEST_F(SwitchTest, AFailedModeSwitchAbortsTheWholeSwitch) {
   for (const bool throws : {false, true}) {
     SCOPED_TRACE(throws ? "doSwitch throws" : "doSwitch returns an error");
-    ManagerFixture g(kYaml);
+    ManagerFixture g(kSwitchYaml);
     ASSERT_TRUE(g.manager.loadController("a"));
     ASSERT_TRUE(g.manager.loadController("a_too"));
     ASSERT_TRUE(g.switchNow({"a"}, {}));

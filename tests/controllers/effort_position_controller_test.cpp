@@ -23,7 +23,6 @@ using testing::TestJointsHW;
 using StateMsg = servoloop::control_msgs::JointControllerState;
 using Float64 = servoloop::std_msgs::Float64;
 
-constexpr double kPi = std::numbers::pi;
 
 class EffortPositionTest : public ::testing::Test {
  protected:
@@ -99,12 +98,12 @@ TEST_F(EffortPositionTest, ContinuousJointTakesTheShortWayRound) {
   controller.update(Time(0.001), Duration(0.001));
   EXPECT_DOUBLE_EQ(controller.setpoint(), 3.0);  // no clamping
   // From -3 to 3 through ±π: 6 - 2π (about -0.283), not +6.
-  EXPECT_NEAR(effortOf("cont"), 6.0 - 2.0 * kPi, 1e-12);
+  EXPECT_NEAR(effortOf("cont"), 6.0 - 2.0 * std::numbers::pi, 1e-12);
 
   hw.position[hw.index("cont")] = 3.0;
   command(-3.0);
   controller.update(Time(0.002), Duration(0.001));
-  EXPECT_NEAR(effortOf("cont"), 2.0 * kPi - 6.0, 1e-12);
+  EXPECT_NEAR(effortOf("cont"), 2.0 * std::numbers::pi - 6.0, 1e-12);
 }
 
 TEST_F(EffortPositionTest, PrismaticJointUsesTheDifferenceWithinItsLimits) {
@@ -125,7 +124,7 @@ TEST_F(EffortPositionTest, RevoluteWiderThanATurnMayWrapInsideItsLimits) {
   controller.startRequest(Time(0.0));
   command(-3.0);  // also reachable as -3 + 2π = 3.283 inside the limits
   controller.update(Time(0.001), Duration(0.001));
-  EXPECT_NEAR(effortOf("wide"), 2.0 * kPi - 6.0, 1e-12);
+  EXPECT_NEAR(effortOf("wide"), 2.0 * std::numbers::pi - 6.0, 1e-12);
 }
 
 TEST_F(EffortPositionTest, StartingHoldsTheCurrentPositionAndResetsThePid) {

@@ -20,7 +20,6 @@ using testing::TestJointsHW;
 using Float64 = servoloop::std_msgs::Float64;
 using JointStateMsg = servoloop::sensor_msgs::JointState;
 
-constexpr double kPi = std::numbers::pi;
 
 class MinimalJointControllerTest : public ::testing::Test {
  protected:
@@ -61,10 +60,10 @@ TEST_F(MinimalJointControllerTest, ErrorWrapsIntoMinusPiToPi) {
   };
   controller.startRequest(Time(0.0));
   // cmd 3, q -3: the error is 6 - 2π, not 6.
-  EXPECT_NEAR(effortFor(3.0, -3.0, 0.5), 2.0 * (6.0 - 2.0 * kPi) - 0.5 * 0.5, 1e-12);
+  EXPECT_NEAR(effortFor(3.0, -3.0, 0.5), 2.0 * (6.0 - 2.0 * std::numbers::pi) - 0.5 * 0.5, 1e-12);
   // cmd -π, q 0: (-π, π] puts the error at +π.
-  EXPECT_NEAR(effortFor(-kPi, 0.0, 0.0), 2.0 * kPi, 1e-12);
-  EXPECT_NEAR(effortFor(kPi, 0.0, 0.0), 2.0 * kPi, 1e-12);
+  EXPECT_NEAR(effortFor(-std::numbers::pi, 0.0, 0.0), 2.0 * std::numbers::pi, 1e-12);
+  EXPECT_NEAR(effortFor(std::numbers::pi, 0.0, 0.0), 2.0 * std::numbers::pi, 1e-12);
   EXPECT_NEAR(effortFor(0.5, 0.25, -1.0), 2.0 * 0.25 + 0.5 * 1.0, 1e-12);
 }
 

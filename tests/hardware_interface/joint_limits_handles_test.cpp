@@ -13,6 +13,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/interface_manager.hpp"
 #include "servoloop/hardware_interface/joint_limits_interface.hpp"
+#include "expect_contains.hpp"
 
 namespace hi = servoloop::hardware_interface;
 using servoloop::Duration;
@@ -72,9 +73,6 @@ std::string errorOf(F&& f) {
   }
   return "(no servoloop::Error)";
 }
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include "servoloop/hardware_interface/joint_limits_loader.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
 #include "servoloop/hardware_interface/joint_limits_yaml.hpp"
+#include "expect_contains.hpp"
 
 namespace hi = servoloop::hardware_interface;
 
@@ -49,9 +50,6 @@ std::string configErrorOf(F&& f) {
   }
   return "(no ConfigError)";
 }
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
 
 }  // namespace
 

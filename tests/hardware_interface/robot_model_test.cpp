@@ -9,15 +9,13 @@
 
 #include "log_capture.hpp"
 #include "servoloop/core/errors.hpp"
+#include "expect_contains.hpp"
 
 namespace servoloop {
 namespace {
 
 // gmock is not linked into this test: a plain substring check with the full
 // message in the failure output.
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
-
 const std::string kSeedDir = std::string(SERVOLOOP_SEED_DIR) + "/";
 const std::string kAssetsDir = std::string(SERVOLOOP_SOURCE_DIR) + "/tests/assets/";
 

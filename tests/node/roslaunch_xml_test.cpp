@@ -11,6 +11,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/node/launch_file.hpp"
 #include "temp_dir.hpp"
+#include "expect_contains.hpp"
 
 namespace servoloop::node {
 namespace {
@@ -20,9 +21,6 @@ using servoloop::testing::TempDir;
 using servoloop::testing::writeFile;
 
 const fs::path kOneDof = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
 
 // A one-joint robot; `extra` goes inside <robot>.
 std::string robotUrdf(const std::string& name, const std::string& extra = "") {

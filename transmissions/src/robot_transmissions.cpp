@@ -11,16 +11,12 @@
 #include "servoloop/hardware_interface/robot_model.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
+#include "urdf_joint_kind.hpp"
 
 namespace servoloop::transmissions {
 namespace {
 
 namespace hi = hardware_interface;
-
-bool isSingleDofMovable(const urdf::Joint& joint) {
-  return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
-         joint.type == urdf::Joint::PRISMATIC;
-}
 
 JointCommandInterfaces commandInterfacesOf(const TransmissionJointInfo& joint) {
   constexpr std::string_view kPrefix = "hardware_interface/";
@@ -50,7 +46,7 @@ RobotTransmissions::RobotTransmissions(const urdf::ModelInterface& robot,
   if (options.implicit_simple_transmissions) {
     // urdfdom keeps joints in a name-ordered map, so implicit joints come by name.
     for (const auto& [name, urdf_joint] : robot.joints_) {
-      if (!urdf_joint || !isSingleDofMovable(*urdf_joint) || hasJoint(name)) continue;
+      if (!urdf_joint || !detail::isSingleDofMovable(*urdf_joint) || hasJoint(name)) continue;
       // A mimic joint follows its leader through the physics; it is not
       // actuated on its own (it gets an actuator only from a <transmission>).
       if (urdf_joint->mimic) continue;
@@ -102,7 +98,7 @@ void RobotTransmissions::addTransmission(const TransmissionInfo& info,
 
   for (const TransmissionJointInfo& joint : info.joints) {
     const urdf::JointConstSharedPtr urdf_joint = robot.getJoint(joint.name);
-    if (!urdf_joint || !isSingleDofMovable(*urdf_joint)) {
+    if (!urdf_joint || !detail::isSingleDofMovable(*urdf_joint)) {
       throw ConfigError(where + "joint '" + joint.name + "' is not a revolute, continuous or " +
                         "prismatic joint of robot '" + robot.getName() +
                         "'; fix the joint name in the <transmission>");

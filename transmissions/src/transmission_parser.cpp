@@ -19,6 +19,7 @@
 #include "servoloop/transmissions/differential_transmission.hpp"
 #include "servoloop/transmissions/four_bar_linkage_transmission.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
+#include "urdf_joint_kind.hpp"
 
 namespace servoloop::transmissions {
 namespace {
@@ -81,15 +82,10 @@ std::optional<double> parseNumber(const std::string& text) {
   return value;
 }
 
-bool isSingleDofMovable(const urdf::Joint& joint) {
-  return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
-         joint.type == urdf::Joint::PRISMATIC;
-}
-
 std::string movableJointList(const urdf::ModelInterface& robot) {
   std::string names;
   for (const auto& [name, joint] : robot.joints_) {
-    if (joint && isSingleDofMovable(*joint)) names += (names.empty() ? "" : ", ") + name;
+    if (joint && detail::isSingleDofMovable(*joint)) names += (names.empty() ? "" : ", ") + name;
   }
   return names.empty() ? "none" : names;
 }
@@ -100,7 +96,7 @@ std::string join(const std::vector<std::string>& items) {
   return text;
 }
 
-std::vector<std::string> commandInterfacesOf(const TransmissionJointInfo& joint) {
+std::vector<std::string> commandInterfaceNames(const TransmissionJointInfo& joint) {
   std::vector<std::string> commands;
   for (const auto& iface : joint.hardware_interfaces) {
     if (iface != "JointStateInterface") commands.push_back(iface);
@@ -240,7 +236,7 @@ void readJoints(const tinyxml2::XMLElement* transmission, const urdf::ModelInter
     if (!urdf_joint) {
       problems.add(owner + " is not a joint of robot '" + robot.getName() +
                    "'; fix the name (the robot's movable joints: " + movableJointList(robot) + ")");
-    } else if (!isSingleDofMovable(*urdf_joint)) {
+    } else if (!detail::isSingleDofMovable(*urdf_joint)) {
       problems.add(owner +
                    " is not a revolute, continuous or prismatic joint; a transmission drives "
                    "one movable degree of freedom, so remove the <joint> or change the joint type");
@@ -349,10 +345,10 @@ void validateForType(TransmissionInfo& info, const TypeRule& rule, Problems& pro
 
   // A coupled mechanism cannot take an effort on one joint and a position on the other.
   if (info.joints.size() == 2 &&
-      commandInterfacesOf(info.joints[0]) != commandInterfacesOf(info.joints[1])) {
+      commandInterfaceNames(info.joints[0]) != commandInterfaceNames(info.joints[1])) {
     problems.add("joints '" + info.joints[0].name + "' (" +
-                 join(commandInterfacesOf(info.joints[0])) + ") and '" + info.joints[1].name +
-                 "' (" + join(commandInterfacesOf(info.joints[1])) +
+                 join(commandInterfaceNames(info.joints[0])) + ") and '" + info.joints[1].name +
+                 "' (" + join(commandInterfaceNames(info.joints[1])) +
                  ") name different command interfaces; a " + rule.short_name +
                  " couples its joints, so give both the same <hardwareInterface> list");
   }
