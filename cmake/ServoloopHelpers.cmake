@@ -33,6 +33,13 @@ function(servoloop_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LINK;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LINK} servoloop_test_support GTest::gtest GTest::gtest_main)
+  # The test code itself unoptimised: it compiles in half the time, and what
+  # it tests (the libraries, plugins and the command) keeps its own -O2.
+  # Physics tests stay optimised: they compile engine code and integrate
+  # reference solutions themselves (tens of times slower at -O0).
+  if(SERVOLOOP_UNOPTIMISED_TESTS AND NOT "physics" IN_LIST ARG_LABELS)
+    target_compile_options(${name} PRIVATE -O0)
+  endif()
   target_compile_definitions(${name} PRIVATE
     SERVOLOOP_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SERVOLOOP_SEED_DIR="${PROJECT_SOURCE_DIR}/robots/one_dof")

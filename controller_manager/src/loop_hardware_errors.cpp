@@ -2,7 +2,7 @@
 // the non-real-time side through a single atomic flag.
 #include "servoloop/controller_manager/loop_hardware_errors.hpp"
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 namespace servoloop::controller_manager {
 

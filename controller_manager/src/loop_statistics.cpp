@@ -3,7 +3,7 @@
 
 #include <thread>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 namespace servoloop::controller_manager {
 

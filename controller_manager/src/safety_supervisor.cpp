@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 

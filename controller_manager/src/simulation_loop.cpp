@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/controller_manager/loop_clock.hpp"

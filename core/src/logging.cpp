@@ -5,6 +5,7 @@
 #include <string>
 
 #include <spdlog/details/null_mutex.h>
+#include <spdlog/spdlog.h>
 #include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
@@ -39,12 +40,34 @@ std::shared_ptr<spdlog::logger> makeLogger() {
   }
   return log;
 }
+
+constexpr spdlog::level::level_enum toSpdlog(LogLevel level) {
+  switch (level) {
+    case LogLevel::trace: return spdlog::level::trace;
+    case LogLevel::debug: return spdlog::level::debug;
+    case LogLevel::info: return spdlog::level::info;
+    case LogLevel::warn: return spdlog::level::warn;
+    case LogLevel::error: return spdlog::level::err;
+    case LogLevel::critical: return spdlog::level::critical;
+    case LogLevel::off: return spdlog::level::off;
+  }
+  return spdlog::level::off;
+}
 }  // namespace
 
-spdlog::logger& logger() {
+spdlog::logger& spdlogLogger() {
   static std::shared_ptr<spdlog::logger> instance = makeLogger();
   return *instance;
 }
+
+Logger& logger() {
+  static Logger instance;
+  return instance;
+}
+
+bool Logger::shouldLog(LogLevel level) const noexcept { return spdlogLogger().should_log(toSpdlog(level)); }
+
+void Logger::write(LogLevel level, std::string_view text) { spdlogLogger().log(toSpdlog(level), text); }
 
 ThreadLogCapture::ThreadLogCapture() : outer_(t_capture) { t_capture = this; }
 
@@ -57,7 +80,7 @@ void setLogLevel(std::string_view level) {
     throw Error("unknown log level '" + name +
                 "'; use one of trace, debug, info, warn, error, off");
   }
-  logger().set_level(parsed);
+  spdlogLogger().set_level(parsed);
 }
 
 }  // namespace servoloop

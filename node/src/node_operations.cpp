@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <limits>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/ipc/ipc_protocol.hpp"

@@ -8,7 +8,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 #include "servoloop/core/logging.hpp"
 

@@ -1,7 +1,7 @@
 // robotDiagnostics: a robot's loop, safety and controllers as DiagnosticStatus entries.
 #include "servoloop/node/robot_diagnostics.hpp"
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 #include "servoloop/node/robot_instance.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 #include <tinyxml2.h>
 
 #include "servoloop/params/parameter_store.hpp"

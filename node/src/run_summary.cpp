@@ -1,6 +1,6 @@
 #include "servoloop/node/run_summary.hpp"
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 namespace servoloop::node {
 

@@ -2,6 +2,7 @@
 // Captures what servoloop's logger writes while it is alive, for tests that
 // check a warning was given (and given once).
 #include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <cstddef>
 #include <memory>
@@ -15,10 +16,10 @@ namespace servoloop::test {
 class LogCapture {
  public:
   LogCapture() : sink_(std::make_shared<spdlog::sinks::ostream_sink_mt>(stream_)) {
-    logger().sinks().push_back(sink_);
+    spdlogLogger().sinks().push_back(sink_);
   }
   ~LogCapture() {
-    auto& sinks = logger().sinks();
+    auto& sinks = spdlogLogger().sinks();
     for (auto it = sinks.begin(); it != sinks.end(); ++it) {
       if (*it == sink_) {
         sinks.erase(it);
@@ -30,7 +31,7 @@ class LogCapture {
   LogCapture& operator=(const LogCapture&) = delete;
 
   std::string text() {
-    logger().flush();
+    spdlogLogger().flush();
     return stream_.str();
   }
   // How many times `needle` occurs in what was logged.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/controller_manager/controller.hpp"
@@ -244,19 +245,19 @@ class CountingFactory : public InProcessControllerFactory {
 class LogCapture {
  public:
   LogCapture()
-      : sink_(std::make_shared<spdlog::sinks::ostream_sink_mt>(stream_)), level_(logger().level()) {
-    logger().sinks().push_back(sink_);
-    if (level_ > spdlog::level::info) logger().set_level(spdlog::level::info);
+      : sink_(std::make_shared<spdlog::sinks::ostream_sink_mt>(stream_)), level_(spdlogLogger().level()) {
+    spdlogLogger().sinks().push_back(sink_);
+    if (level_ > spdlog::level::info) spdlogLogger().set_level(spdlog::level::info);
   }
   ~LogCapture() {
-    auto& sinks = logger().sinks();
+    auto& sinks = spdlogLogger().sinks();
     for (auto it = sinks.begin(); it != sinks.end(); ++it) {
       if (*it == sink_) {
         sinks.erase(it);
         break;
       }
     }
-    logger().set_level(level_);
+    spdlogLogger().set_level(level_);
   }
   std::string text() const { return stream_.str(); }
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 namespace servoloop::cli {
 
