@@ -10,7 +10,7 @@
 #include <initializer_list>
 #include <sstream>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/core/text_file.hpp"
@@ -34,12 +34,17 @@ class Parser {
   Parser(std::string_view source_name, fs::path base_directory)
       : source_(source_name), base_(std::move(base_directory)) {}
 
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& problem) const {
+  // "file:line:column: key" of a node, for errors.
+  std::string at(const YAML::Node& node, const std::string& key) const {
     std::string where = source_;
     if (node.IsDefined() && node.Mark().line >= 0) {
       where += fmt::format(":{}:{}", node.Mark().line + 1, node.Mark().column + 1);
     }
-    throw ConfigError(where + ": " + (key.empty() ? "" : key + ": ") + problem);
+    return key.empty() ? where : where + ": " + key;
+  }
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& problem) const {
+    throw ConfigError(at(node, key) + ": " + problem);
   }
 
   void requireMap(const YAML::Node& node, const std::string& key, const char* example) const {
@@ -306,7 +311,8 @@ class Parser {
     const std::string type = node["type"] ? string(node["type"], key + ".type") : "";
     const double time_s = node["time"] ? nonNegativeNumber(node["time"], key + ".time", "s of simulated time") : 0.0;
     try {
-      return makeTimedPublication(topic_name, type, yamlToJson(node["value"]), time_s, "");
+      return makeTimedPublication(topic_name, type, yamlToJson(node["value"]), time_s,
+                                  type.empty() ? at(node["value"], key + ".value") : "");
     } catch (const Error& e) {
       fail(node["value"], key + ".value", e.what());
     }
@@ -345,8 +351,20 @@ std::string knownTypesList() {
 
 TimedPublication makeTimedPublication(std::string topic, std::string type, const nlohmann::json& value,
                                       double time_s, std::string_view where) {
-  const std::string prefix = where.empty() ? "" : std::string(where) + ": ";
+  if (type.empty() && value.is_object()) {
+    // A message with fields: typed when the node knows what the topic
+    // carries (withTopicType).
+    TimedPublication untyped;
+    untyped.topic = std::move(topic);
+    untyped.type = kFloat64;
+    untyped.message = value;
+    untyped.time_s = time_s;
+    untyped.type_inferred = true;
+    untyped.origin = where;
+    return untyped;
+  }
   if (type.empty()) type = value.is_array() ? kFloat64MultiArray : kFloat64;
+  const std::string prefix = where.empty() ? "" : std::string(where) + ": ";
   if (!isKnownMessageType(type)) {
     throw Error(fmt::format("{}unknown message type '{}' (known types: {})", prefix, type, knownTypesList()));
   }
@@ -356,7 +374,19 @@ TimedPublication makeTimedPublication(std::string topic, std::string type, const
   } catch (const Error& e) {
     throw Error(prefix + e.what());
   }
-  return TimedPublication{std::move(topic), std::move(type), value, time_s};
+  TimedPublication typed;
+  typed.topic = std::move(topic);
+  typed.type = std::move(type);
+  typed.message = value;
+  typed.time_s = time_s;
+  typed.origin = where;
+  return typed;
+}
+
+TimedPublication withTopicType(const TimedPublication& publication, std::string_view topic_type) {
+  if (!publication.type_inferred) return publication;
+  const std::string type = !topic_type.empty() ? std::string(topic_type) : std::string(kFloat64);
+  return makeTimedPublication(publication.topic, type, publication.message, publication.time_s, publication.origin);
 }
 
 LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, const fs::path& base_directory) {
@@ -403,14 +433,24 @@ LaunchFile loadLaunchFile(const fs::path& path, const std::map<std::string, std:
 
 TimedPublication parsePubFlag(std::string_view text) {
   const std::string flag = fmt::format("--pub '{}'", text);
-  const std::string form = "expected TOPIC:=VALUE[@TIME], e.g. /robot/controller/command:=1.0@0.5";
+  const std::string form =
+      "expected TOPIC[:TYPE]:=VALUE[@TIME], e.g. /robot/controller/command:=1.0@0.5 or "
+      "/arm/controller/command:trajectory_msgs/JointTrajectory:='{joint_names: [j1], points: [...]}'";
   const std::size_t assign = text.find(":=");
   if (assign == std::string_view::npos || assign == 0 || assign + 2 == text.size()) {
     throw Error(flag + ": " + form);
   }
+  // A ROS name has no ':', so one before ':=' starts the message type.
+  std::string_view topic_text = text.substr(0, assign);
+  std::string type;
+  if (const std::size_t colon = topic_text.find(':'); colon != std::string_view::npos) {
+    type = std::string(topic_text.substr(colon + 1));
+    topic_text = topic_text.substr(0, colon);
+    if (type.empty() || topic_text.empty()) throw Error(flag + ": " + form);
+  }
   std::string topic;
   try {
-    topic = realtime::TopicBus::normalizeTopicName(text.substr(0, assign));
+    topic = realtime::TopicBus::normalizeTopicName(topic_text);
   } catch (const Error& e) {
     throw Error(flag + ": " + e.what());
   }
@@ -435,7 +475,7 @@ TimedPublication parsePubFlag(std::string_view text) {
   } catch (const Error& e) {
     throw Error(flag + ": " + e.what());
   }
-  return makeTimedPublication(std::move(topic), "", value, time_s, flag);
+  return makeTimedPublication(std::move(topic), std::move(type), value, time_s, flag);
 }
 
 RecordSpec parseRecordFlag(std::string_view text) {

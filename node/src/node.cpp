@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <thread>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 #include "servoloop/ipc/ipc_socket_path.hpp"
 #include "servoloop/node/message_json.hpp"
@@ -39,18 +39,25 @@ Node::Node(LaunchFile launch, NodeOptions options) : launch_(std::move(launch)),
 
   for (const RobotSpec& spec : launch_.robots) spawnRobot(spec);
 
-  for (const TimedPublication& publication : launch_.publish) {
-    RobotInstance* robot = robotForTopic(publication.topic);
+  for (const TimedPublication& written : launch_.publish) {
+    RobotInstance* robot = robotForTopic(written.topic);
     if (robot == nullptr) {
       throw ConfigError(fmt::format("{}: publication on '{}': the world has no robot to publish to; add one under robots:",
-                                    launch_.source.string(), publication.topic));
+                                    launch_.source.string(), written.topic));
     }
-    // A topic the controllers already created with another type would refuse
-    // the message at its time; say so now, before the run.
+    // One given without a type takes the type its topic carries (a
+    // trajectory controller's command topic takes a trajectory); a topic the
+    // controllers created with another type than the one given would refuse
+    // the message at its time. Both are said now, before the run.
+    const realtime::TopicBus& bus = robot->topics();
+    const std::string carried = bus.hasTopic(written.topic) ? bus.typeOf(written.topic) : "";
+    TimedPublication publication;
     try {
-      requireTopicType(robot->topics(), publication.topic, publication.type);
+      publication = withTopicType(written, carried);
+      requireTopicType(bus, publication.topic, publication.type);
     } catch (const Error& e) {
-      throw ConfigError(fmt::format("{}: publication: {}", launch_.source.string(), e.what()));
+      throw ConfigError(written.type_inferred ? std::string(e.what())
+                                              : fmt::format("{}: publication: {}", launch_.source.string(), e.what()));
     }
     robot->addTimedPublication(publication);
   }

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <chrono>
 
-#include <spdlog/fmt/fmt.h>
+#include <fmt/format.h>
 
 #include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/node/message_json.hpp"
@@ -240,14 +240,10 @@ RobotInstance::~RobotInstance() {
 }
 
 void RobotInstance::loadControllers(const RobotSpec& spec, const params::ParameterStore& store) {
-  // Where the parameters are is said once: when one controller's type is
-  // elsewhere, the others' usually are too.
-  bool hinted = false;
+  (void)store;
   const auto load = [&](const std::string& name) {
     if (loadController(name)) return true;
     launch_failures_.push_back("controller '" + name + "' did not load");
-    if (!hinted) hintWhereParametersAre(name, store);
-    hinted = true;
     return false;
   };
   // Stopped ones first: they include the fallbacks a started one may name
@@ -295,6 +291,21 @@ controller_manager::ServiceResult RobotInstance::loadController(const std::strin
       // A name or parameters the manager refuses: its load says why.
     }
   }
+  if (parameters_ != nullptr) {
+    // A type the manager would miss under the namespace but the parameters
+    // hold elsewhere: one error that says where it is and how to load it.
+    std::string elsewhere;
+    try {
+      elsewhere = whereParametersAre(name, *parameters_);
+    } catch (const std::exception&) {
+      // A name the manager refuses: its load says why.
+    }
+    if (!elsewhere.empty()) {
+      const std::string why = fmt::format("load controller '{}': {}", name, elsewhere);
+      logger().error("{}", why);
+      return controller_manager::ServiceResult::failure(why);
+    }
+  }
   if (!left_out.empty()) {
     const std::string why = fmt::format(
         "robot '{}': controller '{}' names joint '{}', which the simulation left out because the link it moves, or "
@@ -309,10 +320,13 @@ controller_manager::ServiceResult RobotInstance::loadController(const std::strin
 
 // A controller whose type is not under the robot's namespace often sits
 // elsewhere: a file of top-level controllers loaded at "/" (ROS loads it into
-// the namespace with <rosparam ns=...>). Say where its type was found.
-void RobotInstance::hintWhereParametersAre(const std::string& name, const params::ParameterStore& store) const {
+// the namespace with <rosparam ns=...>), or a file that nests its controllers
+// under the namespace and was loaded into it as well. Says where its type was
+// found and the fix; empty when the type is where the manager looks, or
+// nowhere (the manager's own error says to add it).
+std::string RobotInstance::whereParametersAre(const std::string& name, const params::ParameterStore& store) const {
   const std::string expected = params::resolveName(namespace_, name) + "/type";
-  if (store.has(expected)) return;
+  if (store.has(expected)) return "";
   const std::string suffix = "/" + name + "/type";
   std::string found;
   std::string deeper;  // the extra level of a file that already nests its controllers under the namespace
@@ -326,24 +340,19 @@ void RobotInstance::hintWhereParametersAre(const std::string& name, const params
       }
     }
   }
+  if (found.empty()) return "";
   if (!deeper.empty()) {
     // Loaded with ns: into the robot's namespace although the file nests its
     // controllers under it already: the usual fix (add ns:) is what was done.
-    logger().error("robot '{}': looked for '{}' but the parameters have {}: the file nests its controllers under "
-                   "'{}:' and was loaded into '{}' too; load it without `ns:` (or remove that level from the file)",
-                   namespace_, expected, found, deeper, namespace_);
-    return;
+    return fmt::format("parameter '{}' is missing, but the parameters have {}: the file nests its controllers under "
+                       "'{}:' and was loaded into '{}' too; load it without `ns:` (or remove that level from the file)",
+                       expected, found, deeper, namespace_);
   }
-  if (found.empty()) {
-    logger().error("robot '{}': no '{}' anywhere in the parameters; add the controller to a YAML file listed under "
-                   "the robot's params:",
-                   namespace_, suffix.substr(1));
-    return;
-  }
-  logger().error(
-      "robot '{}': looked for '{}' but the parameters have {}; load that file into the robot's namespace "
-      "(params: [{{file: FILE.yaml, ns: {}}}], as <rosparam ns=...>) or move the controller under it",
-      namespace_, expected, found, namespace_);
+  return fmt::format(
+      "parameter '{}' is missing, but the parameters have {}: the controller YAML was loaded outside the robot's "
+      "namespace; load it into it with `ns:` (params: [{{file: FILE.yaml, ns: {}}}], as <rosparam ns=...> does) or "
+      "move the controller under '{}'",
+      expected, found, namespace_, namespace_);
 }
 
 // Loop thread, before the first physics step. In the manager, a controller

@@ -279,11 +279,14 @@ TEST_P(FeatureRun, ControllersLoadedOutsideTheNamespaceAreFoundForTheError) {
 )");
   const CliResult result = launch(file, "--duration 0.1");
   EXPECT_EQ(result.status, 1) << result.err;
-  EXPECT_NE(result.err.find("looked for '/fingers/finger_a_effort/type' but the parameters have "
-                            "'/finger_a_effort/type'"),
+  EXPECT_NE(result.err.find("load controller 'finger_a_effort': parameter '/fingers/finger_a_effort/type' is "
+                            "missing, but the parameters have '/finger_a_effort/type'"),
             std::string::npos)
       << result.err;
   EXPECT_NE(result.err.find("ns: /fingers"), std::string::npos) << result.err;
+  // One error for the load, with the fix in it: not the manager's generic
+  // "add 'type:'" as well.
+  EXPECT_EQ(result.err.find("add 'type: <package>/<Controller>'"), std::string::npos) << result.err;
 
   // A file that already nests its controllers under the robot's name, loaded
   // into the namespace as well: the hint says to drop the ns:, not to add it.

@@ -199,7 +199,7 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"PublishBadTopic", "publish:\n  - {topic: '/a b', value: 1}", {"publish[0].topic"}},
         ErrorCase{"PublishUnknownType", "publish:\n  - {topic: /a, type: std_msgs/String, value: hi}",
                   {"publish[0].value", "unknown message type 'std_msgs/String'", "std_msgs/Float64"}},
-        ErrorCase{"PublishValueNotNumber", "publish:\n  - {topic: /a, value: {data: high}}",
+        ErrorCase{"PublishValueNotNumber", "publish:\n  - {topic: /a, value: high}",
                   {"publish[0].value", "std_msgs/Float64", "data"}},
         ErrorCase{"PublishNegativeTime", "publish:\n  - {topic: /a, value: 1, time: -2}",
                   {"publish[0].time", ">= 0 s of simulated time"}},
@@ -268,11 +268,56 @@ TEST(PubFlag, ArrayDefaultsToTimeZero) {
 }
 
 TEST(PubFlag, Errors) {
-  EXPECT_NE(flagErrorOf("/a/command=1.0").find("expected TOPIC:=VALUE[@TIME]"), std::string::npos);
-  EXPECT_NE(flagErrorOf(":=1.0").find("expected TOPIC:=VALUE[@TIME]"), std::string::npos);
+  EXPECT_NE(flagErrorOf("/a/command=1.0").find("expected TOPIC[:TYPE]:=VALUE[@TIME]"), std::string::npos);
+  EXPECT_NE(flagErrorOf(":=1.0").find("expected TOPIC[:TYPE]:=VALUE[@TIME]"), std::string::npos);
   EXPECT_NE(flagErrorOf("/a:=1.0@soon").find("TIME 'soon'"), std::string::npos);
   EXPECT_NE(flagErrorOf("/a:=1.0@-1").find("TIME '-1'"), std::string::npos);
-  EXPECT_NE(flagErrorOf("/a:={data: x}").find("--pub '/a:={data: x}'"), std::string::npos);
+  EXPECT_NE(flagErrorOf("/a:std_msgs/Float64:={data: x}").find("--pub '/a:std_msgs/Float64:={data: x}'"),
+            std::string::npos);
+  EXPECT_NE(flagErrorOf("/a:std_msgs/Float6:=1.0").find("unknown message type 'std_msgs/Float6'"), std::string::npos);
+  EXPECT_NE(flagErrorOf("/a::=1.0").find("expected TOPIC[:TYPE]:=VALUE[@TIME]"), std::string::npos);
+}
+
+// A message of any known type, named after the topic as `TOPIC:TYPE:=VALUE`.
+TEST(PubFlag, TypeAfterTheTopic) {
+  const TimedPublication publication = parsePubFlag(
+      "/arm/traj/command:trajectory_msgs/JointTrajectory:={joint_names: [j1, j2], "
+      "points: [{positions: [0.5, -0.25], time_from_start: 2.0}]}@1.5");
+  EXPECT_EQ(publication.topic, "/arm/traj/command");
+  EXPECT_EQ(publication.type, "trajectory_msgs/JointTrajectory");
+  EXPECT_FALSE(publication.type_inferred);
+  EXPECT_EQ(publication.message["joint_names"], nlohmann::json::parse(R"(["j1", "j2"])"));
+  EXPECT_DOUBLE_EQ(publication.message["points"][0]["positions"][1].get<double>(), -0.25);
+  EXPECT_DOUBLE_EQ(publication.time_s, 1.5);
+  // A typed publication keeps its type whatever the topic carries.
+  EXPECT_EQ(withTopicType(publication, "std_msgs/Float64").type, "trajectory_msgs/JointTrajectory");
+}
+
+// Without a type, a message with fields takes the type its topic carries (a
+// Float64 when the topic carries nothing yet). The value is checked against
+// that type then, and the error names the flag.
+TEST(PubFlag, WithoutATypeTakesTheTopicsType) {
+  const TimedPublication trajectory =
+      parsePubFlag("/arm/traj/command:={joint_names: [j1], points: [{positions: [1.0], time_from_start: 2.0}]}");
+  EXPECT_TRUE(trajectory.type_inferred);
+  const TimedPublication typed = withTopicType(trajectory, "trajectory_msgs/JointTrajectory");
+  EXPECT_EQ(typed.type, "trajectory_msgs/JointTrajectory");
+  EXPECT_FALSE(typed.type_inferred);
+  EXPECT_DOUBLE_EQ(typed.message["points"][0]["positions"][0].get<double>(), 1.0);
+
+  // A number and a list keep their types (a list on a Float64 topic is refused
+  // for its type at launch, with the topic's type in the error).
+  EXPECT_FALSE(parsePubFlag("/a:=2.0").type_inferred);
+  EXPECT_EQ(withTopicType(parsePubFlag("/a:=2.0"), "").type, "std_msgs/Float64");
+  EXPECT_EQ(withTopicType(parsePubFlag("/a:=[1, 2]"), "std_msgs/Float64").type, "std_msgs/Float64MultiArray");
+  EXPECT_EQ(withTopicType(parsePubFlag("/a:={data: 2.0}"), "").type, "std_msgs/Float64");
+  try {
+    withTopicType(trajectory, "");  // a trajectory on a topic nobody declared: not a Float64
+    ADD_FAILURE() << "a trajectory value was taken as std_msgs/Float64";
+  } catch (const servoloop::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--pub '/arm/traj/command:="), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("std_msgs/Float64"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RecordFlag, TopicAndRelativeFile) {

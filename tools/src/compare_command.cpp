@@ -275,7 +275,7 @@ void addCompareCommand(CLI::App& root) {
   compare->add_option("--pub", options->publications,
                       "Publish a std_msgs/Float64 (or a [a, b] array) at simulated TIME s (default 0) in both runs; "
                       "repeatable")
-      ->type_name("TOPIC:=VALUE[@TIME]");
+      ->type_name("TOPIC[:TYPE]:=VALUE[@TIME]");
   compare->add_option("--topic", options->topics,
                       "sensor_msgs/JointState topic to compare (repeatable; default: every robot's "
                       "<namespace>/joint_states)")

@@ -220,8 +220,9 @@ void addLaunchCommand(CLI::App& root) {
       ->type_name("FACTOR")
       ->check(numberWithin(0.0, 1e6, "simulated seconds per wall second; 0 = as fast as possible"));
   launch->add_option("--pub", options->publications,
-                     "Publish a std_msgs/Float64 (or a [a, b] array) at simulated TIME s (default 0); repeatable")
-      ->type_name("TOPIC:=VALUE[@TIME]");
+                     "Publish a message at simulated TIME s (default 0): a number is a std_msgs/Float64, [a, b] a "
+                     "Float64MultiArray, {field: ...} the type of its topic or TYPE; repeatable")
+      ->type_name("TOPIC[:TYPE]:=VALUE[@TIME]");
   launch->add_option("--record", options->recordings, "Record a topic to CSV; repeatable")->type_name("TOPIC=FILE.csv");
   launch->add_option("--plot", options->plot, "After the run, plot what was recorded to this PNG")->type_name("FILE.png");
   launch->add_flag("--json", options->json, "Print the end-of-run summary as one JSON object");

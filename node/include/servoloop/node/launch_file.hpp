@@ -90,6 +90,11 @@ struct TimedPublication {
   std::string type = "std_msgs/Float64";
   nlohmann::json message;  // JSON form (message_json.hpp), checked against type
   double time_s = 0.0;
+  // No type was given: the node publishes with the type the topic already
+  // carries (its controller's command type), else std_msgs/Float64 (or
+  // Float64MultiArray for [a, b]), and checks the message against it then.
+  bool type_inferred = false;
+  std::string origin;  // where it was written (a --pub flag, a launch file's key), for errors
 };
 
 // A topic recorded to CSV.
@@ -124,13 +129,21 @@ LaunchFile loadLaunchFile(const std::filesystem::path& path,
 LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name,
                            const std::filesystem::path& base_directory);
 
-// The message a --pub value stands for: a number → std_msgs/Float64, a list →
-// std_msgs/Float64MultiArray, anything else → `type` as given (must be known).
-// Throws servoloop::Error naming `where` when the value does not fit the type.
+// A timed publication of `value` as `type`. Throws servoloop::Error naming
+// `where` when the type is unknown or the value does not fit it. With no type,
+// a number is a std_msgs/Float64 and a list a std_msgs/Float64MultiArray; a
+// message with fields ({joint_names: ..., points: ...}) is checked later,
+// when withTopicType types it as its topic.
 TimedPublication makeTimedPublication(std::string topic, std::string type, const nlohmann::json& value,
                                       double time_s, std::string_view where);
 
-// "TOPIC:=VALUE[@TIME]" (the --pub flag). VALUE is YAML (1.0, [1, 2], {data: 1});
+// A message with fields given without a type, typed as its topic already
+// carries (`topic_type`, e.g. a trajectory controller's command topic), or as
+// std_msgs/Float64 when the topic carries nothing yet (""); then checked as
+// makeTimedPublication does. A typed publication comes back as it is.
+TimedPublication withTopicType(const TimedPublication& publication, std::string_view topic_type);
+
+// "TOPIC[:TYPE]:=VALUE[@TIME]" (the --pub flag). VALUE is YAML (1.0, [1, 2], {data: 1});
 // TIME in simulated seconds, default 0. Relative paths: none. Throws
 // servoloop::Error naming the flag and the expected form.
 TimedPublication parsePubFlag(std::string_view text);

@@ -183,7 +183,7 @@ class RobotInstance {
   void publish(const TimedPublication& publication);
   void createLoop(bool hardware_robot, bool wall_clock, double update_rate_hz);
   void loadControllers(const RobotSpec& spec, const params::ParameterStore& store);
-  void hintWhereParametersAre(const std::string& name, const params::ParameterStore& store) const;
+  std::string whereParametersAre(const std::string& name, const params::ParameterStore& store) const;
   void startLaunchControllers();
   void reportLaunchStartFailure(const std::vector<std::string>& controllers, const std::string& why);
   bool waitForRecovery();
