@@ -98,8 +98,8 @@ Value literalized(Value v) { return v.kind == Value::Kind::String ? xacro::liter
 Value fromYaml(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Map: {
-      std::map<std::string, Value> items;
-      for (const auto& kv : node) items[kv.first.Scalar()] = fromYaml(kv.second);
+      Value::DictItems items;
+      for (const auto& kv : node) items.emplace_back(kv.first.Scalar(), fromYaml(kv.second));
       return Value::ofDict(std::move(items));
     }
     case YAML::NodeType::Sequence: {
@@ -212,6 +212,8 @@ class Expander : public xacro::Names {
 
   // ----- properties and names -----
 
+  // A property by name, or `ns.name` in the namespace of <xacro:include ns="ns">.
+  // (A dict's keys after the name, cfg.joints.max, are the expression's to read.)
   std::optional<Value> lookupIn(Scope& scope, const std::string& name) {
     for (Scope* s = &scope; s != nullptr; s = s->parent) {
       if (auto it = s->properties.find(name); it != s->properties.end()) return resolve(*s, name, it->second);
@@ -219,25 +221,10 @@ class Expander : public xacro::Names {
     const auto dot = name.find('.');
     if (dot == std::string::npos) return std::nullopt;
     const std::string head = name.substr(0, dot);
-    const std::string rest = name.substr(dot + 1);
     for (Scope* s = &scope; s != nullptr; s = s->parent) {
-      if (auto it = s->namespaces.find(head); it != s->namespaces.end()) return lookupIn(*it->second, rest);
+      if (auto it = s->namespaces.find(head); it != s->namespaces.end()) return lookupIn(*it->second, name.substr(dot + 1));
     }
-    std::optional<Value> value = lookupIn(scope, head);
-    if (!value) return std::nullopt;
-    std::string path = rest;
-    while (!path.empty()) {
-      const auto next = path.find('.');
-      const std::string key = path.substr(0, next);
-      if (value->kind != Value::Kind::Dict) {
-        throw ExpressionError("'" + name + "': '" + head + "' is a " + xacro::typeName(*value) + ", not a dict");
-      }
-      const auto it = value->dict->find(key);
-      if (it == value->dict->end()) throw ExpressionError("'" + name + "': no key '" + key + "'");
-      value = it->second;
-      path = next == std::string::npos ? "" : path.substr(next + 1);
-    }
-    return value;
+    return std::nullopt;
   }
 
   Value resolve(Scope& owner, const std::string& name, Property& property) {

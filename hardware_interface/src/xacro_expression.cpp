@@ -1,13 +1,16 @@
 #include "xacro_expression.hpp"
 
-#include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <functional>
 #include <limits>
-#include <map>
+#include <optional>
 #include <vector>
+
+#include "xacro_builtins.hpp"
+#include "xacro_methods.hpp"
+#include "xacro_operators.hpp"
 
 namespace servoloop::xacro {
 namespace {
@@ -17,14 +20,23 @@ struct Token {
   Kind kind = Kind::End;
   std::string text;
   Value number;
+  std::size_t begin = 0;  // where the token stands in the expression, for messages
+  std::size_t end = 0;
 };
 
-// Python's numeric tower for the operators: bool and int stay int, anything
-// with a float becomes float.
-bool integral(const Value& v) { return v.kind == Value::Kind::Int || v.kind == Value::Kind::Bool; }
-long long asInt(const Value& v) { return v.kind == Value::Kind::Bool ? (v.boolean ? 1 : 0) : v.integer; }
-
-[[noreturn]] void fail(const std::string& message) { throw ExpressionError(message); }
+// Python's backslash escapes in a string literal; an unknown one keeps its backslash.
+char escaped(char c, bool& known) {
+  known = true;
+  switch (c) {
+    case 'n': return '\n';
+    case 't': return '\t';
+    case 'r': return '\r';
+    case '\\':
+    case '\'':
+    case '"': return c;
+    default: known = false; return c;
+  }
+}
 
 std::vector<Token> tokenize(const std::string& s) {
   std::vector<Token> tokens;
@@ -36,6 +48,7 @@ std::vector<Token> tokenize(const std::string& s) {
       continue;
     }
     Token t;
+    t.begin = i;
     if (std::isdigit(static_cast<unsigned char>(c)) || (c == '.' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])))) {
       std::size_t j = i;
       bool is_float = false;
@@ -72,11 +85,7 @@ std::vector<Token> tokenize(const std::string& s) {
       i = j;
     } else if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
       std::size_t j = i;
-      while (j < s.size() && (std::isalnum(static_cast<unsigned char>(s[j])) || s[j] == '_' ||
-                              (s[j] == '.' && j + 1 < s.size() &&
-                               (std::isalpha(static_cast<unsigned char>(s[j + 1])) || s[j + 1] == '_')))) {
-        ++j;
-      }
+      while (j < s.size() && (std::isalnum(static_cast<unsigned char>(s[j])) || s[j] == '_')) ++j;
       t.kind = Token::Kind::Name;
       t.text = s.substr(i, j - i);
       i = j;
@@ -84,7 +93,14 @@ std::vector<Token> tokenize(const std::string& s) {
       std::size_t j = i + 1;
       std::string text;
       while (j < s.size() && s[j] != c) {
-        if (s[j] == '\\' && j + 1 < s.size()) ++j;
+        if (s[j] == '\\' && j + 1 < s.size()) {
+          bool known = false;
+          const char e = escaped(s[j + 1], known);
+          if (!known) text += '\\';
+          text += e;
+          j += 2;
+          continue;
+        }
         text += s[j++];
       }
       if (j >= s.size()) fail("a string starting at " + s.substr(i, 10) + " is not closed");
@@ -92,8 +108,8 @@ std::vector<Token> tokenize(const std::string& s) {
       t.text = text;
       i = j + 1;
     } else {
-      static const char* const kOps[] = {"**", "//", "==", "!=", "<=", ">=", "<", ">", "+", "-", "*",
-                                         "/",  "%",  "(",  ")",  "[",  "]",  ",", ":", "{", "}"};
+      static const char* const kOps[] = {"**", "//", "==", "!=", "<=", ">=", "<", ">", "+", "-", "*", "/",
+                                         "%",  "(",  ")",  "[",  "]",  ",",  ":", "{", "}", ".", "="};
       bool matched = false;
       for (const char* op : kOps) {
         const std::string o(op);
@@ -107,255 +123,49 @@ std::vector<Token> tokenize(const std::string& s) {
       }
       if (!matched) fail(std::string("unexpected character '") + c + "'");
     }
+    t.end = i;
     tokens.push_back(std::move(t));
   }
-  tokens.push_back(Token{});
+  Token end;
+  end.begin = end.end = s.size();
+  tokens.push_back(end);
   return tokens;
 }
 
-Value numeric(const char* op, const Value& a, const Value& b) {
-  const std::string o(op);
-  if (o == "+" && a.kind == Value::Kind::String && b.kind == Value::Kind::String) return Value::ofString(a.text + b.text);
-  if (o == "+" && a.kind == Value::Kind::List && b.kind == Value::Kind::List) {
-    std::vector<Value> items(*a.list);
-    items.insert(items.end(), b.list->begin(), b.list->end());
-    return Value::ofList(std::move(items));
-  }
-  if (o == "*" && a.kind == Value::Kind::String && integral(b)) {
-    // A repeated string as long as a description could sensibly hold.
-    constexpr long long kMaxRepeatedBytes = 1 << 20;
-    const long long times = std::max(asInt(b), 0LL);
-    if (times > 0 && static_cast<long long>(a.text.size()) > kMaxRepeatedBytes / times) {
-      fail("'" + a.text.substr(0, 20) + "' * " + std::to_string(times) + " would make a string over " +
-           std::to_string(kMaxRepeatedBytes) + " bytes");
-    }
-    std::string out;
-    for (long long k = 0; k < times; ++k) out += a.text;
-    return Value::ofString(out);
-  }
-  if (!a.isNumber() || !b.isNumber()) {
-    fail("unsupported operand types for " + o + ": " + typeName(a) + " (" + repr(a) + ") and " + typeName(b) + " (" +
-         repr(b) + ")");
-  }
-  if (integral(a) && integral(b) && o != "/") {
-    // Python's integers have no bound; a result beyond 64 bits is taken as a
-    // float here (below), as no robot description needs one exactly.
-    const long long x = asInt(a);
-    const long long y = asInt(b);
-    long long r = 0;
-    if (o == "+" && !__builtin_add_overflow(x, y, &r)) return Value::ofInt(r);
-    if (o == "-" && !__builtin_sub_overflow(x, y, &r)) return Value::ofInt(r);
-    if (o == "*" && !__builtin_mul_overflow(x, y, &r)) return Value::ofInt(r);
-    if ((o == "//" || o == "%") && y == 0) fail("integer division or modulo by zero");
-    if ((o == "//" || o == "%") && !(y == -1 && x == std::numeric_limits<long long>::min())) {
-      long long q = x / y;
-      if ((x % y != 0) && ((x < 0) != (y < 0))) --q;
-      return o == "//" ? Value::ofInt(q) : Value::ofInt(x - q * y);
-    }
-    if (o == "**" && y >= 0) {
-      // By squaring, so a large exponent costs its bits, not its value.
-      long long result = 1;
-      long long base = x;
-      bool overflow = false;
-      for (long long e = y; e > 0 && !overflow; e >>= 1) {
-        if ((e & 1) != 0) overflow = __builtin_mul_overflow(result, base, &result);
-        if (e > 1 && !overflow) overflow = __builtin_mul_overflow(base, base, &base);
-      }
-      if (!overflow) return Value::ofInt(result);
-    }
-  }
-  const double x = asDouble(a);
-  const double y = asDouble(b);
-  if (o == "+") return Value::ofFloat(x + y);
-  if (o == "-") return Value::ofFloat(x - y);
-  if (o == "*") return Value::ofFloat(x * y);
-  if (o == "/") {
-    if (y == 0.0) fail("division by zero");
-    return Value::ofFloat(x / y);
-  }
-  if (o == "//" || o == "%") {
-    if (y == 0.0) fail("float division or modulo by zero");
-    const double q = std::floor(x / y);
-    return o == "//" ? Value::ofFloat(q) : Value::ofFloat(x - q * y);
-  }
-  if (o == "**") return Value::ofFloat(std::pow(x, y));
-  fail("unknown operator " + o);
+// A value as messages show it: its repr, cut short past 60 characters.
+std::string shown(const Value& v) {
+  std::string text = repr(v);
+  if (text.size() > 60) text = text.substr(0, 57) + "...";
+  return text;
 }
 
-bool equal(const Value& a, const Value& b) {
-  if (a.isNumber() && b.isNumber()) return asDouble(a) == asDouble(b);
-  if (a.kind != b.kind) return false;
-  switch (a.kind) {
-    case Value::Kind::None: return true;
-    case Value::Kind::String: return a.text == b.text;
-    case Value::Kind::List:
-      return a.list->size() == b.list->size() && std::equal(a.list->begin(), a.list->end(), b.list->begin(), equal);
-    case Value::Kind::Dict: return str(a) == str(b);
-    default: return false;
+// A dict's keys for messages: "a, b, c" (the first 20).
+std::string keyList(const Value& dict) {
+  std::string keys;
+  std::size_t n = 0;
+  for (const auto& kv : *dict.dict) {
+    if (n++ == 20) return keys + ", ... (" + std::to_string(dict.dict->size()) + " keys)";
+    keys += (keys.empty() ? "" : ", ") + kv.first;
   }
+  return keys.empty() ? "none: the dict is empty" : keys;
 }
 
-bool compare(const std::string& op, const Value& a, const Value& b) {
-  if (op == "==") return equal(a, b);
-  if (op == "!=") return !equal(a, b);
-  if (op == "in" || op == "not in") {
-    bool found = false;
-    if (b.kind == Value::Kind::String && a.kind == Value::Kind::String) {
-      found = b.text.find(a.text) != std::string::npos;
-    } else if (b.kind == Value::Kind::List) {
-      found = std::any_of(b.list->begin(), b.list->end(), [&](const Value& x) { return equal(a, x); });
-    } else if (b.kind == Value::Kind::Dict && a.kind == Value::Kind::String) {
-      found = b.dict->count(a.text) > 0;
-    } else {
-      fail("'in' needs a str, list or dict on its right, not " + typeName(b));
-    }
-    return op == "in" ? found : !found;
-  }
-  int order = 0;
-  if (a.isNumber() && b.isNumber()) {
-    order = asDouble(a) < asDouble(b) ? -1 : (asDouble(a) > asDouble(b) ? 1 : 0);
-  } else if (a.kind == Value::Kind::String && b.kind == Value::Kind::String) {
-    order = a.text.compare(b.text);
-  } else {
-    fail("'" + op + "' cannot compare " + typeName(a) + " (" + repr(a) + ") with " + typeName(b) + " (" + repr(b) + ")");
-  }
-  if (op == "<") return order < 0;
-  if (op == "<=") return order <= 0;
-  if (op == ">") return order > 0;
-  return order >= 0;
-}
+bool isModule(const std::string& name) { return name == "math" || name == "xacro" || name == "python"; }
 
-double number(const std::string& fn, const Value& v) {
-  if (!v.isNumber()) fail(fn + "() needs a number, got " + typeName(v) + " (" + repr(v) + ")");
-  return asDouble(v);
-}
-
-Value callBuiltin(const std::string& fn, const std::vector<Value>& args, Names& names) {
-  auto need = [&](std::size_t lo, std::size_t hi) {
-    if (args.size() < lo || args.size() > hi) {
-      fail(fn + "() takes " + (lo == hi ? std::to_string(lo) : std::to_string(lo) + " to " + std::to_string(hi)) +
-           " argument(s), " + std::to_string(args.size()) + " given");
-    }
-  };
-  static const std::map<std::string, double (*)(double)> kUnary = {
-      {"sin", [](double x) { return std::sin(x); }},     {"cos", [](double x) { return std::cos(x); }},
-      {"tan", [](double x) { return std::tan(x); }},     {"asin", [](double x) { return std::asin(x); }},
-      {"acos", [](double x) { return std::acos(x); }},   {"atan", [](double x) { return std::atan(x); }},
-      {"sinh", [](double x) { return std::sinh(x); }},   {"cosh", [](double x) { return std::cosh(x); }},
-      {"tanh", [](double x) { return std::tanh(x); }},   {"exp", [](double x) { return std::exp(x); }},
-      {"log10", [](double x) { return std::log10(x); }}, {"fabs", [](double x) { return std::fabs(x); }},
-      {"radians", [](double x) { return x * M_PI / 180.0; }},
-      {"degrees", [](double x) { return x * 180.0 / M_PI; }}};
-  if (auto it = kUnary.find(fn); it != kUnary.end()) {
-    need(1, 1);
-    return Value::ofFloat(it->second(number(fn, args[0])));
-  }
-  if (fn == "sqrt") {
-    need(1, 1);
-    const double x = number(fn, args[0]);
-    if (x < 0) fail("sqrt() of a negative number (" + repr(args[0]) + ")");
-    return Value::ofFloat(std::sqrt(x));
-  }
-  if (fn == "log") {
-    need(1, 2);
-    const double x = number(fn, args[0]);
-    if (x <= 0) fail("log() of a number <= 0 (" + repr(args[0]) + ")");
-    return Value::ofFloat(args.size() == 2 ? std::log(x) / std::log(number(fn, args[1])) : std::log(x));
-  }
-  if (fn == "atan2" || fn == "pow" || fn == "hypot" || fn == "fmod") {
-    need(2, 2);
-    const double y = number(fn, args[0]);
-    const double x = number(fn, args[1]);
-    if (fn == "atan2") return Value::ofFloat(std::atan2(y, x));
-    if (fn == "hypot") return Value::ofFloat(std::hypot(y, x));
-    if (fn == "fmod") return Value::ofFloat(std::fmod(y, x));
-    return Value::ofFloat(std::pow(y, x));
-  }
-  if (fn == "floor" || fn == "ceil" || fn == "trunc") {
-    need(1, 1);
-    const double x = number(fn, args[0]);
-    return Value::ofInt(static_cast<long long>(fn == "floor" ? std::floor(x) : fn == "ceil" ? std::ceil(x) : std::trunc(x)));
-  }
-  if (fn == "abs") {
-    need(1, 1);
-    if (integral(args[0])) return Value::ofInt(std::llabs(asInt(args[0])));
-    return Value::ofFloat(std::fabs(number(fn, args[0])));
-  }
-  if (fn == "round") {
-    need(1, 2);
-    const double x = number(fn, args[0]);
-    if (args.size() == 1) {
-      // Python rounds halves to even.
-      double r = std::nearbyint(x);
-      return Value::ofInt(static_cast<long long>(r));
-    }
-    const double scale = std::pow(10.0, number(fn, args[1]));
-    return Value::ofFloat(std::nearbyint(x * scale) / scale);
-  }
-  if (fn == "min" || fn == "max" || fn == "sum") {
-    std::vector<Value> items = args;
-    if (args.size() == 1 && args[0].kind == Value::Kind::List) items = *args[0].list;
-    if (items.empty()) fail(fn + "() of nothing");
-    if (fn == "sum") {
-      Value total = Value::ofInt(0);
-      for (const auto& v : items) total = numeric("+", total, v);
-      return total;
-    }
-    Value best = items[0];
-    for (const auto& v : items) {
-      if (compare(fn == "min" ? "<" : ">", v, best)) best = v;
-    }
-    return best;
-  }
-  if (fn == "int") {
-    need(1, 1);
-    if (args[0].kind == Value::Kind::String) {
-      const Value v = literal(args[0].text);
-      if (v.kind != Value::Kind::Int) fail("int() cannot read '" + args[0].text + "'");
-      return v;
-    }
-    return Value::ofInt(static_cast<long long>(std::trunc(number(fn, args[0]))));
-  }
-  if (fn == "float") {
-    need(1, 1);
-    if (args[0].kind == Value::Kind::String) {
-      const Value v = literal(args[0].text);
-      if (!v.isNumber() || v.kind == Value::Kind::Bool) fail("float() cannot read '" + args[0].text + "'");
-      return Value::ofFloat(asDouble(v));
-    }
-    return Value::ofFloat(number(fn, args[0]));
-  }
-  if (fn == "bool") {
-    need(1, 1);
-    return Value::ofBool(truthy(args[0]));
-  }
-  if (fn == "str") {
-    need(1, 1);
-    return Value::ofString(str(args[0]));
-  }
-  if (fn == "len") {
-    need(1, 1);
-    if (args[0].kind == Value::Kind::String) return Value::ofInt(static_cast<long long>(args[0].text.size()));
-    if (args[0].kind == Value::Kind::List) return Value::ofInt(static_cast<long long>(args[0].list->size()));
-    if (args[0].kind == Value::Kind::Dict) return Value::ofInt(static_cast<long long>(args[0].dict->size()));
-    fail("len() of a " + typeName(args[0]));
-  }
-  if (fn == "list") {
-    need(1, 1);
-    if (args[0].kind == Value::Kind::List) return args[0];
-    fail("list() of a " + typeName(args[0]));
-  }
-  if (fn == "load_yaml") {
-    need(1, 1);
-    if (args[0].kind != Value::Kind::String) fail("load_yaml() needs a file name");
-    return names.loadYaml(args[0].text);
-  }
-  fail("unknown function '" + fn + "'");
+// math's constants, which xacro also offers bare (pi rather than math.pi).
+std::optional<Value> mathConstant(const std::string& name) {
+  if (name == "pi") return Value::ofFloat(M_PI);
+  if (name == "e") return Value::ofFloat(M_E);
+  if (name == "tau") return Value::ofFloat(2.0 * M_PI);
+  if (name == "inf") return Value::ofFloat(HUGE_VAL);
+  if (name == "nan") return Value::ofFloat(std::nan(""));
+  return std::nullopt;
 }
 
 class Parser {
  public:
-  Parser(const std::string& expression, Names& names) : tokens_(tokenize(expression)), names_(names) {}
+  Parser(const std::string& expression, Names& names)
+      : expression_(expression), tokens_(tokenize(expression)), names_(names) {}
 
   Value parseAll() {
     Value v = conditional(true);
@@ -371,7 +181,7 @@ class Parser {
     explicit Nesting(Parser& parser) : parser_(parser) {
       if (++parser_.nesting_ > kMaxNesting) {
         fail("the expression nests more than " + std::to_string(kMaxNesting) +
-                     " levels of brackets, parentheses or unary operators");
+             " levels of brackets, parentheses or unary operators");
       }
     }
     ~Nesting() { --parser_.nesting_; }
@@ -381,11 +191,22 @@ class Parser {
   };
 
   const Token& peek() const { return tokens_[pos_]; }
+  const Token& after() const { return tokens_[std::min(pos_ + 1, tokens_.size() - 1)]; }
   bool isOp(const char* op) const { return peek().kind == Token::Kind::Op && peek().text == op; }
   bool isWord(const char* word) const { return peek().kind == Token::Kind::Name && peek().text == word; }
   void expect(const char* op) {
     if (!isOp(op)) fail(std::string("expected '") + op + "'" + (peek().kind == Token::Kind::End ? " at the end" : " before '" + peek().text + "'"));
     ++pos_;
+  }
+  // The expression's text from token `first` up to (not including) the
+  // current one, for messages; a long one is cut in the middle, so a chain of
+  // a.b.c... costs the same per link however long it gets.
+  std::string textFrom(std::size_t first) const {
+    const std::size_t last = pos_ > first ? pos_ - 1 : first;
+    const std::size_t begin = tokens_[first].begin;
+    const std::size_t length = tokens_[last].end - begin;
+    if (length <= 120) return expression_.substr(begin, length);
+    return expression_.substr(begin, 57) + "..." + expression_.substr(tokens_[last].end - 60, 60);
   }
 
   // `live` is false on the side a short circuit skips: parsed, not evaluated.
@@ -471,7 +292,7 @@ class Parser {
       } else if (isWord("in")) {
         op = "in";
         ++pos_;
-      } else if (isWord("not") && tokens_[pos_ + 1].kind == Token::Kind::Name && tokens_[pos_ + 1].text == "in") {
+      } else if (isWord("not") && after().kind == Token::Kind::Name && after().text == "in") {
         op = "not in";
         pos_ += 2;
       } else {
@@ -491,7 +312,7 @@ class Parser {
       const std::string op = peek().text;
       ++pos_;
       Value rhs = term(live);
-      if (live) v = numeric(op.c_str(), v, rhs);
+      if (live) v = binaryOp(op, v, rhs);
     }
     return v;
   }
@@ -502,7 +323,7 @@ class Parser {
       const std::string op = peek().text;
       ++pos_;
       Value rhs = unary(live);
-      if (live) v = numeric(op.c_str(), v, rhs);
+      if (live) v = binaryOp(op, v, rhs);
     }
     return v;
   }
@@ -514,9 +335,9 @@ class Parser {
       const Nesting nesting(*this);
       Value v = unary(live);
       if (!live) return v;
-      if (!v.isNumber()) fail(std::string("unary ") + (negate ? "-" : "+") + " of a " + typeName(v) + " (" + repr(v) + ")");
-      if (!negate) return integral(v) ? Value::ofInt(asInt(v)) : v;
-      if (integral(v) && asInt(v) != std::numeric_limits<long long>::min()) return Value::ofInt(-asInt(v));
+      if (!v.isNumber()) fail(std::string("unary ") + (negate ? "-" : "+") + " of " + aTypeName(v) + " (" + shown(v) + ")");
+      if (!negate) return isIntegral(v) ? Value::ofInt(toInt(v)) : v;
+      if (isIntegral(v) && toInt(v) != std::numeric_limits<long long>::min()) return Value::ofInt(-toInt(v));
       return Value::ofFloat(-asDouble(v));
     }
     return power(live);
@@ -527,59 +348,171 @@ class Parser {
     if (isOp("**")) {
       ++pos_;
       Value exponent = unary(live);
-      if (live) return numeric("**", base, exponent);
+      if (live) return binaryOp("**", base, exponent);
     }
     return base;
   }
 
+  // A primary followed by any number of .name, .method(...), (...) and [...].
   Value postfix(bool live) {
-    Value v;
-    std::string callee;
-    if (peek().kind == Token::Kind::Name && tokens_[pos_ + 1].kind == Token::Kind::Op && tokens_[pos_ + 1].text == "(") {
-      callee = peek().text;
-      pos_ += 2;
-      std::vector<Value> args;
-      while (!isOp(")")) {
-        args.push_back(conditional(live));
-        if (!isOp(",")) break;
-        ++pos_;
-      }
-      expect(")");
-      if (live) {
-        std::string fn = callee;
-        for (const char* prefix : {"math.", "xacro."}) {
-          if (fn.rfind(prefix, 0) == 0) fn = fn.substr(std::string(prefix).size());
+    const std::size_t start = pos_;
+    Value v = primary(live);
+    while (true) {
+      if (isOp(".")) {
+        const std::string owner = textFrom(start);
+        if (after().kind != Token::Kind::Name) fail("expected a name after '" + owner + ".'");
+        const std::string attribute = after().text;
+        pos_ += 2;
+        if (isOp("(")) {
+          Arguments args = arguments(live);
+          if (live) v = method(v, attribute, args, owner, textFrom(start));
+        } else if (live) {
+          v = attributeOf(v, attribute, owner, textFrom(start));
         }
-        v = callBuiltin(fn, args, names_);
+      } else if (isOp("(")) {
+        const std::string callee = textFrom(start);
+        arguments(live);
+        if (live) fail(textFrom(start) + ": " + callee + " is " + aTypeName(v) + " (" + shown(v) + "), not a function");
+      } else if (isOp("[")) {
+        const std::string owner = textFrom(start);
+        v = subscript(v, live, owner, start);
+      } else {
+        return v;
       }
-    } else {
-      v = atom(live);
     }
-    while (isOp("[")) {
-      ++pos_;
-      Value index = conditional(live);
-      expect("]");
-      if (live) v = subscript(v, index);
-    }
-    return v;
   }
 
-  static Value subscript(const Value& v, const Value& index) {
-    if (v.kind == Value::Kind::List || v.kind == Value::Kind::String) {
-      if (!integral(index)) fail("an index must be an int, not " + typeName(index));
-      const long long size = static_cast<long long>(v.kind == Value::Kind::List ? v.list->size() : v.text.size());
-      long long i = asInt(index);
-      if (i < 0) i += size;
-      if (i < 0 || i >= size) fail("index " + std::to_string(asInt(index)) + " out of range (size " + std::to_string(size) + ")");
-      return v.kind == Value::Kind::List ? (*v.list)[static_cast<std::size_t>(i)]
-                                         : Value::ofString(v.text.substr(static_cast<std::size_t>(i), 1));
+  // (a, b, key=c): positional arguments, then keyword ones, as in Python.
+  Arguments arguments(bool live) {
+    const std::size_t start = pos_;
+    expect("(");
+    Arguments args;
+    bool keywords = false;
+    while (!isOp(")")) {
+      if (peek().kind == Token::Kind::Name && after().kind == Token::Kind::Op && after().text == "=") {
+        const std::string key = peek().text;
+        pos_ += 2;
+        Value v = conditional(live);
+        if (live) args.keyword.emplace_back(key, std::move(v));
+        keywords = true;
+      } else {
+        if (keywords) fail("a positional argument follows a keyword argument in " + textFrom(start) + "...");
+        Value v = conditional(live);
+        if (live) args.positional.push_back(std::move(v));
+      }
+      if (!isOp(",")) break;
+      ++pos_;
     }
+    expect(")");
+    return args;
+  }
+
+  Value method(const Value& receiver, const std::string& name, const Arguments& args, const std::string& owner,
+               const std::string& call) {
+    if (!hasMethod(receiver, name)) {
+      const std::string methods = methodNames(receiver);
+      fail(call + ": " + owner + " is " + aTypeName(receiver) + " (" + shown(receiver) + "), which has no method '" +
+           name + "'" + (methods.empty() ? "" : " (servoloop's xacro knows " + methods + ")"));
+    }
+    return callMethod(receiver, name, args, call);
+  }
+
+  // owner.name without a call: a dict's key (xacro lets YAML dicts be read so).
+  static Value attributeOf(const Value& v, const std::string& name, const std::string& owner, const std::string& text) {
     if (v.kind == Value::Kind::Dict) {
-      const auto it = v.dict->find(str(index));
-      if (it == v.dict->end()) fail("key " + repr(index) + " not in the dict");
-      return it->second;
+      if (const Value* item = v.find(name)) return *item;
+      if (hasMethod(v, name)) fail(text + " is a method of a dict; call it: " + text + "()");
+      fail(text + ": " + owner + " has no key '" + name + "' (its keys: " + keyList(v) + ")");
     }
-    fail("a " + typeName(v) + " cannot be indexed");
+    if (hasMethod(v, name)) fail(text + " is a method of " + aTypeName(v) + "; call it: " + text + "(...)");
+    const std::string methods = methodNames(v);
+    fail(text + ": " + owner + " is " + aTypeName(v) + " (" + shown(v) + "), which has no attribute '" + name + "'" +
+         (methods.empty() ? "" : " (its methods: " + methods + ")"));
+  }
+
+  // [index], [key] or the slice [start:stop:step].
+  Value subscript(const Value& v, bool live, const std::string& owner, std::size_t start) {
+    const Nesting nesting(*this);
+    expect("[");
+    std::array<std::optional<Value>, 3> parts;
+    bool is_slice = false;
+    if (!isOp(":")) parts[0] = conditional(live);
+    if (isOp(":")) {
+      is_slice = true;
+      ++pos_;
+      if (!isOp(":") && !isOp("]")) parts[1] = conditional(live);
+      if (isOp(":")) {
+        ++pos_;
+        if (!isOp("]")) parts[2] = conditional(live);
+      }
+    }
+    expect("]");
+    if (!live) return Value{};
+    const std::string text = textFrom(start);
+    return is_slice ? slice(v, parts, owner, text) : index(v, *parts[0], owner, text);
+  }
+
+  static Value index(const Value& v, const Value& key, const std::string& owner, const std::string& text) {
+    if (v.kind == Value::Kind::Dict) {
+      if (const Value* item = v.find(str(key))) return *item;
+      fail(text + ": " + owner + " has no key " + shown(key) + " (its keys: " + keyList(v) + ")");
+    }
+    if (v.kind != Value::Kind::List && v.kind != Value::Kind::String) {
+      fail(text + ": " + owner + " is " + aTypeName(v) + " (" + shown(v) + "), which cannot be indexed");
+    }
+    if (!isIntegral(key)) {
+      fail(text + ": " + typeName(v) + " indices must be ints or slices, not " + aTypeName(key) + " (" + shown(key) +
+           ")");
+    }
+    const bool is_list = v.kind == Value::Kind::List;
+    const long long size = static_cast<long long>(is_list ? v.list->size() : v.text.size());
+    const long long i = toInt(key) < 0 ? toInt(key) + size : toInt(key);
+    if (i < 0 || i >= size) {
+      const std::string what = is_list ? "a list of " + std::to_string(size) + " item" + (size == 1 ? "" : "s")
+                                       : "a str of " + std::to_string(size) + " character" + (size == 1 ? "" : "s");
+      fail(text + ": index " + std::to_string(toInt(key)) + " is out of range: " + owner + " is " + what + " (" +
+           shown(v) + ")" +
+           (size == 0 ? "" : "; valid indices are 0 to " + std::to_string(size - 1) + " and -" + std::to_string(size) +
+                                 " to -1"));
+    }
+    return is_list ? (*v.list)[static_cast<std::size_t>(i)] : Value::ofString(v.text.substr(static_cast<std::size_t>(i), 1));
+  }
+
+  static Value slice(const Value& v, const std::array<std::optional<Value>, 3>& parts, const std::string& owner,
+                     const std::string& text) {
+    if (v.kind != Value::Kind::List && v.kind != Value::Kind::String) {
+      fail(text + ": " + owner + " is " + aTypeName(v) + " (" + shown(v) + "), which cannot be sliced");
+    }
+    std::array<std::optional<long long>, 3> bounds;
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (!parts[k] || parts[k]->kind == Value::Kind::None) continue;
+      if (!isIntegral(*parts[k])) {
+        fail(text + ": slice bounds must be ints or None, not " + aTypeName(*parts[k]) + " (" + shown(*parts[k]) + ")");
+      }
+      bounds[k] = toInt(*parts[k]);
+    }
+    long long step = bounds[2].value_or(1);
+    if (step == 0) fail(text + ": the slice step cannot be zero");
+    if (step == std::numeric_limits<long long>::min()) step = -std::numeric_limits<long long>::max();
+    const bool is_list = v.kind == Value::Kind::List;
+    const long long size = static_cast<long long>(is_list ? v.list->size() : v.text.size());
+    const SliceBounds taken = sliceBounds(size, bounds[0], bounds[1], step);
+    std::vector<Value> items;
+    std::string chars;
+    for (long long k = 0; k < taken.count; ++k) {
+      const auto at = static_cast<std::size_t>(taken.start + k * taken.step);
+      if (is_list) {
+        items.push_back((*v.list)[at]);
+      } else {
+        chars += v.text[at];
+      }
+    }
+    return is_list ? Value::ofList(std::move(items)) : Value::ofString(std::move(chars));
+  }
+
+  Value primary(bool live) {
+    if (peek().kind == Token::Kind::Name) return nameOrCall(live);
+    return atom(live);
   }
 
   Value atom(bool live) {
@@ -589,7 +522,7 @@ class Parser {
       case Token::Kind::Number: return t.number;
       case Token::Kind::String: return Value::ofString(t.text);
       case Token::Kind::End: fail("the expression ends too early");
-      case Token::Kind::Name: return name(t.text, live);
+      case Token::Kind::Name:
       case Token::Kind::Op: break;
     }
     if (t.text == "(") {
@@ -608,11 +541,12 @@ class Parser {
       return Value::ofList(std::move(items));
     }
     if (t.text == "{") {
-      std::map<std::string, Value> items;
+      Value::DictItems items;
       while (!isOp("}")) {
         const Value key = conditional(live);
         expect(":");
-        items[str(key)] = conditional(live);
+        Value item = conditional(live);
+        items.emplace_back(str(key), std::move(item));
         if (!isOp(",")) break;
         ++pos_;
       }
@@ -622,22 +556,45 @@ class Parser {
     fail("unexpected '" + t.text + "'");
   }
 
-  Value name(const std::string& n, bool live) {
-    if (n == "True") return Value::ofBool(true);
-    if (n == "False") return Value::ofBool(false);
-    if (n == "None") return Value::none();
-    if (!live) return Value::none();
-    if (auto v = names_.lookup(n)) return *v;
-    std::string bare = n;
-    if (bare.rfind("math.", 0) == 0) bare = bare.substr(5);
-    if (bare == "pi") return Value::ofFloat(M_PI);
-    if (bare == "e") return Value::ofFloat(M_E);
-    if (bare == "tau") return Value::ofFloat(2.0 * M_PI);
-    if (bare == "inf") return Value::ofFloat(HUGE_VAL);
-    if (bare == "nan") return Value::ofFloat(std::nan(""));
-    fail("name '" + n + "' is not defined");
+  // A name: a constant, a function call, a property, a property of an
+  // include's namespace (ns.name), or something of the math, xacro or python
+  // module (math.pi, math.sqrt(x), xacro.load_yaml(f)).
+  Value nameOrCall(bool live) {
+    const std::size_t start = pos_;
+    const std::string name = peek().text;
+    ++pos_;
+    if (name == "True") return Value::ofBool(true);
+    if (name == "False") return Value::ofBool(false);
+    if (name == "None") return Value::none();
+    if (isOp("(")) {
+      Arguments args = arguments(live);
+      return live ? callFunction(name, args, names_) : Value{};
+    }
+    if (!live) return Value{};
+    if (auto v = names_.lookup(name)) return *v;
+    std::string path = name;
+    while (isOp(".") && after().kind == Token::Kind::Name) {
+      const std::string attribute = after().text;
+      path += "." + attribute;
+      pos_ += 2;
+      if (auto v = names_.lookup(path)) return *v;
+      if (isModule(name) && path == name + "." + attribute) {
+        if (isOp("(")) {
+          Arguments args = arguments(true);
+          return callFunction(path, args, names_);
+        }
+        if (name == "math") {
+          if (auto constant = mathConstant(attribute)) return *constant;
+        }
+        fail("'" + path + "' is not a constant of xacro's " + name + " module; call a function with " + path + "(...)");
+      }
+    }
+    pos_ = start + 1;
+    if (auto constant = mathConstant(name)) return *constant;
+    fail("name '" + name + "' is not defined");
   }
 
+  std::string expression_;
   std::vector<Token> tokens_;
   std::size_t pos_ = 0;
   int nesting_ = 0;

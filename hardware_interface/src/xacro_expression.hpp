@@ -1,12 +1,12 @@
 #pragma once
 // The expressions inside xacro's `${...}`: the part of Python real robot
-// descriptions use. Literals (numbers, 'strings', True/False/None, [lists]),
-// names (properties, dotted `ns.name` and `dict.key`), arithmetic
-// (+ - * / // % **), comparisons (chained), not/and/or, `x if c else y`, `in`,
-// indexing, and the math module and builtins xacro offers (pi, e, radians,
-// degrees, sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, log10, pow,
-// fabs, floor, ceil, abs, min, max, round, int, float, bool, str, len, sum,
-// load_yaml). Internal to the xacro expander.
+// descriptions use. Literals (numbers, 'strings', True/False/None, [lists],
+// {dicts}), names (properties, `ns.name` of an include's namespace),
+// arithmetic (+ - * / // % **), comparisons (chained), not/and/or,
+// `x if c else y`, `in`; then, on any value, .key of a dict, method calls
+// ('a b'.split(' '), '{}_link'.format(n)), indexing (v[0], v[-1], d['key'])
+// and slicing (s[1:-1], v[::2]) with Python's rules; and the functions of
+// xacro_builtins.hpp. Internal to the xacro expander.
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -19,7 +19,8 @@ namespace servoloop::xacro {
 class Names {
  public:
   virtual ~Names() = default;
-  // The value of property `name` (possibly dotted), or nullopt if undefined.
+  // The value of property `name`, or of `ns.name` in an include's namespace,
+  // or nullopt if undefined.
   virtual std::optional<Value> lookup(const std::string& name) = 0;
   // xacro.load_yaml(file): the YAML file's content as values.
   virtual Value loadYaml(const std::string& file) = 0;

@@ -1,8 +1,10 @@
 #include "xacro_value.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <unordered_map>
 
 namespace servoloop::xacro {
 
@@ -41,11 +43,30 @@ Value Value::ofList(std::vector<Value> items) {
   return v;
 }
 
-Value Value::ofDict(std::map<std::string, Value> items) {
+Value Value::ofDict(DictItems items) {
+  DictItems unique;
+  unique.reserve(items.size());
+  std::unordered_map<std::string, std::size_t> place;
+  for (auto& [key, item] : items) {
+    const auto [it, added] = place.emplace(key, unique.size());
+    if (added) {
+      unique.emplace_back(std::move(key), std::move(item));
+    } else {
+      unique[it->second].second = std::move(item);
+    }
+  }
   Value v;
   v.kind = Kind::Dict;
-  v.dict = std::make_shared<const std::map<std::string, Value>>(std::move(items));
+  v.dict = std::make_shared<const DictItems>(std::move(unique));
   return v;
+}
+
+const Value* Value::find(const std::string& key) const {
+  if (kind != Kind::Dict) return nullptr;
+  for (const auto& [name, item] : *dict) {
+    if (name == key) return &item;
+  }
+  return nullptr;
 }
 
 namespace {
@@ -104,7 +125,7 @@ std::string str(const Value& v) {
       std::string out = "{";
       bool first = true;
       for (const auto& [key, item] : *v.dict) {
-        out += (first ? "'" : ", '") + key + "': " + repr(item);
+        out += (first ? "" : ", ") + repr(Value::ofString(key)) + ": " + repr(item);
         first = false;
       }
       return out + "}";
@@ -113,7 +134,28 @@ std::string str(const Value& v) {
   return "";
 }
 
-std::string repr(const Value& v) { return v.kind == Value::Kind::String ? "'" + v.text + "'" : str(v); }
+std::string repr(const Value& v) {
+  if (v.kind != Value::Kind::String) return str(v);
+  // Python quotes with ' unless the text holds a ' and no ".
+  const bool has_single = v.text.find('\'') != std::string::npos;
+  const char quote = has_single && v.text.find('"') == std::string::npos ? '"' : '\'';
+  std::string out(1, quote);
+  for (const char c : v.text) {
+    if (c == '\\' || c == quote) {
+      out += '\\';
+      out += c;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else {
+      out += c;
+    }
+  }
+  return out + quote;
+}
 
 std::string typeName(const Value& v) {
   switch (v.kind) {
@@ -126,6 +168,14 @@ std::string typeName(const Value& v) {
     case Value::Kind::Dict: return "dict";
   }
   return "?";
+}
+
+std::string aTypeName(const Value& v) {
+  switch (v.kind) {
+    case Value::Kind::None: return "None";
+    case Value::Kind::Int: return "an int";
+    default: return "a " + typeName(v);
+  }
 }
 
 double asDouble(const Value& v) {

@@ -2,22 +2,25 @@
 // The values xacro expressions compute with, with Python's meaning (xacro
 // evaluates `${}` as Python): None, bool, int, float, str, list and dict (the
 // last two come from load_yaml and literals). Internal to the xacro expander.
-#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace servoloop::xacro {
 
 struct Value {
   enum class Kind { None, Bool, Int, Float, String, List, Dict };
+  // A dict's items in insertion order, as Python keeps them (keys() and str()
+  // show that order). Keys are text: YAML and xacro's dicts are keyed by names.
+  using DictItems = std::vector<std::pair<std::string, Value>>;
   Kind kind = Kind::None;
   bool boolean = false;
   long long integer = 0;
   double real = 0.0;
   std::string text;
   std::shared_ptr<const std::vector<Value>> list;
-  std::shared_ptr<const std::map<std::string, Value>> dict;
+  std::shared_ptr<const DictItems> dict;
 
   static Value none() { return {}; }
   static Value ofBool(bool b);
@@ -25,9 +28,12 @@ struct Value {
   static Value ofFloat(double f);
   static Value ofString(std::string s);
   static Value ofList(std::vector<Value> items);
-  static Value ofDict(std::map<std::string, Value> items);
+  // A key given twice keeps its first place and its last value, as in Python.
+  static Value ofDict(DictItems items);
 
   bool isNumber() const { return kind == Kind::Bool || kind == Kind::Int || kind == Kind::Float; }
+  // The item of a dict under `key`, or nullptr.
+  const Value* find(const std::string& key) const;
 };
 
 // Python's str(): 0.5 → "0.5", 2.0 → "2.0", 1e-05 → "1e-05", True → "True".
@@ -36,6 +42,8 @@ std::string str(const Value& v);
 std::string repr(const Value& v);
 // Python's name of the value's type, for error messages.
 std::string typeName(const Value& v);
+// The type with its article, for error messages: "an int", "a str", "None".
+std::string aTypeName(const Value& v);
 // The number a bool, int or float stands for.
 double asDouble(const Value& v);
 // Python's truth value.

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <vector>
 
-#include <spdlog/fmt/fmt.h>
-#include <spdlog/fmt/ranges.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tinyxml2.h>
 #include <yaml-cpp/yaml.h>
 
@@ -376,13 +376,27 @@ class Reader {
     std::string target = ns;
     if (const char* sub = e->Attribute("ns")) target = resolve(e, scope, target, subst(sub, e, scope));
     if (const char* name = e->Attribute("param")) target = resolve(e, scope, target, subst(name, e, scope));
+    bool substitute = false;
+    if (const char* flag = e->Attribute("subst_value")) truthValue(flag, substitute);
     if (const char* file = e->Attribute("file")) {
-      params_.push_back(ParameterFile{resolvePath(subst(file, e, scope), scope), target, "", ""});
+      const fs::path path = resolvePath(subst(file, e, scope), scope);
+      if (!substitute) {
+        params_.push_back(ParameterFile{path, target, "", ""});
+        return;
+      }
+      // roslaunch substitutes $(arg ...) and the others in the file's text
+      // before reading it as YAML (franka_gazebo's controller YAML names its
+      // joints $(arg arm_id)_joint1).
+      std::string yaml;
+      try {
+        yaml = readTextFile(path, "rosparam file");
+      } catch (const ConfigError& error) {
+        fail(e, scope, error.what());
+      }
+      params_.push_back(ParameterFile{{}, target, subst(yaml, e, scope), path.string()});
       return;
     }
     std::string text = e->GetText() != nullptr ? e->GetText() : "";
-    bool substitute = false;
-    if (const char* flag = e->Attribute("subst_value")) truthValue(flag, substitute);
     if (substitute) text = subst(text, e, scope);
     if (e->Attribute("param") != nullptr) {
       // The text is the value of that one parameter.
@@ -503,7 +517,10 @@ class Reader {
       } else if (word == "--namespace") {
         if (i + 1 >= args.size()) fail(e, scope, "spawner --namespace needs a value");
         spawner.ns = resolve(e, scope, "/", args[++i]);
-      } else if (word == "--shutdown-timeout" || word == "--timeout") {
+      } else if (word == "--shutdown-timeout" || word == "--timeout" || word == "-t" || word == "--wait-for") {
+        // These take a value: franka_gazebo's "--wait-for initialized" waits for
+        // its simulation to report the robot initialized, which it is here when
+        // controllers load.
         ++i;
       } else if (word.rfind("--namespace=", 0) == 0) {
         spawner.ns = resolve(e, scope, "/", word.substr(12));

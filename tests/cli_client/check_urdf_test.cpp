@@ -127,12 +127,27 @@ TEST_F(CheckUrdfTest, BrokenTransmissionFailsNamingIt) {
   std::ifstream seed(kSeed + "minimal_robot_description_w_jnt_ctl.urdf");
   std::string text((std::istreambuf_iterator<char>(seed)), std::istreambuf_iterator<char>());
   const std::string reduction = "<mechanicalReduction>1</mechanicalReduction>";
-  text.erase(text.find(reduction), reduction.size());
+  text.replace(text.find(reduction), reduction.size(), "<mechanicalReduction>0</mechanicalReduction>");
   std::ofstream(urdf) << text;
   const CliResult result = runCli({"check-urdf", urdf.string()}, run_dir_.scratch());
   EXPECT_EQ(result.status, 1);
   EXPECT_THAT(result.err, HasSubstr("tran1"));
   EXPECT_THAT(result.err, HasSubstr("motor1"));
+}
+
+// Without <mechanicalReduction> the actuator drives its joint directly, as
+// gazebo_ros_control takes it: a note, not an error.
+TEST_F(CheckUrdfTest, TransmissionWithoutReductionIsADirectDriveWithANote) {
+  const auto urdf = run_dir_.scratch() / "direct_drive.urdf";
+  std::ifstream seed(kSeed + "minimal_robot_description_w_jnt_ctl.urdf");
+  std::string text((std::istreambuf_iterator<char>(seed)), std::istreambuf_iterator<char>());
+  const std::string reduction = "<mechanicalReduction>1</mechanicalReduction>";
+  text.erase(text.find(reduction), reduction.size());
+  std::ofstream(urdf) << text;
+  const CliResult result = runCli({"check-urdf", urdf.string()}, run_dir_.scratch());
+  EXPECT_EQ(result.status, 0) << result.err;
+  EXPECT_THAT(result.err, HasSubstr("actuator motor1 without <mechanicalReduction> is taken as a direct drive "
+                                    "(reduction 1)"));
 }
 
 TEST_F(CheckUrdfTest, MissingFile) {

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -121,6 +122,48 @@ TEST_F(CliLaunch, PublicationAtTimeZeroIsRecordedAtZeroAndActsFromTheFirstStep) 
   EXPECT_EQ(readFile(dir_ / "js.csv").find("\n0.0,0.0,0.0,"), readFile(dir_ / "js.csv").find('\n'));
 }
 
+// A trajectory from the command line: `--pub` on a trajectory controller's
+// command topic takes the topic's type (trajectory_msgs/JointTrajectory) with
+// no type given. The controller's desired position ends on the trajectory's
+// last point, and the joint follows it (stiffness 500 N·m/rad against at most
+// 4.2 N·m of gravity on the seed's arm: within 0.01 rad).
+TEST_F(CliLaunch, PubFlagTakesTheTypeOfATrajectoryControllersTopic) {
+  std::ofstream(dir_ / "traj.yaml") << R"(traj:
+  type: effort_controllers/JointTrajectoryController
+  joints: [joint1]
+  gains: {joint1: {p: 500.0, i: 0.0, d: 10.0}}
+)";
+  std::ofstream(dir_ / "traj.launch.yaml") << "robots:\n  - urdf: '"
+                                           << (kOneDof / "minimal_robot_description_w_jnt_ctl.urdf").string()
+                                           << "'\n    params: [{file: traj.yaml, ns: /one_DOF_robot}]\n"
+                                              "    controllers: [traj]\n";
+  const CliResult result =
+      run("launch traj.launch.yaml --duration 4 --json --record /one_DOF_robot/traj/state=state.csv"
+          " --pub '/one_DOF_robot/traj/command:={joint_names: [joint1], points: [{positions: [0.6], "
+          "time_from_start: 2.0}]}'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json summary = json::parse(result.out);
+  EXPECT_NEAR(summary["robots"][0]["joints"][0]["position"].get<double>(), 0.6, 0.01) << result.out;
+  std::stringstream state(readFile(dir_ / "state.csv"));
+  std::string header;
+  std::string line;
+  std::string last;
+  std::getline(state, header);
+  while (std::getline(state, line)) last = line;
+  const std::vector<std::string> names = [&] {
+    std::vector<std::string> columns;
+    std::stringstream row(header);
+    for (std::string cell; std::getline(row, cell, ',');) columns.push_back(cell);
+    return columns;
+  }();
+  const auto desired = std::find(names.begin(), names.end(), "desired.positions[0]");
+  ASSERT_NE(desired, names.end()) << header;
+  std::stringstream row(last);
+  std::string cell;
+  for (auto it = names.begin(); it != desired + 1; ++it) std::getline(row, cell, ',');
+  EXPECT_DOUBLE_EQ(std::stod(cell), 0.6) << header << "\n" << last;
+}
+
 TEST_F(CliLaunch, TextSummaryByDefault) {
   const CliResult result = run("launch '" + kSeedLaunch + "' --backend mock --duration 0.5");
   ASSERT_EQ(result.status, 0) << result.err;
@@ -169,7 +212,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadFlags{"launch no_such.launch.yaml", "no_such.launch.yaml"},
                       BadFlags{"launch SEED --duration -1", "--duration"},
                       BadFlags{"launch SEED --rtf fast", "--rtf"},
-                      BadFlags{"launch SEED --duration 1 --pub /a/command=1.0", "expected TOPIC:=VALUE[@TIME]"},
+                      BadFlags{"launch SEED --duration 1 --pub /a/command=1.0", "expected TOPIC[:TYPE]:=VALUE[@TIME]"},
                       BadFlags{"launch SEED --duration 1 --record /a/joint_states", "expected TOPIC=FILE.csv"},
                       BadFlags{"launch SEED --duration 1 --plot x.png", "nothing is recorded"},
                       BadFlags{"launch SEED --duration 1 --backend warp", "backend 'warp'"},
@@ -294,6 +337,50 @@ TEST_F(CliLaunch, OutOfRangeNumbersAndDevicesAreOneLineErrors) {
     EXPECT_NE(result.status, 0) << c.args;
     EXPECT_EQ(lines(result.err), 1) << c.args << ": " << result.err;
     EXPECT_NE(result.err.find(c.error), std::string::npos) << c.args << ": " << result.err;
+  }
+}
+
+// servoloop's capsule arm is launched as franka_gazebo launches the Panda
+// (tests/assets/xacro/launch/capsule_arm.launch): xacro with string methods
+// and YAML dicts, one transmission per interface without reductions, the
+// controller YAML with $(arg arm_id) in it, start positions, a spawner
+// waiting with --wait-for. The two controllers of a vendor's own types fail
+// with the usual message and make the launch fail; the rest runs: the
+// trajectory controller holds the arm at its start position.
+TEST_F(CliLaunch, LaunchFileWrittenAsFrankaGazebosRunsAllButTheVendorsControllers) {
+  const std::string launch =
+      (fs::path(SERVOLOOP_SOURCE_DIR) / "tests/assets/xacro/launch/capsule_arm.launch").string();
+  const CliResult result = run("launch '" + launch +
+                               "' controller:=position_joint_trajectory_controller --backend mock --duration 1 --json");
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.err.find("load controller 'capsule_state_controller': unknown controller type "
+                            "'capsule_control/CapsuleStateController'"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("load controller 'capsule_gripper': unknown controller type "
+                            "'capsule_gazebo/CapsuleGripperSim'"),
+            std::string::npos)
+      << result.err;
+  EXPECT_EQ(result.err.find("'initialized'"), std::string::npos) << "--wait-for's topic is no controller: " << result.err;
+  EXPECT_NE(result.err.find("2 joints have one SimpleTransmission per hardware interface"), std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("actuators capsule_joint1_motor, capsule_joint2_motor, capsule_finger_joint_motor without "
+                            "<mechanicalReduction> are taken as a direct drive"),
+            std::string::npos)
+      << result.err;
+
+  const json robot = json::parse(result.out)["robots"][0];
+  EXPECT_EQ(robot["launch_failures"], json({"controller 'capsule_gripper' did not load",
+                                            "controller 'capsule_state_controller' did not load"}));
+  ASSERT_EQ(robot["controllers"].size(), 1u);
+  EXPECT_EQ(robot["controllers"][0]["name"], "position_joint_trajectory_controller");
+  EXPECT_EQ(robot["controllers"][0]["state"], "running");
+  ASSERT_EQ(robot["joints"].size(), 3u);
+  const std::vector<std::pair<std::string, double>> start = {
+      {"capsule_finger_joint", 0.01}, {"capsule_joint1", 0.3}, {"capsule_joint2", -0.5}};
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    EXPECT_EQ(robot["joints"][i]["name"], start[i].first);
+    EXPECT_NEAR(robot["joints"][i]["position"].get<double>(), start[i].second, 1e-9) << start[i].first;
   }
 }
 

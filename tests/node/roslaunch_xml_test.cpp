@@ -99,7 +99,7 @@ class RoslaunchProject : public ::testing::Test {
           <param name="code" type="str" value="007"/>
           <node name="spawn" pkg="gazebo_ros" type="spawn_model"
                 args="-urdf -param robot_description -model arm -x 0.5 -z 0.1 -Y 1.5 -J left_hinge 0.3"/>
-          <node name="spawner" pkg="controller_manager" type="spawner" args="joint_state_controller hinge_controller"/>
+          <node name="spawner" pkg="controller_manager" type="spawner" args="--wait-for initialized joint_state_controller -t 5 hinge_controller"/>
           <node name="gripper_spawner" pkg="controller_manager" type="spawner" args="gripper_controller" if="$(arg with_gripper)"/>
           <node name="later" pkg="controller_manager" type="spawner" args="--stopped hinge_controller_2"/>
           <node name="rsp" pkg="robot_state_publisher" type="robot_state_publisher"/>
@@ -179,6 +179,31 @@ TEST_F(RoslaunchProject, EvalTakesArgumentsAsText) {
             (std::vector<std::string>{"b", "cc"}));
   EXPECT_CONTAINS(errorOf(R"~(<launch><group if="$(eval undefined_arg == 1)"/></launch>)~"),
                   "t.launch:1: <group>: $(eval undefined_arg == 1): name 'undefined_arg' is not defined");
+}
+
+// franka_gazebo loads its controller YAML with subst_value="true": the
+// file's $(arg arm_id)_joint1 names are substituted before it is read.
+TEST_F(RoslaunchProject, RosparamFileWithSubstValueSubstitutesTheFilesText) {
+  writeFile(dir_.path() / "r.urdf", robotUrdf("r"));
+  writeFile(dir_.path() / "gains.yaml", "c:\n  joint: $(arg arm)_hinge\n  gains:\n    $(arg arm)_hinge: {p: 5}\n");
+  EXPECT_EQ(errorOf(R"~(<launch>
+      <arg name="arm" default="left"/>
+      <rosparam file="gains.yaml" subst_value="true"/>
+      <rosparam file="gains.yaml"/>
+      <node name="s" pkg="gazebo_ros" type="spawn_model" args="-urdf -file r.urdf -model r"/>
+    </launch>)~"),
+            "");
+  const LaunchFile launch = loadLaunchFile(dir_.path() / "t.launch");
+  ASSERT_EQ(launch.robots.size(), 1u);
+  const std::vector<ParameterFile>& params = launch.robots[0].params;
+  ASSERT_EQ(params.size(), 2u);
+  EXPECT_TRUE(params[0].file.empty());
+  EXPECT_EQ(params[0].yaml, "c:\n  joint: left_hinge\n  gains:\n    left_hinge: {p: 5}\n");
+  EXPECT_EQ(params[0].source_name, (dir_.path() / "gains.yaml").string());
+  EXPECT_EQ(params[1].file, dir_.path() / "gains.yaml");  // without subst_value, loaded as it is
+  EXPECT_CONTAINS(errorOf(R"~(<launch><rosparam file="nope.yaml" subst_value="true"/></launch>)~"),
+                  "t.launch:1: <rosparam>: ");
+  EXPECT_CONTAINS(errorOf(R"~(<launch><rosparam file="nope.yaml" subst_value="true"/></launch>)~"), "nope.yaml");
 }
 
 TEST_F(RoslaunchProject, RobotNamespaceFromTheUrdfPlacesTheSpawnerAsGazeboDoes) {

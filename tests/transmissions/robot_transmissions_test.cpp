@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <fstream>
 #include <memory>
@@ -123,10 +124,10 @@ TEST(RobotTransmissions, SeedRobotPropagatesThroughHandles) {
 TEST(RobotTransmissions, ImplicitTransmissionForRobotWithoutTransmissions) {
   auto sink_stream = std::make_shared<std::ostringstream>();
   auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(*sink_stream);
-  servoloop::logger().sinks().push_back(sink);
+  servoloop::spdlogLogger().sinks().push_back(sink);
   const auto rt = fromUrdf(readSeed("minimal_robot_description.urdf"), /*implicit=*/true);
-  servoloop::logger().flush();
-  servoloop::logger().sinks().pop_back();
+  servoloop::spdlogLogger().flush();
+  servoloop::spdlogLogger().sinks().pop_back();
 
   ASSERT_EQ(rt->numJoints(), 1u);  // the fixed joint gets none
   EXPECT_EQ(rt->jointName(JointIndex(0)), "joint1");
@@ -253,6 +254,39 @@ TEST(RobotTransmissions, ArmRegistersOnlyNamedCommandInterfaces) {
             (std::vector<std::string>{"wrist_left", "wrist_right"}));
   EXPECT_EQ(manager.get<hi::ActuatorStateInterface>()->getNames(),
             (std::vector<std::string>{"shoulder_motor", "wrist_left", "wrist_right"}));
+}
+
+// The capsule arm (tests/assets/xacro) in simulation declares a transmission
+// per hardware interface of each arm joint, as franka_description does, and
+// none has a <mechanicalReduction>: each joint offers every interface its
+// transmissions name, and its actuator drives it 1:1.
+TEST(RobotTransmissions, OneTransmissionPerInterfaceOffersEachInterfaceAtReductionOne) {
+  std::ifstream file(std::string(SERVOLOOP_SOURCE_DIR) + "/tests/assets/xacro/capsule_arm_expanded.urdf");
+  ASSERT_TRUE(file.good());
+  std::stringstream text;
+  text << file.rdbuf();
+  const auto rt = fromUrdf(text.str());
+  EXPECT_EQ(rt->numTransmissions(), 3u);
+  hi::InterfaceManager manager;
+  rt->registerInterfaces(manager);
+  const std::vector<std::string> arm{"capsule_joint1", "capsule_joint2"};
+  const std::vector<std::string> all{"capsule_finger_joint", "capsule_joint1", "capsule_joint2"};
+  EXPECT_EQ(manager.get<hi::JointStateInterface>()->getNames(), all);
+  EXPECT_EQ(manager.get<hi::EffortJointInterface>()->getNames(), all);
+  EXPECT_EQ(manager.get<hi::PositionJointInterface>()->getNames(), arm);
+  EXPECT_EQ(manager.get<hi::VelocityJointInterface>()->getNames(), arm);
+  EXPECT_EQ(manager.get<hi::ActuatorStateInterface>()->getNames(),
+            (std::vector<std::string>{"capsule_finger_joint_motor", "capsule_joint1_motor", "capsule_joint2_motor"}));
+
+  const JointIndex j = rt->jointIndex("capsule_joint2");
+  const ActuatorIndex m = rt->actuatorIndex("capsule_joint2_motor");
+  rt->actuator(m).position = 0.7;
+  rt->actuator(m).velocity = -0.3;
+  rt->actuator(m).effort = 5.0;
+  rt->actuatorStateToJointState();
+  EXPECT_EQ(rt->joint(j).position, 0.7);
+  EXPECT_EQ(rt->joint(j).velocity, -0.3);
+  EXPECT_EQ(rt->joint(j).effort, 5.0);
 }
 
 TEST(RobotTransmissions, DifferentialWristMatchesReferenceCase) {

@@ -210,6 +210,71 @@ TEST(TransmissionParser, ManyTransmissionsOfThePr2MechanismFormShareOneWarning) 
       << log.text();
 }
 
+// franka_description's form: one SimpleTransmission per hardware interface of
+// a joint, all with the same name and actuator and no <mechanicalReduction>,
+// which franka_gazebo's plugin (and gazebo_ros_control) accept. They load as
+// one transmission offering every interface, reduction 1, with one note each
+// for the merge and the missing reductions.
+TEST(TransmissionParser, OneTransmissionPerInterfaceMergesIntoOneWithANote) {
+  servoloop::test::LogCapture log;
+  std::string transmissions;
+  for (const char* interface : {"PositionJointInterface", "VelocityJointInterface", "EffortJointInterface"}) {
+    for (const char* joint : {"j1", "j2"}) {
+      transmissions += std::string("<transmission name=\"") + joint + "_transmission\">" +
+                       "<type>transmission_interface/SimpleTransmission</type><joint name=\"" + joint +
+                       "\"><hardwareInterface>hardware_interface/" + interface + "</hardwareInterface></joint>" +
+                       "<actuator name=\"" + joint + "_motor\"><hardwareInterface>hardware_interface/" + interface +
+                       "</hardwareInterface></actuator></transmission>";
+    }
+  }
+  const auto infos = st::parseTransmissions(robotWith(transmissions + std::string(kSimpleOk)), "arm.urdf");
+  ASSERT_EQ(infos.size(), 3u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string joint = i == 0 ? "j1" : "j2";
+    EXPECT_EQ(infos[i].name, joint + "_transmission");
+    EXPECT_EQ(infos[i].type, st::kSimpleTransmissionType);
+    ASSERT_EQ(infos[i].joints.size(), 1u);
+    EXPECT_EQ(infos[i].joints[0].name, joint);
+    EXPECT_EQ(infos[i].joints[0].hardware_interfaces,
+              (std::vector<std::string>{"PositionJointInterface", "VelocityJointInterface", "EffortJointInterface"}));
+    ASSERT_EQ(infos[i].actuators.size(), 1u);
+    EXPECT_EQ(infos[i].actuators[0].name, joint + "_motor");
+    EXPECT_EQ(infos[i].actuators[0].mechanical_reduction, 1.0);
+  }
+  EXPECT_EQ(infos[2].name, "t_slide");
+  EXPECT_EQ(log.count("arm.urdf: 2 joints have one SimpleTransmission per hardware interface; each joint's are "
+                      "merged into one offering all of them"),
+            1u)
+      << log.text();
+  EXPECT_EQ(log.count("j1 (PositionJointInterface, VelocityJointInterface, EffortJointInterface), j2 ("), 1u)
+      << log.text();
+  EXPECT_EQ(log.count("arm.urdf: actuators j1_motor, j2_motor without <mechanicalReduction> are taken as a direct "
+                      "drive (reduction 1)"),
+            1u)
+      << log.text();
+  EXPECT_EQ(log.count("warning"), 0u) << log.text();
+}
+
+// gazebo_ros_control drives a joint whose actuator has no reduction directly:
+// reduction 1, with a note rather than an error.
+TEST(TransmissionParser, AnActuatorWithoutReductionIsADirectDriveWithANote) {
+  servoloop::test::LogCapture log;
+  const auto infos = st::parseTransmissions(robotWith(R"(
+  <transmission name="tran1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="motor1"/>
+  </transmission>)"),
+                                            "direct.urdf");
+  ASSERT_EQ(infos.size(), 1u);
+  ASSERT_EQ(infos[0].actuators.size(), 1u);
+  EXPECT_EQ(infos[0].actuators[0].mechanical_reduction, 1.0);
+  EXPECT_EQ(log.count("direct.urdf: actuator motor1 without <mechanicalReduction> is taken as a direct drive "
+                      "(reduction 1), as gazebo_ros_control drives it; add <mechanicalReduction> to say otherwise"),
+            1u)
+      << log.text();
+}
+
 // The pre-2015 form (rrbot and other older descriptions): the interface is in
 // the <actuator> only; the joint takes it, with a deprecation warning.
 TEST(TransmissionParser, TakesTheActuatorInterfacesOfThePre2015Form) {
@@ -276,6 +341,7 @@ constexpr const char* kSimpleType = "transmission_interface/SimpleTransmission";
 constexpr const char* kDifferentialType = "transmission_interface/DifferentialTransmission";
 constexpr const char* kFourBarType = "transmission_interface/FourBarLinkageTransmission";
 constexpr const char* kEffort = "<hardwareInterface>EffortJointInterface</hardwareInterface>";
+constexpr const char* kPosition = "<hardwareInterface>PositionJointInterface</hardwareInterface>";
 
 // <transmission name="…"><type>…</type>children</transmission>; no name
 // attribute or no <type> where the argument is empty.
@@ -318,10 +384,6 @@ std::vector<MalformedCase> malformedCases() {
        transmission("t1", "", kJ1M1),
        "'t1'",
        {"has no <type>", "add e.g. <type>transmission_interface/SimpleTransmission"}},
-      {"SimpleActuatorWithoutReduction",
-       transmission("tran1", kSimpleType, joint("j1") + actuator("motor1", kEffort)),
-       "'tran1'",
-       {"actuator 'motor1' has no <mechanicalReduction>", "add e.g. <mechanicalReduction>1</mechanicalReduction>"}},
       {"SimpleWithTwoJoints",
        transmission("t1", kSimpleType, joint("j1") + joint("j2") + actuator("m1", reduction("1"))),
        "'t1'",
@@ -383,7 +445,34 @@ std::vector<MalformedCase> malformedCases() {
        transmission("first", kSimpleType, kJ1M1) +
            transmission("second", kSimpleType, joint("j1") + actuator("m2", reduction("1"))),
        "'second'",
-       {"joint 'j1' is already driven by transmission 'first'", "each joint may appear in one transmission only"}},
+       {"joint 'j1' is already driven by transmission 'first' with the same <hardwareInterface> (EffortJointInterface)",
+        "remove one of the two, or give this one another interface"}},
+      {"OnePerInterfaceWithDifferentReductions",
+       transmission("first", kSimpleType, kJ1M1) +
+           transmission("second", kSimpleType, joint("j1", kPosition) + actuator("m1", reduction("2"))),
+       "'second'",
+       {"joint 'j1' is also driven by transmission 'first', with <mechanicalReduction> 1 there and 2 here",
+        "give them the same <mechanicalReduction>"}},
+      {"OnePerInterfaceWithDifferentOffsets",
+       transmission("first", kSimpleType, kJ1M1) +
+           transmission("second", kSimpleType,
+                        joint("j1", std::string(kPosition) + "<offset>0.5</offset>") + actuator("m1", reduction("1"))),
+       "'second'",
+       {"with <offset> 0 there and 0.5 here", "give them the same <offset>"}},
+      {"JointOfACoupledTransmissionInASimpleOne",
+       transmission("wrist", kDifferentialType, roles_ok + actuators_ok) +
+           transmission("extra", kSimpleType, joint("j1", kPosition) + actuator("m3", reduction("1"))),
+       "'extra'",
+       {"joint 'j1' is already driven by transmission 'wrist'",
+        "only SimpleTransmissions (one per hardware interface) may share a joint"}},
+      {"ActuatorInTwoTransmissions",
+       transmission("first", kSimpleType, kJ1M1) + transmission("second", kSimpleType, joint("j2") + actuator("m1", reduction("1"))),
+       "'second'",
+       {"actuator 'm1' is already used by transmission 'first'", "give each actuator a unique name"}},
+      {"NameOfTwoTransmissions",
+       transmission("same", kSimpleType, kJ1M1) + transmission("same", kSimpleType, joint("j2") + actuator("m2", reduction("1"))),
+       "'same'",
+       {"the name is used by more than one <transmission>", "give each a unique name"}},
       {"CoupledJointsWithDifferentCommandInterfaces",
        transmission("wrist", kDifferentialType,
                     joint("j1", role("joint1") + kEffort) +
@@ -422,8 +511,7 @@ TEST(TransmissionParser, ReportsEveryProblemOnItsOwnLine) {
   </transmission>)"));
   expectProblem(message, "'a'", {"has no <type>"});
   expectProblem(message, "'b'", {"joint 'j2' has no <hardwareInterface>"});
-  expectProblem(message, "'b'", {"actuator 'm2' has no <mechanicalReduction>"});
-  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 2) << message;
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
   EXPECT_EQ(message.find("t_slide"), std::string::npos) << message;
 }
 

@@ -177,12 +177,20 @@ std::vector<std::string> readHardwareInterfaces(const tinyxml2::XMLElement* pare
   return interfaces;
 }
 
-// Which joints and actuators earlier transmissions already use, to report a
-// joint or actuator driven by two transmissions.
+// What earlier transmissions use: to merge the transmissions of a joint that
+// has one per hardware interface, and to report a joint, an actuator or a
+// name used twice.
 struct UsedNames {
-  std::map<std::string, std::string> joint_owner;
-  std::map<std::string, std::string> actuator_owner;
+  std::map<std::string, std::size_t> joint_home;      // joint → its transmission's place in the result
+  std::map<std::string, std::string> actuator_owner;  // actuator → its transmission's label
   std::map<std::string, int> transmission_count;
+};
+
+// What the parse notes rather than refuses: joints whose one-per-interface
+// transmissions were merged, and actuators without a <mechanicalReduction>.
+struct ParseNotes {
+  std::vector<std::string> merged_joints;  // "j1 (PositionJointInterface, VelocityJointInterface)"
+  std::vector<std::string> unreduced_actuators;
 };
 
 // The pre-2015 form names the interfaces in the <actuator> only. ros_control
@@ -205,8 +213,8 @@ bool takeLegacyActuatorInterfaces(const tinyxml2::XMLElement* transmission, cons
 }
 
 void readJoints(const tinyxml2::XMLElement* transmission, const urdf::ModelInterface& robot,
-                const std::string& label, const std::string& source_name, UsedNames& used,
-                TransmissionInfo& info, Problems& problems) {
+                const std::string& label, const std::string& source_name, TransmissionInfo& info,
+                Problems& problems) {
   for (auto* element = transmission->FirstChildElement("joint"); element != nullptr;
        element = element->NextSiblingElement("joint")) {
     TransmissionJointInfo joint;
@@ -241,11 +249,8 @@ void readJoints(const tinyxml2::XMLElement* transmission, const urdf::ModelInter
                    " is not a revolute, continuous or prismatic joint; a transmission drives "
                    "one movable degree of freedom, so remove the <joint> or change the joint type");
     }
-    const auto [it, inserted] = used.joint_owner.emplace(joint.name, label);
-    if (!inserted && it->second != label) {
-      problems.add(owner + " is already driven by transmission " + it->second +
-                   "; each joint may appear in one transmission only");
-    } else if (!inserted) {
+    if (std::any_of(info.joints.begin(), info.joints.end(),
+                    [&](const TransmissionJointInfo& other) { return other.name == joint.name; })) {
       problems.add(owner + " is listed twice; list each joint once");
     }
     info.joints.push_back(std::move(joint));
@@ -253,7 +258,8 @@ void readJoints(const tinyxml2::XMLElement* transmission, const urdf::ModelInter
 }
 
 void readActuators(const tinyxml2::XMLElement* transmission, const std::string& label,
-                   const std::string& source_name, UsedNames& used, TransmissionInfo& info, Problems& problems) {
+                   const std::string& source_name, TransmissionInfo& info, ParseNotes& notes,
+                   Problems& problems) {
   for (auto* element = transmission->FirstChildElement("actuator"); element != nullptr;
        element = element->NextSiblingElement("actuator")) {
     TransmissionActuatorInfo actuator;
@@ -278,19 +284,18 @@ void readActuators(const tinyxml2::XMLElement* transmission, const std::string& 
     }
     actuator.role = elementText(element->FirstChildElement("role"));
     if (element->FirstChildElement("mechanicalReduction") == nullptr) {
-      problems.add(owner +
-                   " has no <mechanicalReduction>; add e.g. "
-                   "<mechanicalReduction>1</mechanicalReduction> (motor turns per "
-                   "joint turn)");
+      // gazebo_ros_control drives the joint itself, as a reduction of 1
+      // would; franka_description's transmissions leave it out so.
+      if (std::find(notes.unreduced_actuators.begin(), notes.unreduced_actuators.end(), actuator.name) ==
+          notes.unreduced_actuators.end()) {
+        notes.unreduced_actuators.push_back(actuator.name);
+      }
     } else {
       readNumber(element, "mechanicalReduction", owner, true, actuator.mechanical_reduction,
                  problems);
     }
-    const auto [it, inserted] = used.actuator_owner.emplace(actuator.name, label);
-    if (!inserted && it->second != label) {
-      problems.add(owner + " is already used by transmission " + it->second +
-                   "; give each actuator a unique name");
-    } else if (!inserted) {
+    if (std::any_of(info.actuators.begin(), info.actuators.end(),
+                    [&](const TransmissionActuatorInfo& other) { return other.name == actuator.name; })) {
       problems.add(owner + " is listed twice; list each actuator once");
     }
     info.actuators.push_back(std::move(actuator));
@@ -351,6 +356,130 @@ void validateForType(TransmissionInfo& info, const TypeRule& rule, Problems& pro
                  "' (" + join(commandInterfaceNames(info.joints[1])) +
                  ") name different command interfaces; a " + rule.short_name +
                  " couples its joints, so give both the same <hardwareInterface> list");
+  }
+}
+
+bool isOneJointSimple(const TransmissionInfo& info) {
+  return info.type == kSimpleTransmissionType && info.joints.size() == 1 && info.actuators.size() == 1;
+}
+
+// A SimpleTransmission for a joint an earlier SimpleTransmission drives, as
+// franka_description declares one per hardware interface (its Gazebo plugin
+// and gazebo_ros_control accept that): the earlier one takes its interfaces,
+// if it adds any and both agree on the reduction and offset.
+void mergeInto(TransmissionInfo& earlier, const TransmissionInfo& info, const std::string& earlier_label,
+               UsedNames& used, ParseNotes& notes, Problems& problems) {
+  TransmissionJointInfo& kept = earlier.joints[0];
+  const TransmissionJointInfo& joint = info.joints[0];
+  const std::string owner = "joint '" + joint.name + "'";
+  std::vector<std::string> added;
+  for (const std::string& name : joint.hardware_interfaces) {
+    if (std::find(kept.hardware_interfaces.begin(), kept.hardware_interfaces.end(), name) ==
+            kept.hardware_interfaces.end() &&
+        std::find(added.begin(), added.end(), name) == added.end()) {
+      added.push_back(name);
+    }
+  }
+  const double kept_reduction = earlier.actuators[0].mechanical_reduction;
+  const double reduction = info.actuators[0].mechanical_reduction;
+  if (added.empty()) {
+    problems.add(owner + " is already driven by transmission " + earlier_label + " with the same <hardwareInterface> (" +
+                 join(joint.hardware_interfaces) +
+                 "); remove one of the two, or give this one another interface (a joint may have one "
+                 "SimpleTransmission per interface)");
+  } else if (reduction != kept_reduction || joint.offset != kept.offset) {
+    const bool reductions_differ = reduction != kept_reduction;
+    problems.add(owner + " is also driven by transmission " + earlier_label + ", with " +
+                 (reductions_differ ? "<mechanicalReduction> " + fmt::format("{}", kept_reduction) + " there and " +
+                                          fmt::format("{}", reduction)
+                                    : "<offset> " + fmt::format("{}", kept.offset) + " there and " +
+                                          fmt::format("{}", joint.offset)) +
+                 " here; the transmissions of one joint (one per interface) drive the same motor, so give them the "
+                 "same " + (reductions_differ ? "<mechanicalReduction>" : "<offset>"));
+  } else {
+    kept.hardware_interfaces.insert(kept.hardware_interfaces.end(), added.begin(), added.end());
+    auto& actuator_interfaces = earlier.actuators[0].hardware_interfaces;
+    for (const std::string& name : info.actuators[0].hardware_interfaces) {
+      if (std::find(actuator_interfaces.begin(), actuator_interfaces.end(), name) == actuator_interfaces.end()) {
+        actuator_interfaces.push_back(name);
+      }
+    }
+    const std::string entry_prefix = joint.name + " (";
+    const auto entry = std::find_if(notes.merged_joints.begin(), notes.merged_joints.end(),
+                                    [&](const std::string& e) { return e.rfind(entry_prefix, 0) == 0; });
+    const std::string text = entry_prefix + join(kept.hardware_interfaces) + ")";
+    if (entry != notes.merged_joints.end()) {
+      *entry = text;
+    } else {
+      notes.merged_joints.push_back(text);
+    }
+  }
+  // The merged transmission keeps the earlier one's actuator; this one's name
+  // stays taken, as the same motor.
+  used.actuator_owner.emplace(info.actuators[0].name, earlier_label);
+}
+
+// Adds a parsed transmission to the result, or merges it into an earlier
+// one driving the same joint; reports joints, actuators and names used twice.
+void placeTransmission(TransmissionInfo info, const std::string& label, std::vector<TransmissionInfo>& infos,
+                       std::vector<std::string>& labels, UsedNames& used, ParseNotes& notes, Problems& problems) {
+  bool shared_joint = false;
+  for (const TransmissionJointInfo& joint : info.joints) {
+    const auto home = used.joint_home.find(joint.name);
+    if (joint.name.empty() || home == used.joint_home.end()) continue;
+    shared_joint = true;
+    TransmissionInfo& earlier = infos[home->second];
+    if (isOneJointSimple(info) && isOneJointSimple(earlier)) {
+      mergeInto(earlier, info, labels[home->second], used, notes, problems);
+    } else {
+      problems.add("joint '" + joint.name + "' is already driven by transmission " + labels[home->second] +
+                   "; only SimpleTransmissions (one per hardware interface) may share a joint, so drive it from "
+                   "one transmission");
+    }
+  }
+  if (shared_joint) return;
+  if (!info.name.empty() && ++used.transmission_count[info.name] == 2) {
+    problems.add("the name is used by more than one <transmission>; give each a unique name");
+  }
+  for (const TransmissionJointInfo& joint : info.joints) {
+    if (!joint.name.empty()) used.joint_home.emplace(joint.name, infos.size());
+  }
+  for (const TransmissionActuatorInfo& actuator : info.actuators) {
+    if (actuator.name.empty()) continue;
+    const auto [it, inserted] = used.actuator_owner.emplace(actuator.name, label);
+    if (!inserted) {
+      problems.add("actuator '" + actuator.name + "' is already used by transmission " + it->second +
+                   "; give each actuator a unique name");
+    }
+  }
+  infos.push_back(std::move(info));
+  labels.push_back(label);
+}
+
+// The notes of one parse, a line each: merged transmissions and actuators
+// taken as direct drives (the first few named, and how many there are).
+void logNotes(const ParseNotes& notes, const std::string& source_name) {
+  constexpr std::size_t kNamed = 4;
+  auto some = [&](const std::vector<std::string>& items) {
+    std::string text;
+    for (std::size_t i = 0; i < items.size() && i < kNamed; ++i) text += (i == 0 ? "" : ", ") + items[i];
+    if (items.size() > kNamed) text += fmt::format(" and {} more", items.size() - kNamed);
+    return text;
+  };
+  if (!notes.merged_joints.empty()) {
+    logger().info(
+        "{}: {} {} one SimpleTransmission per hardware interface; each joint's are merged into one offering all "
+        "of them, with the first one's actuator (as franka_gazebo and gazebo_ros_control accept them): {}",
+        source_name, notes.merged_joints.size() == 1 ? "joint" : fmt::format("{} joints", notes.merged_joints.size()),
+        notes.merged_joints.size() == 1 ? "has" : "have", some(notes.merged_joints));
+  }
+  if (!notes.unreduced_actuators.empty()) {
+    logger().info(
+        "{}: {} {} without <mechanicalReduction> {} taken as a direct drive (reduction 1), as gazebo_ros_control "
+        "drives {}; add <mechanicalReduction> to say otherwise",
+        source_name, notes.unreduced_actuators.size() == 1 ? "actuator" : "actuators",
+        some(notes.unreduced_actuators), notes.unreduced_actuators.size() == 1 ? "is" : "are",
+        notes.unreduced_actuators.size() == 1 ? "it" : "them");
   }
 }
 
@@ -424,7 +553,9 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
 
   Problems problems(source_name);
   UsedNames used;
+  ParseNotes notes;
   std::vector<TransmissionInfo> infos;
+  std::vector<std::string> labels;  // how messages name each of infos
   std::vector<std::string> pr2_form;   // labels of transmissions in the pre-ros_control form
   std::vector<std::string> pr2_types;  // their type attributes, each once
   int index = 0;
@@ -437,13 +568,17 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
     const std::string label =
         info.name.empty() ? "#" + std::to_string(index) : "'" + info.name + "'";
     problems.setTransmission(label);
-    if (info.name.empty()) {
-      problems.add("has no name attribute; add name=\"<unique transmission name>\"");
-    } else if (++used.transmission_count[info.name] == 2) {
-      problems.add("the name is used by more than one <transmission>; give each a unique name");
-    }
+    if (info.name.empty()) problems.add("has no name attribute; add name=\"<unique transmission name>\"");
+    // A skipped transmission's name counts too; a placed one's is counted
+    // when placed (a merged one's is not: franka's share their name).
+    const auto count_name = [&] {
+      if (!info.name.empty() && ++used.transmission_count[info.name] == 2) {
+        problems.add("the name is used by more than one <transmission>; give each a unique name");
+      }
+    };
 
     if (isPr2MechanismForm(element)) {
+      count_name();
       // The pre-ros_control form (pr2_mechanism_model: type="..." attribute, no
       // hardware interface anywhere). ros_control cannot use it either; the
       // simulation skips it and drives the joints as if it were not there.
@@ -464,21 +599,24 @@ std::vector<TransmissionInfo> parseTransmissions(const std::string& urdf_xml,
     } else if (rule == nullptr) {
       // As gazebo_ros_control: a type the simulation cannot model is skipped,
       // not fatal; its joints are driven as if it were not there.
+      count_name();
       logger().warn(
-          "{}: transmission {}: unknown type '{}'; the transmission is skipped (its joints get the implicit "
-          "SimpleTransmission, reduction 1, when simulated). Use transmission_interface/SimpleTransmission, "
-          "transmission_interface/DifferentialTransmission or transmission_interface/FourBarLinkageTransmission",
+          "{}: transmission {}: unknown type '{}'; the transmission is skipped (its joints are driven by their "
+          "other transmissions, or get the implicit SimpleTransmission, reduction 1, when simulated). Use "
+          "transmission_interface/SimpleTransmission, transmission_interface/DifferentialTransmission or "
+          "transmission_interface/FourBarLinkageTransmission",
           source_name, label, written_type);
       continue;
     }
 
-    readJoints(element, *robot, label, source_name, used, info, problems);
-    readActuators(element, label, source_name, used, info, problems);
+    readJoints(element, *robot, label, source_name, info, problems);
+    readActuators(element, label, source_name, info, notes, problems);
     if (rule != nullptr) validateForType(info, *rule, problems);
-    infos.push_back(std::move(info));
+    placeTransmission(std::move(info), label, infos, labels, used, notes, problems);
   }
   warnPr2MechanismForm(pr2_form, pr2_types, source_name);
   if (!problems.empty()) problems.raise();
+  logNotes(notes, source_name);
   return infos;
 }
 
