@@ -11,6 +11,7 @@
 #include "servoloop/controllers/common/controller_state_publisher.hpp"
 #include "servoloop/controllers/pid.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/core/time.hpp"
 #include "servoloop/hardware_interface/actuator_interfaces.hpp"
 #include "servoloop/hardware_interface/hardware_info.hpp"

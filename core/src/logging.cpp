@@ -69,6 +69,14 @@ bool Logger::shouldLog(LogLevel level) const noexcept { return spdlogLogger().sh
 
 void Logger::write(LogLevel level, std::string_view text) { spdlogLogger().log(toSpdlog(level), text); }
 
+void Logger::writeUnformatted(LogLevel level, fmt::string_view format) noexcept {
+  try {
+    write(level, std::string_view(format.data(), format.size()));
+  } catch (...) {
+    // Nothing is left to report it with.
+  }
+}
+
 ThreadLogCapture::ThreadLogCapture() : outer_(t_capture) { t_capture = this; }
 
 ThreadLogCapture::~ThreadLogCapture() { t_capture = outer_; }

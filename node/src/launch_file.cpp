@@ -310,12 +310,15 @@ class Parser {
     const std::string topic_name = topic(node["topic"], key + ".topic");
     const std::string type = node["type"] ? string(node["type"], key + ".type") : "";
     const double time_s = node["time"] ? nonNegativeNumber(node["time"], key + ".time", "s of simulated time") : 0.0;
+    TimedPublication publication;
     try {
-      return makeTimedPublication(topic_name, type, yamlToJson(node["value"]), time_s,
-                                  type.empty() ? at(node["value"], key + ".value") : "");
+      publication = makeTimedPublication(topic_name, type, yamlToJson(node["value"]), time_s, "");
     } catch (const Error& e) {
       fail(node["value"], key + ".value", e.what());
     }
+    // Checked when the node types it: its errors then name where it was written.
+    if (publication.type_inferred) publication.origin = at(node["value"], key + ".value");
+    return publication;
   }
 
   RecordSpec record(const YAML::Node& node, const std::string& key) const {

@@ -273,7 +273,8 @@ void addCompareCommand(CLI::App& root) {
       ->type_name("SECONDS")
       ->check(numberWithin(1e-6, kMaxDurationS, "simulated seconds"));
   compare->add_option("--pub", options->publications,
-                      "Publish a std_msgs/Float64 (or a [a, b] array) at simulated TIME s (default 0) in both runs; "
+                      "Publish a message at simulated TIME s (default 0) in both runs: a number is a "
+                      "std_msgs/Float64, [a, b] a Float64MultiArray, {field: ...} the type of its topic or TYPE; "
                       "repeatable")
       ->type_name("TOPIC[:TYPE]:=VALUE[@TIME]");
   compare->add_option("--topic", options->topics,

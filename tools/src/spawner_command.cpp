@@ -35,7 +35,7 @@ struct SpawnerOptions {
 
 // How long one switch may take on the node: the real-time thread carries it
 // out at the next cycle, which at a low real-time factor can be a while.
-constexpr double kSwitchCallTimeoutS = 30.0;
+constexpr double kSpawnerSwitchTimeoutS = 30.0;
 
 bool isYamlFile(const std::string& argument) {
   const auto extension = fs::path(argument).extension();
@@ -135,7 +135,7 @@ void runSpawner(const SpawnerOptions& options) {
   bool switch_ok = true;
   if (!options.stopped && !loaded.empty() && !(options.unload_on_kill && stopRequested())) {
     try {
-      client.call("control.switch", strictSwitch(loaded, {}), kSwitchCallTimeoutS);
+      client.call("control.switch", strictSwitch(loaded, {}), kSpawnerSwitchTimeoutS);
       started = true;
       std::cout << "Started controllers: " << joinNames(loaded) << std::endl;
     } catch (const std::exception& error) {

@@ -17,7 +17,7 @@ namespace {
 
 using nlohmann::json;
 
-double number(const json& parent, const char* key) {
+double numberOrNan(const json& parent, const char* key) {
   const auto it = parent.find(key);
   if (it == parent.end() || !it->is_number()) return std::nan("");
   return it->get<double>();
@@ -62,8 +62,8 @@ json goalToJson(const control_msgs::GripperCommandGoal& goal) {
 
 template <class Out>
 void gripperStateFromJson(const json& j, Out& out) {
-  out.position = number(j, "position");
-  out.effort = number(j, "effort");
+  out.position = numberOrNan(j, "position");
+  out.effort = numberOrNan(j, "effort");
   out.stalled = j.value("stalled", false);
   out.reached_goal = j.value("reached_goal", false);
 }

@@ -51,13 +51,21 @@ class Logger {
   }
 
   bool shouldLog(LogLevel level) const noexcept;
-  // Logs text as it is (no formatting).
+  // Logs text as it is (no formatting); logger().warn("{}", text) does the same.
   void write(LogLevel level, std::string_view text);
 
  private:
-  void log(LogLevel level, fmt::string_view format, fmt::format_args args) {
-    if (shouldLog(level)) write(level, fmt::vformat(format, args));
+  // Never throws: a message that cannot be formatted (or no memory for it) is
+  // logged as its format text, or dropped.
+  void log(LogLevel level, fmt::string_view format, fmt::format_args args) noexcept {
+    if (!shouldLog(level)) return;
+    try {
+      write(level, fmt::vformat(format, args));
+    } catch (...) {
+      writeUnformatted(level, format);
+    }
   }
+  void writeUnformatted(LogLevel level, fmt::string_view format) noexcept;
 };
 
 Logger& logger();
