@@ -298,7 +298,9 @@ class Parser {
       } else {
         break;
       }
-      Value right = arith(live);
+      // As in Python, a chain stops at its first false link: what follows is
+      // parsed but not evaluated (a ${a < b < f(x)} with a >= b never calls f).
+      Value right = arith(live && result);
       if (live && result) result = compare(op, left, right);
       left = right;
       any = true;

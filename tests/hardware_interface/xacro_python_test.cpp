@@ -176,6 +176,16 @@ TEST(XacroPython, BuiltinsGiveWhatPythonGives) {
 
 // A property's value is read as xacro reads it: '0' from split() becomes the
 // int 0, so franka's ${x + sx} adds numbers; the string itself does not add.
+// A chain of comparisons stops at its first false link, as in Python:
+// 0 > 1 > 1 / 0 is False there, without the ZeroDivisionError the last link
+// would raise; with a true first link the division is evaluated.
+TEST(XacroPython, ChainedComparisonsStopAtTheFirstFalseLink) {
+  EXPECT_EQ(valueOf("0 > 1 > 1 / 0"), "False");
+  EXPECT_EQ(valueOf("1 < 2 < 3"), "True");
+  EXPECT_EQ(valueOf("1 < 3 < 2"), "False");
+  EXPECT_TRUE(holds(errorOfExpression("1 < 2 < 1 / 0"), "division by zero"));
+}
+
 TEST(XacroPython, PropertiesReadTheTextOfAnExpressionAsANumber) {
   EXPECT_EQ(valueOf("first + 1"), "1");
   EXPECT_TRUE(holds(errorOfExpression("xyz.split(' ')[0] + 1"), "unsupported operand types for +: str ('0') and int (1)"));

@@ -255,6 +255,22 @@ TEST(TransmissionParser, OneTransmissionPerInterfaceMergesIntoOneWithANote) {
   EXPECT_EQ(log.count("warning"), 0u) << log.text();
 }
 
+// A joint's second transmission (another interface) is merged into its
+// first, but the actuator it names must not belong to another joint's.
+TEST(TransmissionParser, AMergedTransmissionCannotTakeAnotherJointsActuator) {
+  const auto simple = [](const char* name, const char* joint, const char* interface, const char* actuator) {
+    return std::string("<transmission name=\"") + name + "\"><type>transmission_interface/SimpleTransmission</type>" +
+           "<joint name=\"" + joint + "\"><hardwareInterface>hardware_interface/" + interface +
+           "</hardwareInterface></joint><actuator name=\"" + actuator +
+           "\"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>";
+  };
+  const std::string message = parseError(robotWith(simple("t1", "j1", "EffortJointInterface", "m1") +
+                                                   simple("t2", "j2", "EffortJointInterface", "m2") +
+                                                   simple("t1_velocity", "j1", "VelocityJointInterface", "m2")));
+  EXPECT_NE(message.find("actuator 'm2' is already used by transmission"), std::string::npos) << message;
+  EXPECT_NE(message.find("t2"), std::string::npos) << message;
+}
+
 // gazebo_ros_control drives a joint whose actuator has no reduction directly:
 // reduction 1, with a note rather than an error.
 TEST(TransmissionParser, AnActuatorWithoutReductionIsADirectDriveWithANote) {

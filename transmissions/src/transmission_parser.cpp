@@ -415,8 +415,13 @@ void mergeInto(TransmissionInfo& earlier, const TransmissionInfo& info, const st
     }
   }
   // The merged transmission keeps the earlier one's actuator; this one's name
-  // stays taken, as the same motor.
-  used.actuator_owner.emplace(info.actuators[0].name, earlier_label);
+  // stays taken, as the same motor. It must not be another transmission's.
+  const std::string& actuator = info.actuators[0].name;
+  const auto [it, inserted] = used.actuator_owner.emplace(actuator, earlier_label);
+  if (!inserted && it->second != earlier_label) {
+    problems.add("actuator '" + actuator + "' is already used by transmission " + it->second +
+                 "; give each actuator a unique name");
+  }
 }
 
 // Adds a parsed transmission to the result, or merges it into an earlier
