@@ -24,7 +24,10 @@ std::vector<std::optional<Value>> bindArguments(const std::string& function, con
          " argument(s), " + std::to_string(args.positional.size()) + " given");
   }
   for (std::size_t i = 0; i < args.positional.size(); ++i) bound[i] = args.positional[i];
-  for (const auto& [key, value] : args.keyword) {
+  for (const auto& keyword : args.keyword) {
+    // Named, not a structured binding: clang 14 cannot capture those in a lambda.
+    const auto& key = keyword.first;
+    const auto& value = keyword.second;
     const auto it = std::find_if(names.begin(), names.end(), [&](const char* n) { return key == n; });
     if (it == names.end()) {
       std::string known;
