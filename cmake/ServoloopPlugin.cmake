@@ -1,8 +1,12 @@
-# servoloop_add_plugin(<target> SOURCES ... [LINK ...] [NO_INSTALL])
+# servoloop_add_plugin(<target> SOURCES ... [LINK ...] [NO_INSTALL]
+#                      [NO_PRECOMPILED_HEADERS])
 # Builds a servoloop plugin (controller or backend): a MODULE library that the
 # plugin loader opens with dlopen. Used in tree and by out-of-tree projects.
+# Out of tree, servoloop's common plugin headers (servoloop/plugin/precompiled.hpp)
+# are precompiled once for the target, so that rebuilding after an edit to a
+# source parses none of them again; NO_PRECOMPILED_HEADERS turns that off.
 function(servoloop_add_plugin target)
-  cmake_parse_arguments(ARG "NO_INSTALL" "" "SOURCES;LINK" ${ARGN})
+  cmake_parse_arguments(ARG "NO_INSTALL;NO_PRECOMPILED_HEADERS" "" "SOURCES;LINK" ${ARGN})
   add_library(${target} MODULE ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE ${ARG_LINK})
   set_target_properties(${target} PROPERTIES PREFIX "lib")
@@ -28,5 +32,10 @@ function(servoloop_add_plugin target)
     # installed plugin, so it loads from any prefix (servoloop itself does not
     # load sim_common or transmissions for a plugin).
     set_target_properties(${target} PROPERTIES INSTALL_RPATH_USE_LINK_PATH TRUE)
+    # In tree the plugins are many and each built once, so a header compiled
+    # for each would cost more than it saves.
+    if(NOT ARG_NO_PRECOMPILED_HEADERS)
+      target_precompile_headers(${target} PRIVATE <servoloop/plugin/precompiled.hpp>)
+    endif()
   endif()
 endfunction()

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <thread>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>

@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 #include <chrono>
+#include <thread>
 
 #include <fmt/format.h>
 

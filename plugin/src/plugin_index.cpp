@@ -1,4 +1,4 @@
-#include "servoloop/plugin/plugin_index.hpp"
+#include "plugin_index_reader.hpp"
 
 #include <elf.h>
 

@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "servoloop/core/errors.hpp"
-#include "servoloop/plugin/plugin_index.hpp"
+#include "plugin_index_reader.hpp"
 #include "servoloop/core/logging.hpp"
 
 namespace servoloop::plugin {

@@ -1,5 +1,8 @@
 #include "servoloop/realtime/topic_bus.hpp"
 
+#include <condition_variable>
+#include <thread>
+
 #include "servoloop/core/logging.hpp"
 
 namespace servoloop::realtime {
@@ -147,7 +150,14 @@ void detachSubscriber(const std::weak_ptr<BusCore>& weak_core, const std::string
 
 }  // namespace detail
 
-TopicBus::TopicBus() : core_(std::make_shared<detail::BusCore>()) {}
+struct TopicBus::DeliveryThread {
+  mutable std::mutex mutex;
+  std::condition_variable wake;
+  std::thread thread;
+  bool stop_requested = false;
+};
+
+TopicBus::TopicBus() : core_(std::make_shared<detail::BusCore>()), delivery_(std::make_unique<DeliveryThread>()) {}
 
 TopicBus::~TopicBus() { stop(); }
 
@@ -221,34 +231,36 @@ std::vector<TopicInfo> TopicBus::list() const {
 }
 
 void TopicBus::start(std::chrono::microseconds period) {
-  std::lock_guard lock(thread_mutex_);
-  if (delivery_thread_.joinable()) return;
-  stop_requested_ = false;
-  delivery_thread_ = std::thread([this, period] {
+  DeliveryThread& delivery = *delivery_;
+  std::lock_guard lock(delivery.mutex);
+  if (delivery.thread.joinable()) return;
+  delivery.stop_requested = false;
+  delivery.thread = std::thread([this, &delivery, period] {
     for (;;) {
       core_->deliverOnce();
-      std::unique_lock wait_lock(thread_mutex_);
-      if (wake_.wait_for(wait_lock, period, [this] { return stop_requested_; })) break;
+      std::unique_lock wait_lock(delivery.mutex);
+      if (delivery.wake.wait_for(wait_lock, period, [&delivery] { return delivery.stop_requested; })) break;
     }
     core_->deliverOnce();  // what was published before stop() still arrives
   });
 }
 
 void TopicBus::stop() {
+  DeliveryThread& delivery = *delivery_;
   std::thread thread;
   {
-    std::lock_guard lock(thread_mutex_);
-    if (!delivery_thread_.joinable()) return;
-    stop_requested_ = true;
-    thread = std::move(delivery_thread_);
+    std::lock_guard lock(delivery.mutex);
+    if (!delivery.thread.joinable()) return;
+    delivery.stop_requested = true;
+    thread = std::move(delivery.thread);
   }
-  wake_.notify_all();
+  delivery.wake.notify_all();
   thread.join();
 }
 
 bool TopicBus::running() const {
-  std::lock_guard lock(thread_mutex_);
-  return delivery_thread_.joinable();
+  std::lock_guard lock(delivery_->mutex);
+  return delivery_->thread.joinable();
 }
 
 std::size_t TopicBus::flush() {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/actuator_interfaces.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/hardware_info.hpp"

@@ -9,7 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "servoloop/plugin/plugin_index.hpp"
+#include "plugin_index_reader.hpp"
 
 #include "temp_dir.hpp"
 

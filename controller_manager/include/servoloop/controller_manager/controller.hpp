@@ -14,6 +14,8 @@
 
 #include "servoloop/controller_manager/controller_base.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/hardware_interface/actuator_interfaces.hpp"
+#include "servoloop/hardware_interface/joint_interfaces.hpp"
 
 namespace servoloop::controller_manager {
 
@@ -77,5 +79,16 @@ class Controller : public ControllerBase {
     return true;
   }
 };
+
+// Controllers of ros_control's joint and actuator interfaces share one
+// instantiation each, in the controller_manager library (controller.cpp):
+// a controller's own source then compiles only its own code.
+extern template class Controller<hardware_interface::JointStateInterface>;
+extern template class Controller<hardware_interface::EffortJointInterface>;
+extern template class Controller<hardware_interface::VelocityJointInterface>;
+extern template class Controller<hardware_interface::PositionJointInterface>;
+extern template class Controller<hardware_interface::EffortActuatorInterface>;
+extern template class Controller<hardware_interface::VelocityActuatorInterface>;
+extern template class Controller<hardware_interface::PositionActuatorInterface>;
 
 }  // namespace servoloop::controller_manager

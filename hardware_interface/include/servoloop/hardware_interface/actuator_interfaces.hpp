@@ -9,24 +9,30 @@ namespace servoloop::hardware_interface {
 
 class ActuatorStateInterface : public ResourceManager<ActuatorStateHandle, false> {
  public:
-  const char* name() const override { return "ActuatorStateInterface"; }
+  const char* name() const override;
 };
 
 class ActuatorCommandInterface : public ResourceManager<ActuatorHandle, true> {};
 
 class EffortActuatorInterface : public ActuatorCommandInterface {
  public:
-  const char* name() const override { return "EffortActuatorInterface"; }
+  const char* name() const override;
 };
 
 class VelocityActuatorInterface : public ActuatorCommandInterface {
  public:
-  const char* name() const override { return "VelocityActuatorInterface"; }
+  const char* name() const override;
 };
 
 class PositionActuatorInterface : public ActuatorCommandInterface {
  public:
-  const char* name() const override { return "PositionActuatorInterface"; }
+  const char* name() const override;
 };
+
+// Instantiated once, in the hardware_interface library (interfaces.cpp), with
+// each interface's name(): controllers that use these interfaces compile none
+// of their code.
+extern template class ResourceManager<ActuatorStateHandle, false>;
+extern template class ResourceManager<ActuatorHandle, true>;
 
 }  // namespace servoloop::hardware_interface

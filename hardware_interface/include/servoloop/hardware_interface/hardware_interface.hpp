@@ -10,7 +10,7 @@ namespace servoloop::hardware_interface {
 // through it while they were being initialised; not used on the real-time path.
 class HardwareInterface {
  public:
-  virtual ~HardwareInterface() = default;
+  virtual ~HardwareInterface();
 
   // The interface's name as ros_control spells it, e.g. "EffortJointInterface".
   virtual const char* name() const = 0;

@@ -11,24 +11,30 @@ namespace servoloop::hardware_interface {
 
 class JointStateInterface : public ResourceManager<JointStateHandle, false> {
  public:
-  const char* name() const override { return "JointStateInterface"; }
+  const char* name() const override;
 };
 
 class JointCommandInterface : public ResourceManager<JointHandle, true> {};
 
 class EffortJointInterface : public JointCommandInterface {
  public:
-  const char* name() const override { return "EffortJointInterface"; }
+  const char* name() const override;
 };
 
 class VelocityJointInterface : public JointCommandInterface {
  public:
-  const char* name() const override { return "VelocityJointInterface"; }
+  const char* name() const override;
 };
 
 class PositionJointInterface : public JointCommandInterface {
  public:
-  const char* name() const override { return "PositionJointInterface"; }
+  const char* name() const override;
 };
+
+// Instantiated once, in the hardware_interface library (interfaces.cpp), with
+// each interface's name(): controllers that use these interfaces compile none
+// of their code.
+extern template class ResourceManager<JointStateHandle, false>;
+extern template class ResourceManager<JointHandle, true>;
 
 }  // namespace servoloop::hardware_interface

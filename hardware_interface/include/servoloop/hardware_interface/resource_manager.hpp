@@ -3,10 +3,16 @@
 #include <string>
 #include <vector>
 
-#include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/hardware_interface.hpp"
 
 namespace servoloop::hardware_interface {
+
+namespace detail {
+// Throws the UnknownHandleError of ResourceManager::getHandle (out of line, so
+// that each interface's code stays small).
+[[noreturn]] void throwUnknownHandle(const char* interface_name, const std::string& handle,
+                                     const std::vector<std::string>& known);
+}  // namespace detail
 
 // Holds the handles of one interface by name. Handles are looked up at
 // configure time (never on the real-time path); an unknown name throws an
@@ -23,14 +29,7 @@ class ResourceManager : public HardwareInterface {
 
   HandleT getHandle(const std::string& name) {
     auto it = handles_.find(name);
-    if (it == handles_.end()) {
-      std::string known;
-      for (const auto& [n, h] : handles_) known += (known.empty() ? "" : ", ") + n;
-      throw UnknownHandleError(std::string(this->name()) + " has no handle '" + name +
-                               "' (it has: " + (known.empty() ? "none" : known) +
-                               "); check the joint/actuator name and the <transmission> "
-                               "hardwareInterface in the URDF");
-    }
+    if (it == handles_.end()) detail::throwUnknownHandle(this->name(), name, getNames());
     if constexpr (ClaimResources) this->claim(name);
     return it->second;
   }

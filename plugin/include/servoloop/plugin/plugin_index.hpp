@@ -7,18 +7,14 @@
 //
 //   "servoloop-plugin\0" <API version, decimal> "\0" <kind> "\0" <type name> "\0"
 //
-// Listing the types on the plugin path reads these records from the files; a
-// library is dlopen'ed (its static constructors run) only when one of its
-// types is first created. Files without the section are not servoloop plugins
-// and are passed over quietly.
+// Listing the types on the plugin path reads these records from the files
+// (plugin/src/plugin_index_reader.hpp); a library is dlopen'ed (its static
+// constructors run) only when one of its types is first created. Files without
+// the section are not servoloop plugins and are passed over quietly.
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
-#include <optional>
-#include <string>
 #include <string_view>
-#include <vector>
 
 #include "servoloop/plugin/plugin_api.hpp"
 
@@ -26,22 +22,6 @@ namespace servoloop::plugin {
 
 inline constexpr const char* kPluginIndexSection = "servoloop_plugin_index";
 inline constexpr std::string_view kPluginIndexMagic = "servoloop-plugin";
-
-// One record of a library's index.
-struct PluginIndexEntry {
-  std::uint32_t api_version = 0;
-  std::string kind;       // e.g. "controller"
-  std::string type_name;  // e.g. "effort_controllers/JointPositionController"
-};
-
-// The index of a library file: nullopt when the file is not an ELF shared
-// object of this machine's class or has no index section (not a plugin);
-// otherwise its records (records that cannot be read are skipped). Reads at
-// most the ELF headers and the section; never maps or runs the file.
-std::optional<std::vector<PluginIndexEntry>> readPluginIndex(const std::filesystem::path& library);
-
-// The records of an index section's bytes (exposed for tests).
-std::vector<PluginIndexEntry> parsePluginIndex(std::string_view section);
 
 namespace detail {
 

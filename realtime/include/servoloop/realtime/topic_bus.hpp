@@ -27,14 +27,12 @@
 // message type defined in a plugin lives in that plugin's code: drop its
 // handles before the plugin is unloaded, and do not reuse the topic afterwards.
 #include <chrono>
-#include <condition_variable>
 #include <cstddef>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
 
 #include "servoloop/realtime/messages.hpp"
@@ -134,12 +132,12 @@ class TopicBus {
   static std::string normalizeTopicName(std::string_view topic);
 
  private:
-  std::shared_ptr<detail::BusCore> core_;
+  // The delivery thread and what wakes it (topic_bus.cpp), kept out of this
+  // header so that controllers including it do not parse <thread>.
+  struct DeliveryThread;
 
-  mutable std::mutex thread_mutex_;
-  std::condition_variable wake_;
-  std::thread delivery_thread_;
-  bool stop_requested_ = false;
+  std::shared_ptr<detail::BusCore> core_;
+  std::unique_ptr<DeliveryThread> delivery_;
 };
 
 // --- template definitions (deliberately not inline: see the extern templates below)
