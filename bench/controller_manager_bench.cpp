@@ -38,7 +38,7 @@
 #include "median_reporter.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 
 namespace servoloop::bench {
 namespace {

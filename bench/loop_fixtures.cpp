@@ -8,7 +8,7 @@
 #include "bench_support.hpp"
 #include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 
 namespace servoloop::bench {
 

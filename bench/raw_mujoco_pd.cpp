@@ -6,7 +6,7 @@
 #include <string>
 
 #include "bench_support.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_common/sim_settings.hpp"
 
 namespace servoloop::bench {

@@ -1,13 +1,26 @@
 include(${CMAKE_CURRENT_LIST_DIR}/ServoloopPlugin.cmake)
 
+# servoloop_install_headers(<folder> <header>...)
+# Installs include/<folder>/<header> (a path that may name a subfolder) of the
+# current source folder as <includedir>/<folder>/<header>: the API plugin
+# authors include. scripts/check_install.sh checks that what is installed is
+# exactly what the headers authors start from need.
+function(servoloop_install_headers folder)
+  foreach(header IN LISTS ARGN)
+    get_filename_component(subfolder ${header} DIRECTORY)
+    install(FILES ${CMAKE_CURRENT_SOURCE_DIR}/include/${folder}/${header}
+      DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${folder}/${subfolder})
+  endforeach()
+endfunction()
+
 # servoloop_add_library(<module> SOURCES ... [PUBLIC_LINK ...] [PRIVATE_LINK ...]
-#                       [NO_INSTALL_HEADERS])
+#                       [INSTALL_HEADERS <header>...])
 # One shared library per module folder, with headers under
-# <module>/include/servoloop/<module>/, exported as servoloop::<module>. The
-# headers are installed as API unless NO_INSTALL_HEADERS (modules only the
-# node and the command line use).
+# <module>/include/servoloop/<module>/, exported as servoloop::<module>. Only
+# the INSTALL_HEADERS (paths under include/servoloop/<module>/) are installed;
+# the other headers are the module's and its tests' own.
 function(servoloop_add_library module)
-  cmake_parse_arguments(ARG "NO_INSTALL_HEADERS" "" "SOURCES;PUBLIC_LINK;PRIVATE_LINK" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_LINK;PRIVATE_LINK;INSTALL_HEADERS" ${ARGN})
   add_library(${module} SHARED ${ARG_SOURCES})
   add_library(servoloop::${module} ALIAS ${module})
   set_target_properties(${module} PROPERTIES OUTPUT_NAME servoloop_${module}
@@ -22,9 +35,7 @@ function(servoloop_add_library module)
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  if(NOT ARG_NO_INSTALL_HEADERS)
-    install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  endif()
+  servoloop_install_headers(servoloop/${module} ${ARG_INSTALL_HEADERS})
 endfunction()
 
 # servoloop_add_test(<name> SOURCES ... LINK ... [LABELS ...])

@@ -1,6 +1,6 @@
 // The URDF loader and the transmission parser on arbitrary text.
 #include "fuzz_common.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

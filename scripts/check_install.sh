@@ -26,17 +26,44 @@ example_type=my_controllers/GravityCompensatedPD
 install_build_into_prefix
 config=$(find "$prefix" -name servoloopConfig.cmake -print -quit)
 [[ -n "$config" ]] || fail "the install has no servoloopConfig.cmake (find_package(servoloop) cannot work)"
-for header in controller_manager/controller.hpp plugin/plugin_register.hpp \
-              plugin/plugin_loader.hpp realtime/topic_bus.hpp params/parameter_store.hpp \
-              core/errors.hpp hardware_interface/robot_hw.hpp controllers/pid.hpp \
-              controllers/common/command_input.hpp; do
-  [[ -f "$prefix/include/servoloop/$header" ]] || fail "the install lacks the header include/servoloop/$header"
-done
-# The node's and the socket's internals are not API.
-for folder in node ipc; do
-  [[ ! -e "$prefix/include/servoloop/$folder" ]] ||
-    fail "the install has include/servoloop/$folder: internal headers must not be installed"
-done
+# The installed headers are exactly the ones authors start from
+# (tests/install/author_headers.txt) and the servoloop headers those include.
+step "checking the installed headers against tests/install/author_headers.txt"
+python3 - "$prefix/include" "$source_dir/tests/install/author_headers.txt" <<'PY' || fail "see above"
+import os, re, sys
+include_dir, list_file = sys.argv[1:]
+entries = [line.strip() for line in open(list_file) if line.strip() and not line.startswith("#")]
+installed = {os.path.relpath(os.path.join(folder, name), include_dir)
+             for folder, _, names in os.walk(os.path.join(include_dir, "servoloop")) for name in names}
+problems, needed, pending = [], set(), [(header, list_file) for header in entries]
+while pending:
+    header, included_by = pending.pop()
+    if header in needed:
+        continue
+    needed.add(header)
+    if header not in installed:
+        problems.append(f"{header} (included by {os.path.basename(included_by)}) is not installed: "
+                        "add it to its module's INSTALL_HEADERS")
+        continue
+    text = open(os.path.join(include_dir, header)).read()
+    pending += [(match, header) for match in re.findall(r'#include "(servoloop/[^"]+)"', text)]
+for header in sorted(installed - needed):
+    problems.append(f"{header} is installed but no author header needs it: drop it from INSTALL_HEADERS, "
+                    "or add it to tests/install/author_headers.txt if authors include it")
+if problems:
+    sys.exit("installed headers:\n  " + "\n  ".join(problems))
+print(f"installed headers: {len(installed)}, exactly the {len(entries)} author headers and what they include")
+PY
+step "compiling the author headers together against the installed package alone"
+{
+  grep -v '^#' "$source_dir/tests/install/author_headers.txt" | sed -n 's|^\(servoloop/.*\)$|#include "\1"|p'
+} >"$work/author_headers.cpp"
+cxx=$(cache_value CMAKE_CXX_COMPILER)
+if ! "${cxx:-c++}" -std=c++20 -fsyntax-only -I"$prefix/include" -I/usr/include/eigen3 \
+    "$work/author_headers.cpp" >"$work/author_headers.log" 2>&1; then
+  show_log "$work/author_headers.log"
+  fail "the author headers do not compile against the installed package alone (see above)"
+fi
 
 # Every servoloop library the installed binaries and plugins load must come from
 # the prefix itself (RUNPATH), not from the build folder.

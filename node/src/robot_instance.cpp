@@ -22,9 +22,9 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/core/logging.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
-#include "servoloop/hardware_interface/simulatable_urdf.hpp"
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/robot_model.hpp"
+#include "servoloop/description/simulatable_urdf.hpp"
+#include "servoloop/description/xacro.hpp"
 #include "servoloop/node/ground_truth_publisher.hpp"
 #include "servoloop/controller_manager/wall_clock_loop.hpp"
 #include "servoloop/realtime/messages.hpp"
@@ -180,7 +180,7 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
     return store_ptr->has(name) ? store_ptr->node(name) : YAML::Node();
   };
   manager_ = std::make_unique<controller_manager::ControllerManager>(
-      hw_, std::make_shared<controller_manager::PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
+      hw_, std::make_shared<node::PluginControllerFactory>(world.plugins), lookup, context, update_rate_hz);
   safety_ = std::make_unique<controller_manager::SafetySupervisor>(*hw_);
   manager_->setSwitchGuard([this](const controller_manager::SwitchRequest& request) { return switchRefusal(request); });
   estop_subscription_ = bus_->subscribe<std_msgs::Bool>(

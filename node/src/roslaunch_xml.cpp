@@ -19,8 +19,8 @@
 #include "servoloop/core/logging.hpp"
 #include "servoloop/core/text_file.hpp"
 #include "servoloop/core/xml_error_text.hpp"
-#include "servoloop/hardware_interface/package_path.hpp"
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/package_path.hpp"
+#include "servoloop/description/xacro.hpp"
 #include "servoloop/node/robot_namespace.hpp"
 #include "servoloop/params/parameter_store.hpp"
 

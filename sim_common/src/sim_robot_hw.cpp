@@ -9,9 +9,9 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
-#include "servoloop/hardware_interface/simulatable_urdf.hpp"
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/robot_model.hpp"
+#include "servoloop/description/simulatable_urdf.hpp"
+#include "servoloop/description/xacro.hpp"
 #include "servoloop/sim_common/contact_friction.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 

@@ -15,7 +15,7 @@
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/params/parameters_yaml.hpp"
 
 namespace servoloop::controllers::testing {

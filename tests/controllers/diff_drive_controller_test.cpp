@@ -16,7 +16,7 @@
 #include "servoloop/controllers/diff_drive_controller/odometry.hpp"
 #include "servoloop/controllers/diff_drive_controller/speed_limiter.hpp"
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 
 namespace servoloop::controllers::diff_drive_controller {
 namespace {

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "alloc_counter.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
 
 namespace servoloop::sim_bullet {

@@ -15,7 +15,7 @@
 
 #include "reference_ode.hpp"
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
 
 namespace servoloop::sim_bullet {

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
 
 namespace servoloop::sim_bullet {

@@ -86,7 +86,7 @@
 #include "servoloop/controllers/minimal_joint_controller/minimal_joint_controller.hpp"
 #include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "sim_test_support.hpp"
 #ifdef SERVOLOOP_HAVE_MUJOCO
 #include "mujoco_robot_hw.hpp"

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_common/contact_friction.hpp"
 
 namespace servoloop::sim_common {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_common/joint_axis_inertia.hpp"
 #include "sim_test_support.hpp"
 

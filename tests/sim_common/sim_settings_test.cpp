@@ -9,7 +9,7 @@
 
 #include "thrown_message.hpp"
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_common/sim_settings.hpp"
 #include "sim_test_support.hpp"
 

@@ -12,7 +12,7 @@
 
 #include "log_capture.hpp"
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
 #include "servoloop/sim_mujoco/mujoco_physics.hpp"
 

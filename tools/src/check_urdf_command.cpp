@@ -22,9 +22,9 @@
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_limits_urdf.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
-#include "servoloop/hardware_interface/simulatable_urdf.hpp"
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/robot_model.hpp"
+#include "servoloop/description/simulatable_urdf.hpp"
+#include "servoloop/description/xacro.hpp"
 #include "servoloop/transmissions/robot_transmissions.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 

@@ -13,7 +13,7 @@
 #include "command_registry.hpp"
 #include "node_connection.hpp"
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/xacro.hpp"
 
 namespace servoloop::cli {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "command_registry.hpp"
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/xacro.hpp"
 
 namespace servoloop::cli {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"
 #include "servoloop/transmissions/transmission_parser.hpp"
 #include "urdf_joint_kind.hpp"

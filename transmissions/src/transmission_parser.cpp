@@ -15,7 +15,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/core/xml_error_text.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "servoloop/transmissions/differential_transmission.hpp"
 #include "servoloop/transmissions/four_bar_linkage_transmission.hpp"
 #include "servoloop/transmissions/simple_transmission.hpp"

@@ -51,7 +51,7 @@
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/node/ground_truth_publisher.hpp"
 #include "servoloop/node/launch_file.hpp"
-#include "servoloop/controller_manager/plugin_controller_factory.hpp"
+#include "servoloop/node/plugin_controller_factory.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/controller_manager/control_loop.hpp"

@@ -2,7 +2,7 @@
 // first (by the <name> in package.xml, not the folder's name), then the
 // package.xml files above the description, and one error naming the package
 // and where it looked.
-#include "servoloop/hardware_interface/package_path.hpp"
+#include "servoloop/description/package_path.hpp"
 
 #include <cstdlib>
 #include <optional>

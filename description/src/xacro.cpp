@@ -1,4 +1,4 @@
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/xacro.hpp"
 
 #include <cstdlib>
 #include <cstring>
@@ -18,7 +18,7 @@
 #include "servoloop/core/logging.hpp"
 #include "servoloop/core/text_file.hpp"
 #include "servoloop/core/xml_error_text.hpp"
-#include "servoloop/hardware_interface/package_path.hpp"
+#include "servoloop/description/package_path.hpp"
 #include "xacro_expression.hpp"
 
 namespace servoloop {

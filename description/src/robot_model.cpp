@@ -1,4 +1,4 @@
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -22,9 +22,9 @@
 #include "servoloop/core/logging.hpp"
 #include "servoloop/core/text_file.hpp"
 #include "servoloop/core/xml_error_text.hpp"
-#include "servoloop/hardware_interface/package_path.hpp"
-#include "servoloop/hardware_interface/simulatable_urdf.hpp"
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/package_path.hpp"
+#include "servoloop/description/simulatable_urdf.hpp"
+#include "servoloop/description/xacro.hpp"
 
 namespace servoloop {
 namespace {

@@ -1,6 +1,6 @@
 // loadRobotModelFile / parseRobotModel: the seed URDFs load, and every bad
 // input is rejected with a message naming the file and the element at fault.
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 
 #include <filesystem>
 #include <string>

@@ -1,4 +1,4 @@
-#include "servoloop/hardware_interface/simulatable_urdf.hpp"
+#include "servoloop/description/simulatable_urdf.hpp"
 
 #include <cctype>
 #include <charconv>

@@ -1,14 +1,14 @@
 // simulatableUrdf: a moving link without mass is left out with what hangs
 // below it (Gazebo's URDF import does the same), with one warning; and
 // parseRobotModel leaves non-URDF elements inside links alone.
-#include "servoloop/hardware_interface/simulatable_urdf.hpp"
+#include "servoloop/description/simulatable_urdf.hpp"
 
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "log_capture.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 
 namespace servoloop {
 namespace {

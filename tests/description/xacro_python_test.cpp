@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/robot_model.hpp"
+#include "servoloop/description/xacro.hpp"
 #include "temp_dir.hpp"
 #include "xacro_test_support.hpp"
 

@@ -1,4 +1,4 @@
-#include "servoloop/hardware_interface/package_path.hpp"
+#include "servoloop/description/package_path.hpp"
 
 #include <cstdlib>
 #include <sstream>

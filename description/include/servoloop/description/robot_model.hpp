@@ -7,7 +7,7 @@
 
 #include <urdf_model/model.h>
 
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/xacro.hpp"
 
 namespace servoloop {
 

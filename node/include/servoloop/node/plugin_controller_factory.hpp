@@ -8,9 +8,9 @@
 #include "servoloop/controller_manager/controller_factory.hpp"
 #include "servoloop/plugin/plugin_loader.hpp"
 
-namespace servoloop::controller_manager {
+namespace servoloop::node {
 
-class PluginControllerFactory final : public ControllerFactory {
+class PluginControllerFactory final : public controller_manager::ControllerFactory {
  public:
   // loader must not be null; it is shared with whoever else creates plugins
   // (the node's backends) and kept alive by every controller made here.
@@ -19,7 +19,7 @@ class PluginControllerFactory final : public ControllerFactory {
   // A new controller of a registered controller type; nullptr when no library
   // on the plugin path provides `type` as a controller. Throws servoloop::Error
   // when the type exists under another kind or its constructor throws.
-  ControllerPtr create(const std::string& type) override;
+  controller_manager::ControllerPtr create(const std::string& type) override;
   // Every controller type on the plugin path, sorted.
   std::vector<std::string> types() override;
   // Rescans the plugin path (PluginLoader::reload); the manager calls it once
@@ -33,4 +33,4 @@ class PluginControllerFactory final : public ControllerFactory {
   std::shared_ptr<plugin::PluginLoader> loader_;
 };
 
-}  // namespace servoloop::controller_manager
+}  // namespace servoloop::node

@@ -1,6 +1,6 @@
 // The xacro expander: each construct against a URDF expanded by hand, Python's
 // arithmetic and number printing, and one clear error per mistake.
-#include "servoloop/hardware_interface/xacro.hpp"
+#include "servoloop/description/xacro.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "servoloop/core/errors.hpp"
-#include "servoloop/hardware_interface/robot_model.hpp"
+#include "servoloop/description/robot_model.hpp"
 #include "temp_dir.hpp"
 #include "xacro_test_support.hpp"
 
