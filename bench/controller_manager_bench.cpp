@@ -15,6 +15,10 @@
 //   manager/empty                         no controller: the manager's own cost
 //   manager/joint_states_only/<rate>      the JointStateController alone
 //   manager/per_joint/<rate>/joints:N     JointStateController + N JointPositionControllers
+//   manager/per_joint_timed/jsc_50Hz/joints:N  the same with every controller's update timed in
+//                                         every cycle, as the node's paced and wall-clock loops
+//                                         run it (`servoloop control stats`); a bare manager,
+//                                         the other variants, times nothing
 //   manager/group/<rate>/joints:N         JointStateController + one JointGroupPositionController
 //   manager/diff_drive/jsc_50Hz/joints:2  JointStateController + a DiffDriveController on two wheels
 //                                         (limits on, odom and tf at 50 Hz, a new cmd_vel each second)
@@ -174,6 +178,8 @@ class ManagerUnderTest {
     }
   }
 
+  void setUpdateTiming(bool timed) noexcept { manager_->setUpdateTiming(timed); }
+
   // The effort the first joint is commanded (read after the timed loop).
   double firstEffortCommand() const { return hw_.effort_command.front(); }
 
@@ -190,9 +196,10 @@ class ManagerUnderTest {
   std::uint64_t cycles_ = 0;
 };
 
-void managerUpdate(benchmark::State& state, PositionControllers layout, double joint_state_rate_hz) {
+void runManager(benchmark::State& state, PositionControllers layout, double joint_state_rate_hz, bool timed) {
   const auto joints = static_cast<std::size_t>(state.range(0));
   ManagerUnderTest manager(joints, layout, joint_state_rate_hz);
+  manager.setUpdateTiming(timed);
   std::uint64_t cycle = 0;
   for (auto _ : state) {
     if (++cycle % kCyclesPerCommand == 0) {
@@ -204,6 +211,14 @@ void managerUpdate(benchmark::State& state, PositionControllers layout, double j
   }
   benchmark::DoNotOptimize(manager.firstEffortCommand());
   state.counters["joints"] = static_cast<double>(joints);
+}
+
+void managerUpdate(benchmark::State& state, PositionControllers layout, double joint_state_rate_hz) {
+  runManager(state, layout, joint_state_rate_hz, false);
+}
+
+void managerUpdateTimed(benchmark::State& state, PositionControllers layout, double joint_state_rate_hz) {
+  runManager(state, layout, joint_state_rate_hz, true);
 }
 
 struct RateVariant {
@@ -227,7 +242,13 @@ void registerAll() {
     auto* per_joint = benchmark::RegisterBenchmark(("manager/per_joint" + suffix).c_str(), managerUpdate,
                                                    PositionControllers::per_joint, rate.publish_rate_hz);
     per_joint->Arg(1)->Arg(8)->Arg(64)->ArgName("joints");
-    if (rate.publish_rate_hz == 50.0) per_joint->Arg(2)->Arg(4)->Arg(16)->Arg(32);  // for the slope fit
+    if (rate.publish_rate_hz == 50.0) {
+      per_joint->Arg(2)->Arg(4)->Arg(16)->Arg(32);  // for the slope fit
+      benchmark::RegisterBenchmark(("manager/per_joint_timed" + suffix).c_str(), managerUpdateTimed,
+                                   PositionControllers::per_joint, rate.publish_rate_hz)
+          ->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Arg(64)
+          ->ArgName("joints");
+    }
     benchmark::RegisterBenchmark(("manager/group" + suffix).c_str(), managerUpdate, PositionControllers::group,
                                  rate.publish_rate_hz)
         ->Arg(1)
@@ -290,6 +311,7 @@ void summary(const MedianTable& table, std::ostream& out) {
   out << "\n=== Growth with the number of joints (thread CPU medians) ===\n";
   for (const auto& rate : kRates) {
     printFit(out, table, std::string("manager/per_joint/") + rate.label);
+    if (std::string(rate.label) == "jsc_50Hz") printFit(out, table, "manager/per_joint_timed/jsc_50Hz");
     printFit(out, table, std::string("manager/group/") + rate.label);
   }
   out << "\n=== Ratios (same run) ===\n";

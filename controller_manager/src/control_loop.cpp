@@ -11,7 +11,11 @@ namespace servoloop::controller_manager {
 
 ControlLoop::ControlLoop(hardware_interface::RobotHW& robot_hw, ControllerManager& manager,
                          const LoopCommonOptions& options, Duration control_period)
-    : robot_hw_(robot_hw), manager_(manager), options_(options), control_period_(control_period) {}
+    : robot_hw_(robot_hw), manager_(manager), options_(options), control_period_(control_period) {
+  // A loop times its cycles (and so the controllers' updates) unless it says
+  // otherwise (setPhaseTiming); the bare manager does not time them.
+  manager_.setUpdateTiming(time_phases_);
+}
 
 bool ControlLoop::logHardwareErrorReport() {
   const std::optional<HardwareErrorReport> report = takeHardwareErrorReport();

@@ -129,9 +129,14 @@ void ControllerManager::update(const Time& time, const Duration& /*period*/) noe
   }
 
   const int list_index = enterRealtimeList();
+  // Timed cycles read the clock once here and once after each update: a
+  // controller's time runs from the previous reading, so it includes the
+  // manager's few checks for the controllers before it that did not run.
+  std::int64_t clock_ns = time_updates_ ? loop_clock::nowNs() : 0;
+  std::int64_t* const timing = time_updates_ ? &clock_ns : nullptr;
   for (detail::ControllerEntry* entry : realtime_lists_[list_index]) {
     if (reset_timing) entry->update_time.reset();
-    updateController(*entry, time);
+    updateController(*entry, time, timing);
   }
   if (reset_timing) update_timing_reset_.store(false, std::memory_order_release);
   // Release is enough here: a publisher waiting for this list sees the -1
@@ -212,7 +217,8 @@ void ControllerManager::executeSwitch(const Time& time) noexcept {
   }
 }
 
-void ControllerManager::updateController(detail::ControllerEntry& entry, const Time& time) noexcept {
+void ControllerManager::updateController(detail::ControllerEntry& entry, const Time& time,
+                                         std::int64_t* clock_ns) noexcept {
   ControllerBase& controller = *entry.controller;
   if (!controller.isRunning()) return;
   // Every rate.divisor-th cycle after the one that started it (a comparison
@@ -223,14 +229,19 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
   const Duration period = time - entry.last_update_time;
   entry.last_update_time = time;
   ReturnType result = ReturnType::ok;
-  const std::int64_t start_ns = time_updates_ ? loop_clock::nowNs() : 0;
   try {
     result = controller.updateRequest(time, period);
-    if (time_updates_) entry.update_time.record(loop_clock::nowNs() - start_ns);
+    if (clock_ns != nullptr) {
+      const std::int64_t now_ns = loop_clock::nowNs();
+      entry.update_time.record(now_ns - *clock_ns);
+      *clock_ns = now_ns;
+    }
   } catch (const std::exception& e) {
+    if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
     containInUpdate(entry, FaultKind::update_threw, e.what(), time);
     return;
   } catch (...) {
+    if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
     containInUpdate(entry, FaultKind::update_threw, "an exception not derived from std::exception", time);
     return;
   }

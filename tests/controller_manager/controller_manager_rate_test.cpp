@@ -3,6 +3,8 @@
 // gets the true control time since the controller's previous update.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "controller_manager_test_support.hpp"
 
 namespace servoloop::controller_manager::testing {
@@ -123,6 +125,41 @@ TEST(ControllerManagerRate, RestartedControllerCountsFromItsNewStart) {
   f.cycle();
   EXPECT_EQ(slow->update_calls, before + 1);
   EXPECT_NEAR(slow->periods.back(), 0.01, 1e-9);
+}
+
+// Timing each controller's update costs clock reads: a bare manager takes none
+// (its updateTimes stay empty); a loop switches timing on for the cycles it
+// times, and then every update that ran is counted once.
+TEST(ControllerManagerTiming, OffByDefaultAndCountsEveryUpdateOfTheTimedCycles) {
+  ManagerFixture f(kRateYaml, 1000.0);
+  ASSERT_TRUE(f.manager.loadController("fast"));
+  ASSERT_TRUE(f.manager.loadController("slow"));
+  ASSERT_TRUE(f.switchNow({"fast", "slow"}, {}));
+  f.cycles_n(99);  // 100 cycles since the start
+  auto times = f.manager.updateTimes();
+  ASSERT_EQ(times.size(), 2u);
+  EXPECT_EQ(times[0].second.count, 0u);
+  EXPECT_EQ(times[1].second.count, 0u);
+
+  // 200 timed cycles: the fast controller updates in each, the 100 Hz one in
+  // every tenth. The recorded intervals of one cycle do not overlap, so
+  // together they fit inside the wall time the cycles took.
+  f.manager.setUpdateTiming(true);
+  const auto start = std::chrono::steady_clock::now();
+  f.cycles_n(200);
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  times = f.manager.updateTimes();
+  EXPECT_EQ(times[0].second.count, 200u);
+  EXPECT_EQ(times[1].second.count, 20u);
+  const double recorded_s = times[0].second.mean_s * 200.0 + times[1].second.mean_s * 20.0;
+  EXPECT_GT(times[0].second.min_s, 0.0);
+  EXPECT_LE(recorded_s, elapsed_s);
+
+  f.manager.setUpdateTiming(false);
+  f.cycles_n(100);
+  times = f.manager.updateTimes();
+  EXPECT_EQ(times[0].second.count, 200u);
+  EXPECT_EQ(times[1].second.count, 20u);
 }
 
 }  // namespace

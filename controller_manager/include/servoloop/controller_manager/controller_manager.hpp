@@ -188,7 +188,9 @@ class ControllerManager {
   std::size_t containHardwareFailure(const Time& time, const char* why) noexcept;
 
   // Real-time. Whether the next update()s time each controller's update()
-  // (default true; a loop that times only some cycles switches it).
+  // (updateTimes). Off by default: a bare manager reads no clock. The control
+  // loops switch it on for the cycles they time (1 in 16, control_loop.hpp);
+  // a timed cycle reads the clock once per updated controller, plus once.
   void setUpdateTiming(bool timed) noexcept { time_updates_ = timed; }
 
  private:
@@ -227,7 +229,10 @@ class ControllerManager {
   // Real-time helpers.
   int enterRealtimeList() noexcept;
   void executeSwitch(const Time& time) noexcept;
-  void updateController(detail::ControllerEntry& entry, const Time& time) noexcept;
+  // clock_ns: nullptr on untimed cycles; otherwise the loop clock's last
+  // reading, which the controller's update time is taken from and which is
+  // moved on to the reading after its update.
+  void updateController(detail::ControllerEntry& entry, const Time& time, std::int64_t* clock_ns) noexcept;
   void contain(detail::ControllerEntry& entry, FaultKind kind, const char* what) noexcept;
   // contain(), then start the controller's fallback controllers (if any) in
   // the same cycle.
@@ -260,7 +265,7 @@ class ControllerManager {
   SwitchPlan switch_plan_;
 
   std::uint64_t cycle_ = 0;  // real-time thread only
-  bool time_updates_ = true;  // real-time thread only
+  bool time_updates_ = false;  // real-time thread only
   std::atomic<bool> update_timing_reset_{false};
   // Fallback starts so far (real-time thread writes; switches compare).
   std::atomic<std::uint64_t> fallback_starts_{0};
