@@ -20,7 +20,7 @@ cat >"$work/project/CMakeLists.txt" <<'CMAKE'
 cmake_minimum_required(VERSION 3.22)
 project(fifty_line LANGUAGES CXX)
 find_package(servoloop REQUIRED)
-servoloop_add_plugin(fifty_line SOURCES fifty_line_controller.cpp LINK servoloop::controller_manager servoloop::plugin)
+servoloop_add_plugin(fifty_line NO_PRECOMPILED_HEADERS SOURCES fifty_line_controller.cpp LINK servoloop::controller_manager servoloop::plugin)
 CMAKE
 cmake -S "$work/project" -B "$work/build" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" >"$work/configure.log"
 lines=$(c++ -std=c++20 -E $(sed -n 's/.*-isystem \([^ ]*\).*/-I\1/p' <(ninja -C "$work/build" -t commands | head -1) | head -1) \

@@ -14,6 +14,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/params/parameters_yaml.hpp"
+#include "servoloop/params/schema.hpp"
 
 namespace servoloop::controller_manager {
 
@@ -24,6 +25,23 @@ std::string parameterPath(const std::string& robot_namespace, const std::string&
   std::string path = robot_namespace;
   if (!path.empty() && path.back() != '/') path += '/';
   return path + name + "/" + key;
+}
+
+// The keys of a controller's YAML map that the manager reads; the rest are the
+// controller's own.
+const params::Schema& managerKeysSchema() {
+  using params::ValueType;
+  static const params::Schema schema(
+      "controller manager's keys",
+      {
+          {"type", ValueType::text, "the controller type, e.g. effort_controllers/JointPositionController"},
+          {"update_rate", ValueType::number,
+           "how often the controller updates (Hz); 0 or absent: every cycle of the manager", {.min = 0.0}},
+          {"fallback_controllers", ValueType::text_list,
+           "loaded controllers started when this one faults, e.g. [arm_hold_controller]"},
+      },
+      params::UnknownKeys::allow);
+  return schema;
 }
 
 std::string formatRate(double hz) {
@@ -109,12 +127,21 @@ ServiceResult ControllerManager::loadController(const std::string& name) {
                 "' is missing; add 'type: <package>/<Controller>' under '" + name +
                 "' in the controller YAML and load it");
   }
+  // The manager's own keys, checked before anything is created.
+  std::string param_path = parameterPath(ns, name, "");
+  param_path.pop_back();  // "<ns>/<name>"
+  const params::Parameters view = params::parametersFromYaml(params, std::move(param_path));
+  const params::Schema& keys = managerKeysSchema();
   std::string type;
+  double requested_rate_hz = 0.0;
+  std::vector<std::string> fallback_names;
   try {
-    type = const_params["type"].as<std::string>();
-  } catch (const std::exception&) {
-    return fail("load controller '" + name + "': parameter '" + type_path +
-                "' must be a type name such as effort_controllers/JointPositionController");
+    keys.check(view);
+    type = keys.text(view, "type");
+    requested_rate_hz = keys.number(view, "update_rate");
+    fallback_names = keys.textList(view, "fallback_controllers");
+  } catch (const std::exception& e) {
+    return fail("load controller '" + name + "': " + e.what());
   }
   std::vector<std::string> known_types;
   try {
@@ -130,16 +157,6 @@ ServiceResult ControllerManager::loadController(const std::string& name) {
                 "; check the spelling or the plugin path");
   }
 
-  // Update rate.
-  double requested_rate_hz = 0.0;
-  if (const_params["update_rate"]) {
-    try {
-      requested_rate_hz = const_params["update_rate"].as<double>();
-    } catch (const std::exception&) {
-      return fail("load controller '" + name + "': parameter '" +
-                  parameterPath(ns, name, "update_rate") + "' must be a number (Hz)");
-    }
-  }
   const UpdateRateChoice rate = chooseUpdateRate(update_rate_hz_, requested_rate_hz);
   if (!rate.exact) {
     if (update_rate_hz_ <= 0.0) {
@@ -168,11 +185,7 @@ ServiceResult ControllerManager::loadController(const std::string& name) {
   }
   ControllerContext context = context_template_;
   context.name = name;
-  {
-    std::string path = parameterPath(ns, name, "");
-    path.pop_back();  // "<ns>/<name>"
-    context.params = params::parametersFromYaml(params, std::move(path));
-  }
+  context.params = view;
   std::vector<hardware_interface::InterfaceResources> claimed;
   try {
     if (!controller->initRequest(robot_hw_, context, claimed)) {
@@ -188,16 +201,9 @@ ServiceResult ControllerManager::loadController(const std::string& name) {
   // Fallback controllers: loaded already, and taking over nothing this one
   // does not hold, so starting them when it faults can never conflict.
   std::vector<detail::ControllerEntry*> fallbacks;
-  if (const_params["fallback_controllers"]) {
+  {
     const std::string path = parameterPath(ns, name, "fallback_controllers");
-    std::vector<std::string> names;
-    try {
-      names = const_params["fallback_controllers"].as<std::vector<std::string>>();
-    } catch (const std::exception&) {
-      return fail("load controller '" + name + "': parameter '" + path +
-                  "' must be a list of controller names, e.g. [arm_hold_controller]");
-    }
-    for (const std::string& fallback_name : names) {
+    for (const std::string& fallback_name : fallback_names) {
       detail::ControllerEntry* fallback = findEntry(fallback_name);
       if (fallback_name == name) {
         return fail("load controller '" + name + "': '" + path + "' names the controller itself");

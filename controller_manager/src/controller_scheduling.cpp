@@ -131,7 +131,9 @@ void ControllerManager::update(const Time& time, const Duration& /*period*/) noe
   const int list_index = enterRealtimeList();
   // Timed cycles read the clock once here and once after each update: a
   // controller's time runs from the previous reading, so it includes the
-  // manager's few checks for the controllers before it that did not run.
+  // manager's few checks after the update before it (the controllers that did
+  // not run, the finite-command check). A fault's handling is read past, so it
+  // is nobody's update time.
   std::int64_t clock_ns = time_updates_ ? loop_clock::nowNs() : 0;
   std::int64_t* const timing = time_updates_ ? &clock_ns : nullptr;
   for (detail::ControllerEntry* entry : realtime_lists_[list_index]) {
@@ -237,12 +239,12 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
       *clock_ns = now_ns;
     }
   } catch (const std::exception& e) {
-    if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
     containInUpdate(entry, FaultKind::update_threw, e.what(), time);
+    if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
     return;
   } catch (...) {
-    if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
     containInUpdate(entry, FaultKind::update_threw, "an exception not derived from std::exception", time);
+    if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
     return;
   }
 
@@ -251,11 +253,13 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
       const std::size_t bad = controller.firstNonFiniteCommand();
       if (bad != ControllerBase::kAllCommandsFinite) {
         containInUpdate(entry, FaultKind::non_finite_command, "", time, bad, *controller.claimedCommands()[bad].command);
+        if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
       }
       return;
     }
     case ReturnType::error:
       containInUpdate(entry, FaultKind::update_returned_error, "", time);
+      if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
       return;
     case ReturnType::deactivate:
       try {
@@ -265,6 +269,7 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
       } catch (...) {
         contain(entry, FaultKind::stopping_threw, "an exception not derived from std::exception");
       }
+      if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
       return;
   }
 }

@@ -6,6 +6,7 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/params/parameters_yaml.hpp"
+#include "servoloop/params/schema.hpp"
 
 namespace servoloop::hardware_interface {
 namespace {
@@ -41,11 +42,32 @@ void warnIgnoredKey(const params::Parameters& joint_node, const std::string& joi
   }
 }
 
-constexpr std::array<std::string_view, 15> kKnownKeys = {
-    "has_position_limits", "min_position",     "max_position",     "angle_wraparound",
-    "has_velocity_limits", "max_velocity",     "has_acceleration_limits",
-    "max_acceleration",    "has_effort_limits", "max_effort",       "has_soft_limits",
-    "k_position",          "k_velocity",       "soft_lower_limit", "soft_upper_limit"};
+// The keys of joint_limits_interface's YAML (joint_limits_rosparam.h), one
+// joint's map. Groups: a value is read only when its has_… key is true.
+const params::Schema& jointLimitsSchema() {
+  using params::ValueType;
+  static const params::Schema schema(
+      "joint limits",
+      {
+          {"has_position_limits", ValueType::boolean, "min_position and max_position apply"},
+          {"min_position", ValueType::number, "lowest position (rad or m)"},
+          {"max_position", ValueType::number, "highest position (rad or m)"},
+          {"angle_wraparound", ValueType::boolean, "a continuous joint (read when has_position_limits is false)"},
+          {"has_velocity_limits", ValueType::boolean, "max_velocity applies"},
+          {"max_velocity", ValueType::number, "largest speed (rad/s or m/s)"},
+          {"has_acceleration_limits", ValueType::boolean, "max_acceleration applies"},
+          {"max_acceleration", ValueType::number, "largest acceleration (rad/s² or m/s²)"},
+          {"has_effort_limits", ValueType::boolean, "max_effort applies"},
+          {"max_effort", ValueType::number, "largest effort (N·m or N)"},
+          {"has_soft_limits", ValueType::boolean, "the soft limits below apply"},
+          {"k_position", ValueType::number, "soft limits' position gain (1/s)"},
+          {"k_velocity", ValueType::number, "soft limits' velocity gain"},
+          {"soft_lower_limit", ValueType::number, "soft lower position limit"},
+          {"soft_upper_limit", ValueType::number, "soft upper position limit"},
+      },
+      params::UnknownKeys::warn);
+  return schema;
+}
 
 void requireMap(const params::Parameters& joint_node, const std::string& joint_name) {
   if (!joint_node.isMap()) {
@@ -61,11 +83,9 @@ bool getJointLimits(const YAML::Node& yaml, const std::string& joint_name, Joint
   if (joint_node.empty()) return false;
   requireMap(joint_node, joint_name);
 
-  for (const std::string& key : joint_node.keys()) {
-    bool known = false;
-    for (std::string_view k : kKnownKeys) known = known || k == key;
-    if (!known) logger().warn("{}: unknown key '{}' is ignored", keyPath(joint_name, ""), key);
-  }
+  // Unknown keys (one warning each: ros_control ignores them without a word)
+  // and the values' types.
+  jointLimitsSchema().check(joint_node);
 
   // Read into a copy so a bad key leaves the caller's limits as they were.
   JointLimits result = limits;

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "launch_file_keys.hpp"
 #include "servoloop/core/text_file.hpp"
 #include "servoloop/core/time.hpp"
 #include "servoloop/node/message_json.hpp"
@@ -51,16 +52,16 @@ class Parser {
     if (!node.IsMap()) fail(node, key, fmt::format("expected a map, e.g. {}, got {}", example, describe(node)));
   }
 
-  void checkKeys(const YAML::Node& map, const std::string& key, std::initializer_list<const char*> known) const {
+  // Every key of map must be one the schema declares (launch_file_keys.cpp).
+  void checkKeys(const YAML::Node& map, const std::string& key, const params::Schema& schema) const {
     for (const auto& entry : map) {
       const std::string name = entry.first.Scalar();
-      bool ok = false;
-      for (const char* k : known) ok |= (name == k);
-      if (ok) continue;
-      std::string list;
-      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      if (schema.find(name) != nullptr) continue;
+      const std::string_view suggestion = schema.closest(name);
       fail(entry.first, key.empty() ? name : key + "." + name,
-           fmt::format("unknown key '{}'; the keys here are: {} (check the spelling)", name, list));
+           fmt::format("unknown key '{}'{}; the keys here are: {} (check the spelling)", name,
+                       suggestion.empty() ? "" : fmt::format(" (did you mean '{}'?)", suggestion),
+                       schema.keyNames()));
     }
   }
 
@@ -141,7 +142,7 @@ class Parser {
     WorldSettings world;
     if (!node.IsDefined() || node.IsNull()) return world;
     requireMap(node, "world", "{backend: bullet, time_step: 0.001}");
-    checkKeys(node, "world", {"backend", "time_step", "gravity", "ground_plane", "real_time_factor", "clock"});
+    checkKeys(node, "world", launch_keys::world());
     if (node["clock"]) {
       const std::string clock = string(node["clock"], "world.clock");
       if (clock != "sim" && clock != "wall") {
@@ -176,7 +177,7 @@ class Parser {
     ControllerManagerSettings settings;
     if (!node.IsDefined() || node.IsNull()) return settings;
     requireMap(node, "controller_manager", "{update_rate: 1000}");
-    checkKeys(node, "controller_manager", {"update_rate"});
+    checkKeys(node, "controller_manager", launch_keys::controllerManager());
     if (node["update_rate"]) {
       settings.update_rate_hz = positiveNumber(node["update_rate"], "controller_manager.update_rate", "Hz");
     }
@@ -185,9 +186,7 @@ class Parser {
 
   RobotSpec robot(const YAML::Node& node, const std::string& key) const {
     requireMap(node, key, "{urdf: robot.urdf, controllers: [joint_state_controller]}");
-    checkKeys(node, key,
-              {"urdf", "model", "namespace", "params", "controllers", "stopped_controllers", "fixed_base", "pose",
-               "self_collide", "xacro_args", "hardware", "realtime"});
+    checkKeys(node, key, launch_keys::robot());
     RobotSpec robot;
     if (!node["urdf"]) fail(node, key, "missing 'urdf': give the robot description, e.g. urdf: robot.urdf");
     robot.urdf = existingFile(node["urdf"], key + ".urdf", "URDF file");
@@ -253,7 +252,7 @@ class Parser {
 
   RealtimeSettings realtime(const YAML::Node& node, const std::string& key) const {
     requireMap(node, key, "{priority: 80, cpu_affinity: [1], lock_memory: true}");
-    checkKeys(node, key, {"priority", "cpu_affinity", "lock_memory"});
+    checkKeys(node, key, launch_keys::realtime());
     RealtimeSettings settings;
     const auto whole = [&](const YAML::Node& value, const std::string& where, double low, double high,
                            const std::string& what) {
@@ -288,7 +287,7 @@ class Parser {
       return parameters;
     }
     requireMap(node, key, "{file: controllers.yaml, ns: /robot}");
-    checkKeys(node, key, {"file", "ns"});
+    checkKeys(node, key, launch_keys::parameterFile());
     if (!node["file"]) fail(node, key, "missing 'file': the YAML file to load, e.g. {file: controllers.yaml, ns: /robot}");
     parameters.file = existingFile(node["file"], key + ".file", "parameter file");
     if (node["ns"]) {
@@ -304,7 +303,7 @@ class Parser {
 
   TimedPublication publication(const YAML::Node& node, const std::string& key) const {
     requireMap(node, key, "{topic: /robot/controller/command, value: 1.0, time: 0.5}");
-    checkKeys(node, key, {"topic", "type", "value", "time"});
+    checkKeys(node, key, launch_keys::publication());
     if (!node["topic"]) fail(node, key, "missing 'topic'");
     if (!node["value"]) fail(node, key, "missing 'value': the message to publish, e.g. value: 1.0");
     const std::string topic_name = topic(node["topic"], key + ".topic");
@@ -323,7 +322,7 @@ class Parser {
 
   RecordSpec record(const YAML::Node& node, const std::string& key) const {
     requireMap(node, key, "{topic: /robot/joint_states, file: joint_states.csv}");
-    checkKeys(node, key, {"topic", "file"});
+    checkKeys(node, key, launch_keys::recording());
     if (!node["topic"]) fail(node, key, "missing 'topic'");
     if (!node["file"]) fail(node, key, "missing 'file': the CSV file to write, e.g. file: joint_states.csv");
     return RecordSpec{topic(node["topic"], key + ".topic"), path(node["file"], key + ".file")};
@@ -404,7 +403,7 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   if (root.IsNull() || !root.IsDefined()) return launch;
   params::checkYamlDocument(root, source_name);
   parser.requireMap(root, "", "world: {backend: bullet} and robots: [...]");
-  parser.checkKeys(root, "", {"world", "controller_manager", "realtime", "robots", "publish", "record", "plot", "ros1_bridge"});
+  parser.checkKeys(root, "", launch_keys::top());
   if (root["realtime"] && !root["realtime"].IsNull()) launch.realtime = parser.realtime(root["realtime"], "realtime");
   launch.world = parser.world(root["world"]);
   launch.controller_manager = parser.controllerManager(root["controller_manager"]);

@@ -9,6 +9,8 @@
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/time.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/params/parameters_yaml.hpp"
+#include "servoloop/params/schema.hpp"
 
 namespace servoloop::sim_common {
 namespace {
@@ -56,18 +58,34 @@ void requireMap(const YAML::Node& node, const std::string& path, const char* wha
   if (!node.IsMap()) throw ConfigError(path + ": expected a map of " + what + ", got " + describe(node));
 }
 
-template <std::size_t N>
-void warnUnknownKeys(const YAML::Node& map, const std::string& path,
-                     const std::array<std::string_view, N>& known) {
-  for (const auto& entry : map) {
-    const std::string key = entry.first.as<std::string>();
-    bool is_known = false;
-    for (std::string_view k : known) is_known |= (k == key);
-    if (is_known) continue;
-    std::string list;
-    for (std::string_view k : known) list.append(list.empty() ? "" : ", ").append(k);
-    logger().warn("{}: unknown key '{}' ignored (known keys: {})", path, key, list);
-  }
+// The keys of a robot's `sim:` map and of each entry of its `actuators:` map.
+const params::Schema& simSettingsSchema() {
+  using params::ValueType;
+  static const params::Schema schema(
+      "simulation settings",
+      {
+          {"time_step", ValueType::number, "the physics step (s)", {.min = kMinTimeStepS, .max = kMaxTimeStepS}},
+          {"gravity", ValueType::number_list, "gravity [x, y, z] (m/s²)"},
+          {"ground_plane", ValueType::boolean, "a ground plane at z = 0"},
+          {"initial_positions", ValueType::map, "joint positions at the start (rad or m)"},
+          {"fixed_base", ValueType::boolean, "the root link is fixed to the world"},
+          {"pose", ValueType::number_list, "the root link's pose [x, y, z(, roll, pitch, yaw)] (m, rad)"},
+          {"self_collide", ValueType::boolean, "links of the robot collide with each other"},
+      },
+      params::UnknownKeys::warn);
+  return schema;
+}
+
+const params::Schema& actuatorSchema() {
+  using params::ValueType;
+  static const params::Schema schema(
+      "actuator parameters",
+      {
+          {"max_effort", ValueType::number, "the motor's effort limit (N·m or N)", {.min = 0.0, .min_exclusive = true}},
+          {"rotor_inertia", ValueType::number, "the rotor's inertia seen at the joint (kg·m²)", {.min = 0.0}},
+      },
+      params::UnknownKeys::warn);
+  return schema;
 }
 
 bool isMovable(const urdf::Joint& joint) {
@@ -159,17 +177,11 @@ SimSettings parseSimSettings(const YAML::Node& robot_ns, const urdf::ModelInterf
              "simulation settings (time_step, gravity, ground_plane, initial_positions, fixed_base, pose, "
              "self_collide)");
 
-  static constexpr std::array<std::string_view, 7> kKnown = {
-      "time_step", "gravity", "ground_plane", "initial_positions", "fixed_base", "pose", "self_collide"};
-  warnUnknownKeys(sim, sim_path, kKnown);
+  // Unknown keys (one warning each), types and the time step's range.
+  const params::Parameters sim_params = params::parametersFromYaml(sim, sim_path);
+  simSettingsSchema().check(sim_params);
 
-  if (const YAML::Node value = sim["time_step"]; value.IsDefined()) {
-    const std::string path = keyPath(sim_path, "time_step");
-    settings.time_step_s = readNumber(value, path);
-    if (!(settings.time_step_s >= kMinTimeStepS && settings.time_step_s <= kMaxTimeStepS)) {
-      throw ConfigError(path + ": expected a time step from 1e-06 to 1 s, got " + describe(value));
-    }
-  }
+  if (sim_params.has("time_step")) settings.time_step_s = simSettingsSchema().number(sim_params, "time_step");
   if (const YAML::Node value = sim["gravity"]; value.IsDefined()) {
     const std::string path = keyPath(sim_path, "gravity");
     if (!value.IsSequence() || value.size() != 3) {
@@ -220,7 +232,6 @@ std::map<std::string, ActuatorParameters> parseActuatorParameters(
   const std::string actuators_path = keyPath(ns, "actuators");
   requireMap(actuators, actuators_path, "actuator names to parameters");
 
-  static constexpr std::array<std::string_view, 2> kKnown = {"max_effort", "rotor_inertia"};
   for (const auto& entry : actuators) {
     const std::string name = entry.first.as<std::string>();
     const std::string path = keyPath(actuators_path, name);
@@ -234,21 +245,10 @@ std::map<std::string, ActuatorParameters> parseActuatorParameters(
     }
     const YAML::Node node = entry.second;
     requireMap(node, path, "actuator parameters (max_effort, rotor_inertia)");
-    warnUnknownKeys(node, path, kKnown);
-    if (const YAML::Node value = node["max_effort"]; value.IsDefined()) {
-      const std::string key = keyPath(path, "max_effort");
-      it->second.max_effort = readNumber(value, key);
-      if (!(it->second.max_effort > 0.0)) {
-        throw ConfigError(key + ": expected a motor effort limit > 0, got " + describe(value));
-      }
-    }
-    if (const YAML::Node value = node["rotor_inertia"]; value.IsDefined()) {
-      const std::string key = keyPath(path, "rotor_inertia");
-      it->second.rotor_inertia = readNumber(value, key);
-      if (it->second.rotor_inertia < 0.0) {
-        throw ConfigError(key + ": expected a rotor inertia >= 0, got " + describe(value));
-      }
-    }
+    const params::Parameters actuator = params::parametersFromYaml(node, path);
+    actuatorSchema().check(actuator);
+    if (actuator.has("max_effort")) it->second.max_effort = actuatorSchema().number(actuator, "max_effort");
+    if (actuator.has("rotor_inertia")) it->second.rotor_inertia = actuatorSchema().number(actuator, "rotor_inertia");
   }
   return parameters;
 }

@@ -111,7 +111,18 @@ TEST(ControllerManagerLoad, NonNumericUpdateRateFails) {
   ManagerFixture f("c: {type: test_controllers/EffortController, joint: joint1, update_rate: fast}");
   const ServiceResult result = f.manager.loadController("c");
   EXPECT_FALSE(result);
-  EXPECT_TRUE(contains(result.message, "'/test_robot/c/update_rate' must be a number")) << result.message;
+  EXPECT_TRUE(contains(result.message, "/test_robot/c/update_rate: expected a number")) << result.message;
+}
+
+// A negative or non-finite rate is no rate: refused before the controller is made.
+TEST(ControllerManagerLoad, NegativeOrNonFiniteUpdateRateFails) {
+  for (const char* rate : {"-100", ".nan", ".inf"}) {
+    ManagerFixture f(std::string("c: {type: test_controllers/EffortController, joint: joint1, update_rate: ") + rate + "}");
+    const ServiceResult result = f.manager.loadController("c");
+    EXPECT_FALSE(result) << rate;
+    EXPECT_TRUE(contains(result.message, "/test_robot/c/update_rate: expected a number")) << result.message;
+    EXPECT_TRUE(f.manager.listControllers().empty());
+  }
 }
 
 TEST(ControllerManagerUnload, UnknownOrRunningFailsStoppedIsDestroyed) {

@@ -221,9 +221,9 @@ TEST(PidParams, UnknownKeysAndNegativeGainsAreOneWarningEach) {
   const Pid pid = fromYaml("{p: -2.0, i: 0.5, dd: 3.0, publish_state: true}");
   EXPECT_EQ(pid.getGains().p_gain, -2.0);
   EXPECT_EQ(pid.getGains().d_gain, 0.0) << "the misspelt d gain stays 0";
-  EXPECT_EQ(log.count("robot/ctrl/pid: unknown key 'dd' is ignored"), 1u) << log.text();
+  EXPECT_EQ(log.count("robot/ctrl/pid: unknown key 'dd' is ignored; did you mean 'd'?"), 1u) << log.text();
   EXPECT_EQ(log.count("robot/ctrl/pid/p: the gain -2 is negative"), 1u) << log.text();
-  EXPECT_EQ(log.count("publish_state"), 0u) << "a key ros_control reads is not unknown: " << log.text();
+  EXPECT_EQ(log.count("unknown key 'publish_state'"), 0u) << "a key ros_control reads is not unknown: " << log.text();
   EXPECT_EQ(log.count("/i: the gain"), 0u) << log.text();
 }
 

@@ -63,8 +63,8 @@ TEST_F(SimSettingsTest, BadValuesNameTheirKey) {
   EXPECT_THAT(errorOf("sim: {time_step: abc}"),
               HasSubstr("/robot/sim/time_step: expected a number, got 'abc'"));
   EXPECT_THAT(errorOf("sim: {time_step: -0.001}"),
-              HasSubstr("/robot/sim/time_step: expected a time step from 1e-06 to 1 s, got '-0.001'"));
-  EXPECT_THAT(errorOf("sim: {time_step: 1e-12}"), HasSubstr("/robot/sim/time_step: expected a time step from 1e-06"));
+              HasSubstr("/robot/sim/time_step: expected a number from 1e-06 to 1, got '-0.001'"));
+  EXPECT_THAT(errorOf("sim: {time_step: 1e-12}"), HasSubstr("/robot/sim/time_step: expected a number from 1e-06 to 1, got '1e-12'"));
   EXPECT_THAT(errorOf("sim: {gravity: [0, 1]}"),
               HasSubstr("/robot/sim/gravity: expected a list of 3 numbers"));
   EXPECT_THAT(errorOf("sim: {gravity: [0, x, 1]}"), HasSubstr("/robot/sim/gravity[1]: expected a number"));
@@ -173,7 +173,7 @@ TEST(ActuatorParametersTest, ErrorsNameTheActuatorAndKey) {
   const std::string unknown = errorOf("actuators: {motor9: {max_effort: 1}}");
   EXPECT_THAT(unknown, HasSubstr("/robot/actuators/motor9: the robot has no actuator 'motor9' (actuators: motor1"));
   EXPECT_THAT(errorOf("actuators: {motor1: {max_effort: -1}}"),
-              HasSubstr("/robot/actuators/motor1/max_effort: expected a motor effort limit > 0"));
+              HasSubstr("/robot/actuators/motor1/max_effort: expected a number > 0, got '-1'"));
   EXPECT_THAT(errorOf("actuators: {motor1: {rotor_inertia: heavy}}"),
               HasSubstr("/robot/actuators/motor1/rotor_inertia: expected a number, got 'heavy'"));
   EXPECT_THAT(errorOf("actuators: {motor1: 3}"), HasSubstr("/robot/actuators/motor1: expected a map"));

@@ -8,13 +8,28 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/params/schema.hpp"
 
 namespace servoloop::controllers {
 namespace {
 
-template <class T>
-bool readKey(const params::Parameters& pid, const std::string& where, const char* key, T& out) {
-  return params::readOptional(pid, key, where, out);
+// The keys control_toolbox's Pid reads (plus publish_state, which its
+// controllers read beside them).
+const params::Schema& pidGainsSchema() {
+  static const params::Schema schema(
+      "PID gains",
+      {
+          {"p", params::ValueType::number, "proportional gain (required; checked by the reader)"},
+          {"i", params::ValueType::number, "integral gain"},
+          {"d", params::ValueType::number, "derivative gain"},
+          {"i_clamp", params::ValueType::number, "integral clamp, both signs (|value| is used)"},
+          {"i_clamp_min", params::ValueType::number, "lower integral clamp (forced <= 0)"},
+          {"i_clamp_max", params::ValueType::number, "upper integral clamp (forced >= 0)"},
+          {"antiwindup", params::ValueType::boolean, "clamp the integral term rather than the error sum"},
+          {"publish_state", params::ValueType::boolean, "publish the PID's state (read by the controllers)"},
+      },
+      params::UnknownKeys::warn);
+  return schema;
 }
 
 }  // namespace
@@ -52,21 +67,21 @@ void Pid::initPid(double p, double i, double d, double i_max, double i_min, bool
 }
 
 void Pid::initFromParams(const params::Parameters& pid_params, const std::string& where) {
-  if (!pid_params.empty() && !pid_params.isMap()) {
-    throw ConfigError(where + ": expected a map of gains ({p: ..., i: ..., d: ...}), got " +
-                      pid_params.describe());
-  }
+  const params::Schema& schema = pidGainsSchema();
   const params::Parameters& node = pid_params;
-
-  Gains gains;
-  if (!readKey(node, where, "p", gains.p_gain)) {
+  // The map, types and unknown keys (one warning each: the gain meant stays 0,
+  // as ros_control has it).
+  schema.check(node);
+  if (!node.has("p")) {
     throw ConfigError(where + ": No p gain specified for pid; add p: <gain> under " + where);
   }
-  readKey(node, where, "i", gains.i_gain);
-  readKey(node, where, "d", gains.d_gain);
 
-  double clamp = 0.0;
-  if (readKey(node, where, "i_clamp", clamp)) {
+  Gains gains;
+  gains.p_gain = schema.number(node, "p");
+  gains.i_gain = schema.number(node, "i");
+  gains.d_gain = schema.number(node, "d");
+  if (node.has("i_clamp")) {
+    const double clamp = schema.number(node, "i_clamp");
     gains.i_max = std::abs(clamp);
     gains.i_min = -std::abs(clamp);
   }
@@ -75,7 +90,8 @@ void Pid::initFromParams(const params::Parameters& pid_params, const std::string
   // A sign written the other way round is one warning, as the value used is
   // not the value written.
   const auto forceSign = [&](const char* key, double& value, double sign) {
-    if (!readKey(node, where, key, value)) return;
+    if (!node.has(key)) return;
+    value = schema.number(node, key);
     const double forced = sign * std::abs(value);
     if (forced != value) {
       logger().warn("{}/{}: {} is used as {} (ros_control forces i_clamp_min <= 0 <= i_clamp_max)", where, key, value,
@@ -85,20 +101,8 @@ void Pid::initFromParams(const params::Parameters& pid_params, const std::string
   };
   forceSign("i_clamp_min", gains.i_min, -1.0);
   forceSign("i_clamp_max", gains.i_max, 1.0);
-  readKey(node, where, "antiwindup", gains.antiwindup);
+  gains.antiwindup = schema.boolean(node, "antiwindup");
 
-  // What ros_control would ignore without a word is one warning each here: a
-  // misspelt key (the gain it meant stays 0) and a gain that pushes away from
-  // the set point.
-  static constexpr const char* kKnown[] = {"p", "i", "d", "i_clamp", "i_clamp_min", "i_clamp_max", "antiwindup",
-                                           "publish_state"};
-  for (const std::string& key : node.keys()) {
-    if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown)) {
-      logger().warn("{}: unknown key '{}' is ignored (the PID reads p, i, d, i_clamp, i_clamp_min, i_clamp_max, "
-                    "antiwindup); check its spelling",
-                    where, key);
-    }
-  }
   const std::pair<const char*, double> signed_gains[] = {{"p", gains.p_gain}, {"i", gains.i_gain}, {"d", gains.d_gain}};
   for (const auto& [key, gain] : signed_gains) {
     if (gain < 0.0) {

@@ -188,9 +188,12 @@ class ControllerManager {
   std::size_t containHardwareFailure(const Time& time, const char* why) noexcept;
 
   // Real-time. Whether the next update()s time each controller's update()
-  // (updateTimes). Off by default: a bare manager reads no clock. The control
-  // loops switch it on for the cycles they time (1 in 16, control_loop.hpp);
-  // a timed cycle reads the clock once per updated controller, plus once.
+  // (updateTimes). Off by default: a bare manager (a hand-written main calling
+  // update()) reads no clock. A control loop switches it on when it is built,
+  // over a manager no thread updates yet, and for the cycles it times (every
+  // cycle, but 1 in kFreeRunningTimingStride of a free-running simulation,
+  // simulation_loop.hpp); a timed cycle reads the clock once per updated
+  // controller, plus once.
   void setUpdateTiming(bool timed) noexcept { time_updates_ = timed; }
 
  private:

@@ -7,6 +7,12 @@
 
 namespace servoloop::hardware_interface {
 
+// Instantiated once, in the hardware_interface library (interfaces.cpp), with
+// each interface's name(): controllers that use these interfaces compile none
+// of their code.
+extern template class ResourceManager<ActuatorStateHandle, false>;
+extern template class ResourceManager<ActuatorHandle, true>;
+
 class ActuatorStateInterface : public ResourceManager<ActuatorStateHandle, false> {
  public:
   const char* name() const override;
@@ -28,11 +34,5 @@ class PositionActuatorInterface : public ActuatorCommandInterface {
  public:
   const char* name() const override;
 };
-
-// Instantiated once, in the hardware_interface library (interfaces.cpp), with
-// each interface's name(): controllers that use these interfaces compile none
-// of their code.
-extern template class ResourceManager<ActuatorStateHandle, false>;
-extern template class ResourceManager<ActuatorHandle, true>;
 
 }  // namespace servoloop::hardware_interface

@@ -9,6 +9,12 @@
 
 namespace servoloop::hardware_interface {
 
+// Instantiated once, in the hardware_interface library (interfaces.cpp), with
+// each interface's name(): controllers that use these interfaces compile none
+// of their code.
+extern template class ResourceManager<JointStateHandle, false>;
+extern template class ResourceManager<JointHandle, true>;
+
 class JointStateInterface : public ResourceManager<JointStateHandle, false> {
  public:
   const char* name() const override;
@@ -30,11 +36,5 @@ class PositionJointInterface : public JointCommandInterface {
  public:
   const char* name() const override;
 };
-
-// Instantiated once, in the hardware_interface library (interfaces.cpp), with
-// each interface's name(): controllers that use these interfaces compile none
-// of their code.
-extern template class ResourceManager<JointStateHandle, false>;
-extern template class ResourceManager<JointHandle, true>;
 
 }  // namespace servoloop::hardware_interface
