@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <thread>
 #include <utility>
 
@@ -49,6 +50,70 @@ std::string formatRate(double hz) {
   std::snprintf(text, sizeof(text), "%g Hz", hz);
   return text;
 }
+// The update rate a controller runs at: the requested one when it divides
+// the manager's, otherwise the nearest that does, with a warning saying so.
+UpdateRateChoice chooseRateOrWarn(const std::string& name, double manager_rate_hz, double requested_rate_hz) {
+  const UpdateRateChoice rate = chooseUpdateRate(manager_rate_hz, requested_rate_hz);
+  if (rate.exact) return rate;
+  if (manager_rate_hz <= 0.0) {
+    logger().warn(
+        "controller '{}': update_rate {} ignored: the controller manager runs at no fixed "
+        "rate, so the controller updates every cycle",
+        name, formatRate(requested_rate_hz));
+  } else {
+    logger().warn(
+        "controller '{}': update_rate {} is not a divisor of the controller manager's "
+        "update_rate {}; running it at {} (every {} cycles) instead",
+        name, formatRate(requested_rate_hz), formatRate(manager_rate_hz), formatRate(rate.rate_hz), rate.divisor);
+  }
+  return rate;
+}
+
+// "" when the factory knows type; otherwise what is wrong, with the known types.
+std::string unknownTypeError(ControllerFactory& factory, const std::string& type, const std::string& type_path) {
+  std::vector<std::string> known_types;
+  try {
+    known_types = factory.types();
+  } catch (const std::exception& e) {
+    return std::string("listing controller types failed: ") + e.what();
+  }
+  if (std::find(known_types.begin(), known_types.end(), type) != known_types.end()) return "";
+  std::string known;
+  for (const auto& t : known_types) known += (known.empty() ? "" : ", ") + t;
+  return "unknown controller type '" + type + "' (from '" + type_path + "'); known types: " +
+         (known.empty() ? "none" : known) + "; check the spelling or the plugin path";
+}
+
+// Fills fallbacks with the controllers names lists (from path), each loaded
+// already and claiming nothing that controller `name` (which claimed
+// `claimed`) does not; "" on success, otherwise what is wrong.
+std::string resolveFallbacks(const std::string& name, const std::string& path, const std::vector<std::string>& names,
+                             const std::vector<hardware_interface::InterfaceResources>& claimed,
+                             const std::function<detail::ControllerEntry*(const std::string&)>& find,
+                             std::vector<detail::ControllerEntry*>& fallbacks) {
+  for (const std::string& fallback_name : names) {
+    if (fallback_name == name) return "'" + path + "' names the controller itself";
+    detail::ControllerEntry* fallback = find(fallback_name);
+    if (fallback == nullptr) {
+      return "its fallback controller '" + fallback_name + "' (from '" + path + "') is not loaded; load it first";
+    }
+    for (const auto& held : fallback->info.claimed_resources) {
+      for (const std::string& resource : held.resources) {
+        const bool also_ours = std::any_of(claimed.begin(), claimed.end(), [&](const auto& ours) {
+          return ours.hardware_interface == held.hardware_interface && ours.resources.count(resource) != 0;
+        });
+        if (!also_ours) {
+          return "its fallback controller '" + fallback_name + "' claims '" + resource + "' through " +
+                 held.hardware_interface + ", which '" + name +
+                 "' does not; a fallback may only take over what its controller holds";
+        }
+      }
+    }
+    if (std::find(fallbacks.begin(), fallbacks.end(), fallback) == fallbacks.end()) fallbacks.push_back(fallback);
+  }
+  return "";
+}
+
 }  // namespace
 
 ControllerManager::ParameterLookup ControllerManager::lookupIn(YAML::Node namespace_parameters) {
@@ -143,35 +208,11 @@ ServiceResult ControllerManager::loadController(const std::string& name) {
   } catch (const std::exception& e) {
     return fail("load controller '" + name + "': " + e.what());
   }
-  std::vector<std::string> known_types;
-  try {
-    known_types = factory_->types();
-  } catch (const std::exception& e) {
-    return fail("load controller '" + name + "': listing controller types failed: " + e.what());
-  }
-  if (std::find(known_types.begin(), known_types.end(), type) == known_types.end()) {
-    std::string known;
-    for (const auto& t : known_types) known += (known.empty() ? "" : ", ") + t;
-    return fail("load controller '" + name + "': unknown controller type '" + type + "' (from '" +
-                type_path + "'); known types: " + (known.empty() ? "none" : known) +
-                "; check the spelling or the plugin path");
+  if (std::string error = unknownTypeError(*factory_, type, type_path); !error.empty()) {
+    return fail("load controller '" + name + "': " + error);
   }
 
-  const UpdateRateChoice rate = chooseUpdateRate(update_rate_hz_, requested_rate_hz);
-  if (!rate.exact) {
-    if (update_rate_hz_ <= 0.0) {
-      logger().warn(
-          "controller '{}': update_rate {} ignored: the controller manager runs at no fixed "
-          "rate, so the controller updates every cycle",
-          name, formatRate(requested_rate_hz));
-    } else {
-      logger().warn(
-          "controller '{}': update_rate {} is not a divisor of the controller manager's "
-          "update_rate {}; running it at {} (every {} cycles) instead",
-          name, formatRate(requested_rate_hz), formatRate(update_rate_hz_),
-          formatRate(rate.rate_hz), rate.divisor);
-    }
-  }
+  const UpdateRateChoice rate = chooseRateOrWarn(name, update_rate_hz_, requested_rate_hz);
 
   // Create and initialise, off the real-time thread.
   ControllerPtr controller;
@@ -201,32 +242,10 @@ ServiceResult ControllerManager::loadController(const std::string& name) {
   // Fallback controllers: loaded already, and taking over nothing this one
   // does not hold, so starting them when it faults can never conflict.
   std::vector<detail::ControllerEntry*> fallbacks;
-  {
-    const std::string path = parameterPath(ns, name, "fallback_controllers");
-    for (const std::string& fallback_name : fallback_names) {
-      detail::ControllerEntry* fallback = findEntry(fallback_name);
-      if (fallback_name == name) {
-        return fail("load controller '" + name + "': '" + path + "' names the controller itself");
-      }
-      if (fallback == nullptr) {
-        return fail("load controller '" + name + "': its fallback controller '" + fallback_name +
-                    "' (from '" + path + "') is not loaded; load it first");
-      }
-      for (const auto& held : fallback->info.claimed_resources) {
-        for (const std::string& resource : held.resources) {
-          const bool also_ours = std::any_of(claimed.begin(), claimed.end(), [&](const auto& ours) {
-            return ours.hardware_interface == held.hardware_interface && ours.resources.count(resource) != 0;
-          });
-          if (!also_ours) {
-            return fail("load controller '" + name + "': its fallback controller '" + fallback_name + "' claims '" +
-                        resource + "' through " + held.hardware_interface + ", which '" + name +
-                        "' does not; a fallback may only take over what its controller holds");
-          }
-        }
-      }
-      if (std::find(fallbacks.begin(), fallbacks.end(), fallback) == fallbacks.end()) fallbacks.push_back(fallback);
-    }
-  }
+  const std::string fallback_error =
+      resolveFallbacks(name, parameterPath(ns, name, "fallback_controllers"), fallback_names, claimed,
+                       [this](const std::string& fallback) { return findEntry(fallback); }, fallbacks);
+  if (!fallback_error.empty()) return fail("load controller '" + name + "': " + fallback_error);
 
   auto entry = std::make_unique<detail::ControllerEntry>();
   entry->name = name;
