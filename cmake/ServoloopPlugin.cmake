@@ -2,9 +2,11 @@
 #                      [NO_PRECOMPILED_HEADERS])
 # Builds a servoloop plugin (controller or backend): a MODULE library that the
 # plugin loader opens with dlopen. Used in tree and by out-of-tree projects.
-# Out of tree, servoloop's common plugin headers (servoloop/plugin/precompiled.hpp)
-# are precompiled once for the target, so that rebuilding after an edit to a
-# source parses none of them again; NO_PRECOMPILED_HEADERS turns that off.
+# Out of tree, servoloop's common plugin headers (ServoloopPluginPrecompiled.hpp,
+# beside this file) are precompiled once for the target, so that rebuilding
+# after an edit to a source parses none of them again; NO_PRECOMPILED_HEADERS
+# turns that off.
+set(SERVOLOOP_PLUGIN_PRECOMPILED_HEADER ${CMAKE_CURRENT_LIST_DIR}/ServoloopPluginPrecompiled.hpp)
 function(servoloop_add_plugin target)
   cmake_parse_arguments(ARG "NO_INSTALL;NO_PRECOMPILED_HEADERS" "" "SOURCES;LINK" ${ARGN})
   add_library(${target} MODULE ${ARG_SOURCES})
@@ -35,7 +37,7 @@ function(servoloop_add_plugin target)
     # In tree the plugins are many and each built once, so a header compiled
     # for each would cost more than it saves.
     if(NOT ARG_NO_PRECOMPILED_HEADERS)
-      target_precompile_headers(${target} PRIVATE <servoloop/plugin/precompiled.hpp>)
+      target_precompile_headers(${target} PRIVATE ${SERVOLOOP_PLUGIN_PRECOMPILED_HEADER})
     endif()
   endif()
 endfunction()

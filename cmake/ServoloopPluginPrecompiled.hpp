@@ -1,10 +1,11 @@
 #pragma once
 // The servoloop headers nearly every plugin includes: the controller and
 // hardware bases, the interfaces, the topic bus and its messages, the
-// registration macro. servoloop_add_plugin precompiles this header once per
+// registration macro. servoloop_add_plugin precompiles this file once per
 // plugin target of an out-of-tree project, so that an edit to a plugin's
-// source recompiles only that source (ServoloopPlugin.cmake). Including it
-// directly is never needed.
+// source recompiles only that source (ServoloopPlugin.cmake). It is part of
+// the CMake package, installed beside ServoloopPlugin.cmake, not an API
+// header: it spans modules, as a plugin's includes do.
 #include <cmath>
 #include <limits>
 #include <string>
