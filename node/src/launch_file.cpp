@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <initializer_list>
 #include <sstream>
 
 #include <fmt/format.h>

@@ -1,6 +1,5 @@
 #include "servoloop/sim_common/sim_settings.hpp"
 
-#include <array>
 #include <cmath>
 #include <string_view>
 
