@@ -1,5 +1,7 @@
 #include "servoloop/sim_bullet/bullet_world.hpp"
 
+#include "servoloop/sim_bullet/bullet_scene.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -23,6 +25,7 @@
 #include <btBulletCollisionCommon.h>
 
 #include "body_tree.hpp"
+#include "bullet_scene_core.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/sim_common/collision_mesh.hpp"
 #include "servoloop/sim_common/contact_friction.hpp"
@@ -42,36 +45,11 @@ constexpr double kMaxCoordinateVelocity = 1e6;
 constexpr double kRigidConstraintImpulse = 1e8;
 // Effort bound of a motor on a joint with no <limit effort>.
 constexpr double kUnlimitedMotorEffort = 1e9;
-constexpr int kSolverIterations = 50;
 // Share of a mimic joint's position error (q_m − multiplier·q_l − offset) the
 // gear constraint removes per step; its velocity row holds the rates exact.
 constexpr double kMimicErrorReduction = 0.2;
 // Convex hulls get Bullet's margin outside the hull; keep it at 1 mm.
 constexpr double kMeshCollisionMargin = 0.001;
-// Bullet multiplies the two objects' coefficients; the ground's 1 makes a
-// contact with it take the link's own coefficient, as in Gazebo.
-constexpr double kGroundFriction = 1.0;
-
-// Per-collision friction for a body whose merged links differ (a caster fixed
-// to the base): the collider's user pointer holds one coefficient per child
-// of its compound shape, and Bullet calls this for each new contact point of
-// a collider flagged CF_CUSTOM_MATERIAL_CALLBACK (the index is the compound
-// child, -1 for a shape that is not a compound).
-double shapeFriction(const btCollisionObjectWrapper* wrapper, int child) {
-  const btCollisionObject* object = wrapper->getCollisionObject();
-  if ((object->getCollisionFlags() & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) != 0) {
-    const auto* per_child = static_cast<const std::vector<double>*>(object->getUserPointer());
-    if (per_child != nullptr && child >= 0 && child < static_cast<int>(per_child->size())) return (*per_child)[child];
-  }
-  return object->getFriction();
-}
-
-bool perShapeFriction(btManifoldPoint& point, const btCollisionObjectWrapper* object0, int /*part0*/, int index0,
-                      const btCollisionObjectWrapper* object1, int /*part1*/, int index1) {
-  point.m_combinedFriction = shapeFriction(object0, index0) * shapeFriction(object1, index1);
-  return true;
-}
-
 btVector3 toBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
 Eigen::Vector3d toEigen(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
 btQuaternion toBt(const Eigen::Quaterniond& q) { return btQuaternion(q.x(), q.y(), q.z(), q.w()); }
@@ -104,7 +82,7 @@ struct JointData {
 
 }  // namespace
 
-struct BulletWorld::Impl {
+struct BulletWorld::Impl final : detail::SceneMember {
   WorldSettings settings;
   detail::BodyTree tree;
   bool fixed_base{false};
@@ -114,19 +92,19 @@ struct BulletWorld::Impl {
   std::vector<JointData> joints;
   std::vector<std::string> joint_names;
 
-  // Bullet objects, destroyed in reverse order of creation (see ~Impl).
-  std::unique_ptr<btDefaultCollisionConfiguration> collision_config;
-  std::unique_ptr<btCollisionDispatcher> dispatcher;
-  std::unique_ptr<btDbvtBroadphase> broadphase;
-  std::unique_ptr<btMultiBodyConstraintSolver> solver;
-  std::unique_ptr<btMultiBodyDynamicsWorld> world;
+  // The scene the robot is built into: its own (own_scene) or a shared one.
+  std::unique_ptr<BulletScene> own_scene;
+  detail::SceneCore* scene{nullptr};
+  btMultiBodyDynamicsWorld* world{nullptr};  // the scene's
+  bool joined{false};                        // in scene->members
+
+  // Bullet objects, removed from the world and destroyed in reverse order of creation (see ~Impl).
   std::unique_ptr<btMultiBody> body;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
   // Per collider, the URDF link of each child of its compound shape.
   std::vector<std::vector<std::string>> collider_child_links;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints;
-  std::unique_ptr<btCollisionObject> ground;
   // Per-child friction of colliders whose merged links differ (shapeFriction).
   std::vector<std::unique_ptr<std::vector<double>>> child_friction;
 
@@ -134,26 +112,91 @@ struct BulletWorld::Impl {
   btAlignedObjectArray<btQuaternion> scratch_rotations;
   btAlignedObjectArray<btVector3> scratch_origins;
 
-  ~Impl() {
+  ~Impl() override {
+    if (joined) std::erase(scene->members, this);
     if (world) {
       for (auto& c : constraints) world->removeMultiBodyConstraint(c.get());
-      if (ground) world->removeCollisionObject(ground.get());
       for (auto& c : colliders) world->removeCollisionObject(c.get());
       if (body) world->removeMultiBody(body.get());
     }
   }
 
+  // --- as a member of its scene --------------------------------------------
+
+  // Viscous damping -b*qdot from the velocity at the start of the step. With
+  // Bullet's semi-implicit Euler the velocity decays by (1 - b*dt/I) per step:
+  // stable for b*dt/I < 2 (the seed joint: 1 * 0.001 / 0.35 = 0.003).
+  void beforeSceneStep() noexcept override {
+    btMultiBody& mb = *body;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      JointData& joint = joints[j];
+      const double damping_effort = -joint.damping * mb.getJointVel(int(j));
+      mb.addJointTorque(int(j), joint.pending_effort + damping_effort);
+    }
+  }
+
+  // What each joint's actuator applied: a motor's effort is its constraint
+  // impulse of this step (the solver writes it back per constraint row) over dt.
+  void afterSceneStep() noexcept override {
+    body->clearForcesAndTorques();
+    for (JointData& joint : joints) {
+      if (joint.mode == CommandMode::effort) {
+        joint.applied_effort = joint.pending_effort;
+      } else {
+        joint.applied_effort = joint.command_motor->getAppliedImpulse(0) / settings.time_step_s;
+      }
+      joint.pending_effort = 0.0;
+    }
+    ++steps;
+  }
+
+  void resetMember() override {
+    btMultiBody& mb = *body;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      mb.setJointPos(int(j), 0.0);
+      mb.setJointVel(int(j), 0.0);
+      setMode(joints[j], CommandMode::effort);
+      joints[j].pending_effort = 0.0;
+      joints[j].applied_effort = 0.0;
+    }
+    mb.setBaseWorldTransform(toBt(initial_root_pose * tree.bodies.front().principal_in_link));
+    mb.setBaseVel(btVector3(0, 0, 0));
+    mb.setBaseOmega(btVector3(0, 0, 0));
+    mb.clearForcesAndTorques();
+    steps = 0;
+    updateKinematics();
+  }
+
   // --- construction -------------------------------------------------------
 
-  void createWorld() {
-    collision_config = std::make_unique<btDefaultCollisionConfiguration>();
-    dispatcher = std::make_unique<btCollisionDispatcher>(collision_config.get());
-    broadphase = std::make_unique<btDbvtBroadphase>();
-    solver = std::make_unique<btMultiBodyConstraintSolver>();
-    world = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher.get(), broadphase.get(), solver.get(),
-                                                       collision_config.get());
-    world->setGravity(toBt(settings.gravity));
-    world->getSolverInfo().m_numIterations = kSolverIterations;
+  // The robot's own scene, or `shared` when it shares one: then the world
+  // settings the scene decides must be the robot's too.
+  void useScene(const urdf::ModelInterface& model, BulletScene* shared) {
+    if (shared == nullptr) {
+      own_scene = std::make_unique<BulletScene>(
+          SceneSettings{settings.gravity, settings.time_step_s, settings.ground_plane});
+      scene = &own_scene->core();
+    } else {
+      scene = &shared->core();
+      const SceneSettings& world_settings = scene->settings;
+      const std::string robot = "robot '" + model.getName() + "'";
+      const std::string shared_settings =
+          "; the robots and objects of one world share its time step, gravity and ground plane";
+      if (settings.time_step_s != world_settings.time_step_s) {
+        throw ConfigError(robot + " asks for a time step of " + std::to_string(settings.time_step_s) +
+                          " s, but its world steps " + std::to_string(world_settings.time_step_s) + " s" +
+                          shared_settings);
+      }
+      if (settings.gravity != world_settings.gravity) {
+        throw ConfigError(robot + " asks for another gravity than its world's" + shared_settings);
+      }
+      if (settings.ground_plane != world_settings.ground_plane) {
+        throw ConfigError(robot + (settings.ground_plane ? " asks for a ground plane, but its world has none"
+                                                          : " asks for no ground plane, but its world has one") +
+                          shared_settings);
+      }
+    }
+    world = scene->world.get();
   }
 
   void decideBase(const urdf::ModelInterface& model) {
@@ -389,20 +432,13 @@ struct BulletWorld::Impl {
       world->addCollisionObject(collider.get(), group, mask);
       colliders.push_back(std::move(collider));
     }
-    if (settings.ground_plane) {
-      auto plane = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0);
-      ground = std::make_unique<btCollisionObject>();
-      ground->setCollisionShape(plane.get());
-      ground->setFriction(kGroundFriction);
-      shapes.push_back(std::move(plane));
-      world->addCollisionObject(ground.get(), int(btBroadphaseProxy::StaticFilter),
-                                int(btBroadphaseProxy::AllFilter) ^ int(btBroadphaseProxy::StaticFilter));
-    }
   }
 
   // The URDF's friction (Gazebo's 1 when it sets none) instead of Bullet's
-  // 0.5; one coefficient per merged link when they differ.
+  // 0.5; one coefficient per merged link when they differ; combined with the
+  // other surface's the scene's way (detail::useSceneFriction).
   void setFriction(btMultiBodyLinkCollider& collider, std::unique_ptr<std::vector<double>> per_child) {
+    detail::useSceneFriction(collider);
     if (per_child->empty()) {
       collider.setFriction(sim_common::kDefaultContactFriction);
       return;
@@ -411,10 +447,8 @@ struct BulletWorld::Impl {
     const bool uniform = std::all_of(per_child->begin(), per_child->end(),
                                      [&](double mu) { return mu == per_child->front(); });
     if (uniform) return;
-    collider.setCollisionFlags(collider.getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
     collider.setUserPointer(per_child.get());
     child_friction.push_back(std::move(per_child));
-    gContactAddedCallback = &perShapeFriction;  // process-wide in Bullet; acts on flagged colliders only
   }
 
   // --- state --------------------------------------------------------------
@@ -465,6 +499,12 @@ struct BulletWorld::Impl {
 };
 
 BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings& settings)
+    : BulletWorld(model, settings, nullptr) {}
+
+BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings& settings, BulletScene& scene)
+    : BulletWorld(model, settings, &scene) {}
+
+BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings& settings, BulletScene* scene)
     : impl_(std::make_unique<Impl>()) {
   if (!(settings.time_step_s > 0.0) || !std::isfinite(settings.time_step_s)) {
     throw ConfigError("Bullet world: time step " + std::to_string(settings.time_step_s) + " s must be > 0");
@@ -485,7 +525,7 @@ BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings&
   }
   w.decideBase(model);
   w.addRotorInertias(model);
-  w.createWorld();
+  w.useScene(model, scene);
   w.createMultiBody();
   w.createJointConstraints();
   w.createMimicConstraints();
@@ -493,7 +533,10 @@ BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings&
   const int frames = static_cast<int>(w.tree.bodies.size());
   w.scratch_rotations.resize(frames);
   w.scratch_origins.resize(frames);
-  reset();
+  w.resetMember();
+  w.scene->reserveForMember(static_cast<int>(w.tree.bodies.size()), static_cast<int>(w.joints.size()));
+  w.scene->members.push_back(&w);
+  w.joined = true;
 }
 
 BulletWorld::~BulletWorld() = default;
@@ -566,52 +609,15 @@ void BulletWorld::setJointState(std::size_t joint, double position, double veloc
 }
 
 void BulletWorld::step() {
-  Impl& w = *impl_;
-  btMultiBody& mb = *w.body;
-  // Viscous damping -b*qdot from the velocity at the start of the step. With
-  // Bullet's semi-implicit Euler the velocity decays by (1 - b*dt/I) per step:
-  // stable for b*dt/I < 2 (the seed joint: 1 * 0.001 / 0.35 = 0.003).
-  for (std::size_t j = 0; j < w.joints.size(); ++j) {
-    JointData& joint = w.joints[j];
-    const double damping_effort = -joint.damping * mb.getJointVel(int(j));
-    mb.addJointTorque(int(j), joint.pending_effort + damping_effort);
-  }
-  // maxSubSteps = 0: exactly one step of time_step_s, no interpolation.
-  w.world->stepSimulation(w.settings.time_step_s, 0, w.settings.time_step_s);
-  mb.clearForcesAndTorques();
-  // What each joint's actuator applied: a motor's effort is its constraint
-  // impulse of this step (the solver writes it back per constraint row) over dt.
-  for (JointData& joint : w.joints) {
-    if (joint.mode == CommandMode::effort) {
-      joint.applied_effort = joint.pending_effort;
-    } else {
-      joint.applied_effort = joint.command_motor->getAppliedImpulse(0) / w.settings.time_step_s;
-    }
-    joint.pending_effort = 0.0;
-  }
-  ++w.steps;
+  if (impl_->own_scene) impl_->own_scene->step();
 }
+
+bool BulletWorld::sharesScene() const { return impl_->own_scene == nullptr; }
 
 double BulletWorld::time() const { return static_cast<double>(impl_->steps) * impl_->settings.time_step_s; }
 double BulletWorld::timeStep() const { return impl_->settings.time_step_s; }
 
-void BulletWorld::reset() {
-  Impl& w = *impl_;
-  btMultiBody& mb = *w.body;
-  for (std::size_t j = 0; j < w.joints.size(); ++j) {
-    mb.setJointPos(int(j), 0.0);
-    mb.setJointVel(int(j), 0.0);
-    w.setMode(w.joints[j], CommandMode::effort);
-    w.joints[j].pending_effort = 0.0;
-    w.joints[j].applied_effort = 0.0;
-  }
-  mb.setBaseWorldTransform(toBt(w.initial_root_pose * w.tree.bodies.front().principal_in_link));
-  mb.setBaseVel(btVector3(0, 0, 0));
-  mb.setBaseOmega(btVector3(0, 0, 0));
-  mb.clearForcesAndTorques();
-  w.steps = 0;
-  w.updateKinematics();
-}
+void BulletWorld::reset() { impl_->resetMember(); }
 
 bool BulletWorld::isFixedBase() const { return impl_->fixed_base; }
 
@@ -662,7 +668,7 @@ BodyMassProperties BulletWorld::bodyMassProperties(const std::string& link_name)
 GroundPenetration BulletWorld::deepestGroundPenetration() const {
   const Impl& w = *impl_;
   GroundPenetration deepest;
-  if (!w.ground) return deepest;
+  if (!w.scene->ground) return deepest;
   for (std::size_t k = 0; k < w.colliders.size(); ++k) {
     const btMultiBodyLinkCollider& collider = *w.colliders[k];
     if (collider.isStaticObject()) continue;

@@ -71,6 +71,8 @@ struct BodyMassProperties {
   Eigen::Matrix3d inertia{Eigen::Matrix3d::Zero()};    // about the COM, link frame axes, kg m^2
 };
 
+class BulletScene;  // bullet_scene.hpp
+
 // Joint-space simulation of one URDF robot.
 //
 // Model: revolute, continuous and prismatic joints become Featherstone joints;
@@ -98,7 +100,13 @@ struct BodyMassProperties {
 // real-time safe. Index arguments are not range-checked in release builds.
 class BulletWorld {
  public:
+  // The robot in a scene of its own (settings' gravity, time step and ground plane).
   BulletWorld(const urdf::ModelInterface& model, const WorldSettings& settings = {});
+  // The robot in `scene`, beside the scene's other members, touching them;
+  // the scene steps it (step() here does nothing). Throws ConfigError when
+  // settings' time step, gravity or ground plane differ from the scene's.
+  // `scene` must outlive the robot.
+  BulletWorld(const urdf::ModelInterface& model, const WorldSettings& settings, BulletScene& scene);
   ~BulletWorld();
   BulletWorld(const BulletWorld&) = delete;
   BulletWorld& operator=(const BulletWorld&) = delete;
@@ -138,9 +146,11 @@ class BulletWorld {
   // Teleports the joint (no dynamics); link poses are updated at once.
   void setJointState(std::size_t joint, double position, double velocity);
 
-  // Advances exactly one time step of settings.time_step_s.
+  // Advances exactly one time step of settings.time_step_s: the robot's own
+  // scene; nothing when it shares one (the scene's step() moves it).
   void step();
-  double time() const;  // s since construction or reset()
+  bool sharesScene() const;
+  double time() const;  // s of steps the robot took since construction or reset()
   double timeStep() const;
   // Back to the initial state: joints at 0 at rest, base at its initial pose at
   // rest, time 0, all commands cleared (effort mode, zero effort).
@@ -174,6 +184,8 @@ class BulletWorld {
   double maxCoordinateVelocity() const;
 
  private:
+  BulletWorld(const urdf::ModelInterface& model, const WorldSettings& settings, BulletScene* scene);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
