@@ -166,6 +166,38 @@ ReturnType SimulationLoop::cycleOnce() noexcept {
   return result;
 }
 
+void SimulationLoop::beginExternalRun() noexcept {
+  syncHardwareStep();
+  external_run_start_ns_ = loop_clock::cycleClockNs();
+  external_wall_before_ns_ = wall_time_ns_;
+  setPhaseTiming(false);
+}
+
+ReturnType SimulationLoop::externalCycle() noexcept {
+  bool control_updated = false;
+  if (free_cycles_++ % kFreeRunningTimingStride != 0) {
+    const ReturnType result = runCycle(&control_updated);
+    mutableStatistics().recordUntimedCycle(control_updated);
+    return result;
+  }
+  applyRequestedStatisticsReset();
+  setPhaseTiming(true);
+  const std::int64_t start_ns = loop_clock::cycleClockNs();
+  const ReturnType result = runCycle(&control_updated);
+  const std::int64_t end_ns = loop_clock::cycleClockNs();
+  setPhaseTiming(false);
+  mutableStatistics().recordCycle(end_ns - start_ns, control_updated);
+  wall_time_ns_ = external_wall_before_ns_ + (end_ns - external_run_start_ns_);
+  publishElapsed();
+  return result;
+}
+
+void SimulationLoop::endExternalRun() noexcept {
+  wall_time_ns_ = external_wall_before_ns_ + (loop_clock::cycleClockNs() - external_run_start_ns_);
+  publishElapsed();
+  consumeStopRequest();
+}
+
 void SimulationLoop::runCycles(std::uint64_t max_cycles, const std::atomic<bool>* external_stop) {
   syncHardwareStep();
   if (real_time_factor_ > 0.0) {

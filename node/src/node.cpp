@@ -9,6 +9,7 @@
 #include "servoloop/ipc/ipc_socket_path.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/node_operations.hpp"
+#include "servoloop/node/realtime_settings.hpp"
 #include "servoloop/plugin/plugin_path.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
@@ -36,6 +37,7 @@ Node::Node(LaunchFile launch, NodeOptions options) : launch_(std::move(launch)),
     throw Error(fmt::format("the real-time factor {} must be >= 0 (0 runs as fast as possible)", real_time_factor_));
   }
   plugins_ = std::make_shared<plugin::PluginLoader>(plugin::pluginSearchPath(options_.plugin_directories));
+  createWorld();
 
   for (const RobotSpec& spec : launch_.robots) spawnRobot(spec);
 
@@ -68,6 +70,43 @@ Node::Node(LaunchFile launch, NodeOptions options) : launch_(std::move(launch)),
                                     launch_.source.string(), record.topic));
     }
     recorders_.push_back(std::make_unique<TopicRecorder>(robot->topics(), record.topic, record.file));
+  }
+}
+
+void Node::createWorld() {
+  if (launch_.world.wall_clock) return;  // every robot on a loop thread of its own
+  const std::string world_type = launch_.world.backend + "/world";
+  hardware_interface::SimulatedWorldSettings settings;
+  settings.time_step_s = launch_.world.time_step_s;
+  settings.gravity = launch_.world.gravity;
+  settings.ground_plane = launch_.world.ground_plane;
+  if (plugins_->hasType(world_type)) {
+    try {
+      world_plugin_ = plugins_->create<hardware_interface::SimulatedWorld>(world_type);
+      world_plugin_->init(settings);
+    } catch (const std::exception& e) {
+      throw ConfigError(fmt::format("{}: world of the '{}' backend: {}", launch_.source.string(),
+                                    launch_.world.backend, e.what()));
+    }
+    world_ = world_plugin_.get();
+  } else {
+    separate_worlds_ = std::make_unique<hardware_interface::SeparateWorlds>();
+    separate_worlds_->init(settings);
+    world_ = separate_worlds_.get();
+  }
+  world::WorldLoopOptions options;
+  options.real_time_factor = real_time_factor_;
+  if (!launch_.realtime.empty()) {
+    options.on_thread_start = [realtime = launch_.realtime] { applyRealtimeSettings(realtime, "the world loop"); };
+  }
+  world_loop_ = std::make_unique<world::WorldLoop>(*world_, std::move(options));
+}
+
+void Node::changeWorld(const std::function<void()>& change) {
+  if (world_loop_ && world_->robotsTouch()) {
+    world_loop_->whilePaused(change);
+  } else {
+    change();
   }
 }
 
@@ -110,7 +149,12 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
   world.update_rate_hz = launch_.controller_manager.update_rate_hz;
   world.real_time_factor = real_time_factor_;
   world.realtime = launch_.realtime;
-  auto robot = std::make_unique<RobotInstance>(spec, world);
+  world.simulated_world = world_;
+  world.world_loop = world_loop_.get();
+  std::unique_ptr<RobotInstance> robot;
+  changeWorld([&] { robot = std::make_unique<RobotInstance>(spec, world); });
+  // A robot that cannot be added leaves the world as it came (between two cycles).
+  const auto discard = [&] { changeWorld([&] { robot.reset(); }); };
   robot->setFinishedCallback([this] {
     {
       std::lock_guard lock(finished_mutex_);
@@ -120,11 +164,16 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
   });
   const std::string ns = robot->robotNamespace();
 
-  std::lock_guard lock(robots_mutex_);
-  if (!accepting_robots_) throw Error("the node is shutting down; no robot can be spawned any more");
+  std::unique_lock lock(robots_mutex_);
+  const auto refuse = [&](const std::string& why) {
+    lock.unlock();
+    discard();
+    throw Error(why);
+  };
+  if (!accepting_robots_) refuse("the node is shutting down; no robot can be spawned any more");
   for (const auto& existing : robots_) {
     if (existing->robotNamespace() == ns) {
-      throw Error(fmt::format("a robot with namespace '{}' exists already; give the new one another --namespace", ns));
+      refuse(fmt::format("a robot with namespace '{}' exists already; give the new one another --namespace", ns));
     }
   }
   logger().info("spawned robot '{}' ({}) from {} on the {} backend", robot->robotName(), ns, spec.urdf.string(),
@@ -157,6 +206,7 @@ void Node::start() {
   if (started_) return;
   started_ = true;
   start_time_ = std::chrono::steady_clock::now();
+  if (world_loop_) world_loop_->start();
   if (options_.serve_ipc && robots_.empty()) startServer("/", nullptr);
   for (const auto& robot : robots_) startRobotLocked(*robot);
 }
@@ -215,6 +265,7 @@ void Node::shutdown() {
   for (auto& server : servers_) server->stop();
   operations_.clear();
   for (RobotInstance* robot : robots()) robot->stop();
+  if (world_loop_) world_loop_->stop();
   final_summary_ = summary();
   for (RobotInstance* robot : robots()) {
     robot->topics().flush();

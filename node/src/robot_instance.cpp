@@ -1,24 +1,21 @@
-// One robot of a node: backend, bus, manager, loop and the loop's thread.
+// One robot of a node: its hardware, bus, manager and loop, and its
+// controllers. How its loop is driven: robot_loop_driver.cpp; its safety
+// states: robot_safety.cpp.
 #include "servoloop/node/robot_instance.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
-#include <future>
-#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
-#include <chrono>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/robot_namespace.hpp"
-#include "servoloop/core/step_grid.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/core/logging.hpp"
@@ -31,12 +28,6 @@
 
 namespace servoloop::node {
 namespace {
-
-// Simulated time between two bus flushes of a free-running loop.
-constexpr double kFreeRunningFlushInterval_s = 0.01;
-// How long recover() waits for the loop: to resume, to run its confirming
-// cycles, to carry out a switch (wall time).
-constexpr double kRecoverySwitchTimeout_s = 5.0;
 
 // Writes one world setting to the robot's sim/ parameters, where the backend
 // reads it, warning when a parameter file said otherwise.
@@ -135,6 +126,24 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
     writeWorldSettings(store, namespace_, world.world);
   }
   writeSpawnSettings(store, namespace_, spec);
+
+  // A simulated robot in lockstep lives in the node's world: built into its
+  // physics, its cycles run by the world's loop.
+  const bool joins_world = world.world_loop != nullptr && world.simulated_world != nullptr && sim_hw_ != nullptr &&
+                           !hardware_robot && !world.world.wall_clock;
+  if (joins_world) {
+    try {
+      sim_hw_->joinWorld(*world.simulated_world);
+    } catch (const std::exception& e) {
+      throw ConfigError(fmt::format("backend '{}': robot '{}': {}", backend_name_, namespace_, e.what()));
+    }
+    world_loop_ = world.world_loop;
+    if (spec.realtime) {
+      logger().warn("robot '{}': its own realtime: settings do not apply; its cycles run on the world's loop "
+                    "thread, which takes the launch file's realtime: settings",
+                    namespace_);
+    }
+  }
 
   hardware_interface::HardwareInfo info;
   info.urdf_xml = xml;
@@ -411,157 +420,6 @@ void RobotInstance::reportLaunchStartFailure(const std::vector<std::string>& con
   launch_failures_.push_back("controller(s) " + names + " did not start: " + why);
 }
 
-void RobotInstance::addTimedPublication(const TimedPublication& publication) {
-  if (loop_thread_.joinable()) throw Error("RobotInstance: timed publications must be added before start()");
-  publications_.push_back(publication);
-  std::stable_sort(publications_.begin(), publications_.end(),
-                   [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
-}
-
-std::uint64_t RobotInstance::stepsAt(double time_s) const {
-  const double steps = std::ceil(time_s / sim_loop_->physicsStep().seconds - 1e-9);
-  return steps <= 0.0 ? 0 : static_cast<std::uint64_t>(steps);
-}
-
-void RobotInstance::publish(const TimedPublication& publication) {
-  try {
-    servoloop::node::publishJson(*bus_, publication.topic, publication.message, publication.type);
-    logger().debug("published {} on '{}' at t = {} s",
-                   publication.message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-                   publication.topic, publication.time_s);
-  } catch (const std::exception& e) {
-    logger().error("timed publication on '{}' at t = {} s failed: {}", publication.topic, publication.time_s,
-                   e.what());
-  }
-}
-
-// Each published message is delivered (flush) before the loop goes on, so
-// subscribers that hand work to the real-time side from their callback (a
-// trajectory controller building its trajectory) have done so by the next
-// cycle, whenever the delivery thread would have woken up.
-void RobotInstance::publishDue(std::uint64_t steps_taken) {
-  const std::size_t before = next_publication_;
-  while (next_publication_ < publications_.size() && stepsAt(publications_[next_publication_].time_s) <= steps_taken) {
-    bus_->setTime(Time(stepsToSeconds(steps_taken, sim_loop_->physicsStep().seconds)));
-    publish(publications_[next_publication_++]);
-  }
-  if (next_publication_ != before) bus_->flush();
-}
-
-void RobotInstance::publishDueAt(double time_s) {
-  const std::size_t before = next_publication_;
-  while (next_publication_ < publications_.size() && publications_[next_publication_].time_s <= time_s) {
-    publish(publications_[next_publication_++]);
-  }
-  if (next_publication_ != before) bus_->flush();
-}
-
-// On the wall clock the loop runs in pieces that end at the next timed
-// publication (or the duration); each piece carries on the previous piece's
-// deadline grid (WallClockLoop), and the publish between them takes a few
-// microseconds of the time before the next deadline.
-void RobotInstance::driveWallClockLoop(std::optional<double> duration_s) {
-  const double end_s = duration_s ? *duration_s : std::numeric_limits<double>::infinity();
-  const double period_s = loop_->controlPeriod().seconds;
-  while (!stop_requested_.load()) {
-    const double now_s = simTime();
-    publishDueAt(now_s);
-    if (now_s >= end_s - 0.5 * period_s || loop_->hardwareAskedToStop()) break;
-    double target_s = end_s;
-    if (next_publication_ < publications_.size()) target_s = std::min(target_s, publications_[next_publication_].time_s);
-    if (std::isinf(target_s)) {
-      loop_->run(stop_requested_);
-    } else {
-      loop_->runFor(Duration(std::max(target_s - now_s, period_s)));
-    }
-  }
-}
-
-// A run with a duration ends when the hardware stops the loop; an open-ended
-// one (a node serving clients) waits in fault for `control recover`.
-void RobotInstance::driveLoop(std::optional<double> duration_s) {
-  for (;;) {
-    if (sim_loop_ == nullptr) {
-      driveWallClockLoop(duration_s);
-    } else {
-      driveSimulationLoop(duration_s);
-    }
-    if (duration_s || stop_requested_.load() || !loop_->hardwareAskedToStop()) break;
-    bus_->flush();
-    if (!waitForRecovery()) break;
-  }
-  bus_->flush();
-  loop_done_.store(true);
-  if (on_finished_) on_finished_();
-}
-
-void RobotInstance::driveSimulationLoop(std::optional<double> duration_s) {
-  constexpr std::uint64_t kForever = std::numeric_limits<std::uint64_t>::max();
-  const double dt = sim_loop_->physicsStep().seconds;
-  const bool free_running = real_time_factor_ <= 0.0;
-  const std::uint64_t end_steps = duration_s ? stepsAt(*duration_s) : kForever;
-  const auto flush_steps = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
-
-  while (!stop_requested_.load()) {
-    const std::uint64_t taken = sim_loop_->stepsTaken();
-    publishDue(taken);
-    if (taken >= end_steps || loop_->hardwareAskedToStop()) break;
-
-    std::uint64_t target = end_steps;
-    if (next_publication_ < publications_.size()) {
-      target = std::min(target, stepsAt(publications_[next_publication_].time_s));
-    }
-    if (free_running) target = std::min(target, taken + flush_steps);
-
-    if (target == kForever) {
-      loop_->run(stop_requested_);
-    } else {
-      loop_->runFor(Duration(static_cast<double>(target - taken) * dt));
-    }
-    if (free_running) bus_->flush();
-  }
-}
-
-void RobotInstance::start(std::optional<double> duration_s) {
-  std::lock_guard lock(lifecycle_mutex_);
-  if (loop_thread_.joinable()) return;
-  // start() returns once the launch file's controllers are running, so that
-  // nobody (an IPC client, a test) sees the robot before its controllers.
-  std::promise<void> launch_controllers_started;
-  std::future<void> ready = launch_controllers_started.get_future();
-  loop_thread_ = std::thread([this, duration_s, started = std::move(launch_controllers_started)]() mutable {
-    bool started_set = false;
-    try {
-      // Scheduling, affinity and locked memory first: everything after runs as the loop will.
-      if (!realtime_.empty()) applyRealtimeSettings(realtime_, fmt::format("robot '{}'", namespace_));
-      // Before any publication: a controller's starting() forgets commands
-      // published before it.
-      startLaunchControllers();
-      started.set_value();
-      started_set = true;
-      driveLoop(duration_s);
-    } catch (const std::exception& e) {
-      if (!started_set) started.set_value();
-      logger().error("robot '{}': the control loop stopped: {}", namespace_, e.what());
-      loop_done_.store(true);
-      if (on_finished_) on_finished_();
-    }
-  });
-  ready.wait();
-}
-
-void RobotInstance::stop() {
-  std::lock_guard lock(lifecycle_mutex_);
-  {
-    std::lock_guard recovery(recovery_mutex_);
-    stop_requested_.store(true);
-  }
-  recovery_wake_.notify_all();
-  if (loop_) loop_->requestStop();
-  if (loop_thread_.joinable()) loop_thread_.join();
-  loop_done_.store(true);
-}
-
 void RobotInstance::shutdownControllers() {
   if (controllers_shut_down_ || !manager_) return;
   controllers_shut_down_ = true;
@@ -614,191 +472,6 @@ std::vector<std::pair<std::string, std::vector<std::string>>> RobotInstance::joi
     joints.emplace_back(joint, std::move(interfaces));
   }
   return joints;
-}
-
-}  // namespace servoloop::node
-
-namespace servoloop::node {
-
-// --- Safety: emergency stop and recovery ---
-
-controller_manager::ServiceResult RobotInstance::setEmergencyStop(bool engaged,
-                                                                  controller_manager::EmergencyStopSource source) {
-  if (engaged) {
-    const bool was_latched = safety_->emergencyStopLatched();
-    safety_->engageEmergencyStop(source);
-    if (!was_latched) logger().warn("robot '{}': {}", namespace_, safety_->emergencyStopText());
-    return controller_manager::ServiceResult::success();
-  }
-  std::string why;
-  {
-    // While the loop stands after a fault nothing polls the hardware's input:
-    // read it now (the loop cannot resume while this lock is held).
-    std::lock_guard recovery(recovery_mutex_);
-    if (waiting_for_recovery_) safety_->refreshHardwareInput();
-  }
-  if (!safety_->releaseEmergencyStop(&why)) {
-    return controller_manager::ServiceResult::failure(fmt::format("robot '{}': the emergency stop stays engaged: {}", namespace_, why));
-  }
-  logger().info("robot '{}': emergency stop released; the robot is {}", namespace_,
-                controller_manager::toString(safety_->state()));
-  return controller_manager::ServiceResult::success();
-}
-
-void RobotInstance::logHardwareEmergencyStops() {
-  const std::uint64_t stops = safety_->emergencyStops();
-  if (stops == emergency_stops_seen_) return;
-  emergency_stops_seen_ = stops;
-  controller_manager::EmergencyStopSource source{};
-  if (safety_->emergencyStopSource(&source) && source == controller_manager::EmergencyStopSource::hardware) {
-    logger().warn("robot '{}': {}", namespace_, safety_->emergencyStopText());
-  }
-}
-
-// Loop thread, after the hardware stopped the loop. False when the robot is
-// being stopped instead.
-bool RobotInstance::waitForRecovery() {
-  logger().error("robot '{}': {}", namespace_, safety_->reason());
-  std::unique_lock lock(recovery_mutex_);
-  waiting_for_recovery_ = true;
-  recovery_wake_.wait(lock, [this] { return recovery_requested_ || stop_requested_.load(); });
-  waiting_for_recovery_ = false;
-  if (stop_requested_.load()) return false;
-  recovery_requested_ = false;
-  // Cleared here, where the loop is sure to run again (not by recover(), whose
-  // caller could otherwise see "running" for a loop that has ended).
-  safety_->clearStop();
-  loop_->clearHardwareStop();
-  resumed_ = true;
-  lock.unlock();
-  recovery_wake_.notify_all();
-  return true;
-}
-
-// False when the loop did not run `cycles` more cycles within timeout_s (it
-// ended, or stalls). A statistics reset meanwhile restarts the count.
-bool RobotInstance::waitForCycles(std::uint64_t cycles, double timeout_s) const {
-  std::uint64_t last = loop_->statistics().cycles();
-  std::uint64_t seen = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (seen < cycles) {
-    if (finished() || std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    const std::uint64_t now = loop_->statistics().cycles();
-    seen += now >= last ? now - last : now;  // counted from 0 again after a reset
-    last = now;
-  }
-  return true;
-}
-
-// The controllers a protective stop or fault stopped, started again in one
-// switch that stops whatever runs on their resources now (their fallbacks).
-controller_manager::ServiceResult RobotInstance::restartStoppedControllers(std::vector<std::string>* restarted) {
-  const std::vector<controller_manager::ControllerSpec> controllers = manager_->listControllers();
-  std::vector<std::string> restart;
-  std::set<std::string> resources;
-  for (const controller_manager::ControllerSpec& controller : controllers) {
-    if (controller.state != controller_manager::ControllerState::failed || controller.last_fault.empty() ||
-        controller.last_fault_kind != controller_manager::FaultKind::hardware_failed) {
-      continue;
-    }
-    restart.push_back(controller.name);
-    for (const auto& claim : controller.claimed_resources) resources.insert(claim.resources.begin(), claim.resources.end());
-  }
-  if (restart.empty()) return controller_manager::ServiceResult::success();
-  *restarted = restart;
-  controller_manager::SwitchRequest request;
-  request.start_controllers = restart;
-  request.strictness = controller_manager::SwitchStrictness::STRICT;
-  for (const controller_manager::ControllerSpec& controller : controllers) {
-    if (controller.state != controller_manager::ControllerState::running) continue;
-    for (const auto& claim : controller.claimed_resources) {
-      const bool shares = std::any_of(claim.resources.begin(), claim.resources.end(),
-                                      [&](const std::string& r) { return resources.count(r) != 0; });
-      if (shares) {
-        request.stop_controllers.push_back(controller.name);
-        break;
-      }
-    }
-  }
-  request.timeout_s = kRecoverySwitchTimeout_s;
-  return manager_->switchController(request);
-}
-
-std::string RobotInstance::switchRefusal(const controller_manager::SwitchRequest& request) const {
-  using controller_manager::SafetyState;
-  // Stopping is always allowed (the node stops its controllers on the way out, fault or not).
-  if (request.start_controllers.empty() || !safety_->startsForbidden()) return {};
-  // The decision is taken; what follows only words it.
-  const SafetyState safety = safety_->state();
-  const std::string why =
-      safety == SafetyState::emergency_stop
-          ? "a protective stop holds under the emergency stop; release the emergency stop, then, after fixing the "
-            "protective stop's cause, run `servoloop control recover`"
-          : safety_->reason();
-  if (why.empty()) return fmt::format("robot '{}': a protective stop held when the switch was checked; try again", namespace_);
-  return fmt::format("robot '{}': {}; no controller can start until then (stopping them is allowed)", namespace_, why);
-}
-
-controller_manager::ServiceResult RobotInstance::recover() {
-  using controller_manager::SafetyState;
-  using controller_manager::ServiceResult;
-  if (safety_->emergencyStopLatched()) {
-    return ServiceResult::failure(fmt::format(
-        "robot '{}': the emergency stop is engaged; release it first with `servoloop control estop off`", namespace_));
-  }
-  const SafetyState before = safety_->state();
-  if (before == SafetyState::running) return ServiceResult::success();
-  if (finished() || !loop_thread_.joinable()) {
-    return ServiceResult::failure(fmt::format(
-        "robot '{}': its control loop has ended (the run had a duration), so it cannot be recovered; launch again",
-        namespace_));
-  }
-  manager_->processFaults();  // the stopped controllers' faults, drained and recorded
-  if (before == SafetyState::fault) {
-    // The loop thread clears the fault when it runs again (waitForRecovery).
-    std::unique_lock lock(recovery_mutex_);
-    resumed_ = false;
-    recovery_requested_ = true;
-    recovery_wake_.notify_all();
-    const bool resumed = recovery_wake_.wait_for(lock, std::chrono::duration<double>(kRecoverySwitchTimeout_s),
-                                                 [this] { return resumed_ || stop_requested_.load(); });
-    if (!resumed || stop_requested_.load()) {
-      recovery_requested_ = false;
-      return ServiceResult::failure(fmt::format("robot '{}': its control loop did not run again", namespace_));
-    }
-  } else {
-    safety_->clearStop();
-  }
-  // The hardware must work for a few cycles before any controller drives it
-  // again, and go on working once they do; a loop that does not cycle fails too.
-  constexpr std::uint64_t kCyclesToConfirm = 5;
-  const auto failedAgain = [&] {
-    const bool cycled = waitForCycles(kCyclesToConfirm, kRecoverySwitchTimeout_s);
-    return !cycled || safety_->state() != SafetyState::running;
-  };
-  if (failedAgain()) {
-    return ServiceResult::failure(
-        fmt::format("robot '{}': the hardware failed again at once: {}", namespace_, safety_->reason()));
-  }
-  std::vector<std::string> restarted;
-  const ServiceResult started = restartStoppedControllers(&restarted);
-  if (!started) {
-    return ServiceResult::failure(fmt::format("robot '{}': recovered, but the stopped controllers did not start: {}",
-                                              namespace_, started.message));
-  }
-  if (failedAgain()) {
-    // A failure in the very cycle they started missed them: stop them again.
-    controller_manager::SwitchRequest stop;
-    stop.stop_controllers = restarted;
-    stop.strictness = controller_manager::SwitchStrictness::BEST_EFFORT;
-    stop.timeout_s = kRecoverySwitchTimeout_s;
-    manager_->switchController(stop);
-    return ServiceResult::failure(
-        fmt::format("robot '{}': the hardware failed again at once: {}", namespace_, safety_->reason()));
-  }
-  logger().info("robot '{}': recovered from {}; the robot is running", namespace_, controller_manager::toString(before));
-  return ServiceResult::success();
 }
 
 }  // namespace servoloop::node

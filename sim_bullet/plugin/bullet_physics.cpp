@@ -1,5 +1,6 @@
 #include "bullet_physics.hpp"
 
+#include "bullet_simulated_world.hpp"
 #include <string>
 
 #include "servoloop/core/errors.hpp"
@@ -22,6 +23,16 @@ bool hasMovableAncestor(const urdf::ModelInterface& model, const urdf::Joint& jo
 }
 
 }  // namespace
+
+void BulletPhysics::joinWorld(hardware_interface::SimulatedWorld& world) {
+  auto* bullet_world = dynamic_cast<BulletSimulatedWorld*>(&world);
+  if (bullet_world == nullptr) {
+    sim_common::PhysicsEngine::joinWorld(world);  // robots apart: a scene of its own
+    return;
+  }
+  if (bullet_world->scene() == nullptr) throw Error("bullet: a robot joined a world that was not initialised");
+  shared_scene_ = bullet_world->scene();
+}
 
 void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                          const std::vector<sim_common::EngineJointConfig>& joints,
@@ -54,7 +65,8 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
     }
   }
   try {
-    world_ = std::make_unique<BulletWorld>(model, world_settings);
+    world_ = shared_scene_ != nullptr ? std::make_unique<BulletWorld>(model, world_settings, *shared_scene_)
+                                      : std::make_unique<BulletWorld>(model, world_settings);
   } catch (const ConfigError& error) {
     throw ConfigError(source_name + ": " + error.what());
   }

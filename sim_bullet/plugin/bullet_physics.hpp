@@ -19,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "servoloop/sim_bullet/bullet_scene.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
 #include "servoloop/sim_common/physics_engine.hpp"
 
@@ -27,6 +28,11 @@ namespace servoloop::sim_bullet {
 class BulletPhysics final : public sim_common::PhysicsEngine {
  public:
   const char* name() const noexcept override { return "bullet"; }
+
+  // A "bullet/world" (BulletSimulatedWorld): init() builds the robot into
+  // its scene, beside the other robots; any other world must simulate its
+  // robots apart (the robot then has a scene of its own).
+  void joinWorld(hardware_interface::SimulatedWorld& world) override;
 
   void init(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
             const std::vector<sim_common::EngineJointConfig>& joints,
@@ -57,6 +63,7 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
   void placeAtInitialPositions();
   void applyMotorEffortLimits();
 
+  BulletScene* shared_scene_ = nullptr;  // joinWorld's; null: a scene of the robot's own
   std::unique_ptr<BulletWorld> world_;
   std::vector<std::size_t> world_index_;         // SimRobotHW joint → BulletWorld joint
   std::vector<double> initial_positions_;

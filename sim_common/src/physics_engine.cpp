@@ -1,7 +1,20 @@
-// PhysicsEngine's batch access, through the per-joint methods.
+// PhysicsEngine's defaults: batch access through the per-joint methods, and
+// joining a world whose robots are simulated apart.
 #include "servoloop/sim_common/physics_engine.hpp"
 
+#include <string>
+
+#include "servoloop/core/errors.hpp"
+
 namespace servoloop::sim_common {
+
+void PhysicsEngine::joinWorld(hardware_interface::SimulatedWorld& world) {
+  if (world.robotsTouch()) {
+    throw ConfigError(std::string("the ") + name() +
+                      " engine simulates each robot on its own and cannot build it into a world whose robots "
+                      "touch each other; use the world's own backend for every simulated robot");
+  }
+}
 
 void PhysicsEngine::readJointStates(std::span<EngineJointState> states) const noexcept {
   readJointStatesVia(*this, states);

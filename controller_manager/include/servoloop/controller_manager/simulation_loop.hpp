@@ -76,6 +76,16 @@ class SimulationLoop final : public ControlLoop {
   // deactivate if one asked to stop, else ok.
   ReturnType cycleOnce() noexcept;
 
+  // Cycles run by a loop outside, which steps several robots' hardware in
+  // one world (world/world_loop.hpp) and paces them itself. A run of them
+  // starts with beginExternalRun() and ends with endExternalRun() (both on
+  // the thread that runs the cycles, outside any cycle); externalCycle() is
+  // one cycle, real-time, timed one in kFreeRunningTimingStride as
+  // free-running cycles are, the wall time counted from beginExternalRun().
+  void beginExternalRun() noexcept;
+  ReturnType externalCycle() noexcept;
+  void endExternalRun() noexcept;
+
   Duration physicsStep() const noexcept { return physics_step_; }
   // k: the manager is updated every k-th physics step.
   std::uint64_t stepsPerControlUpdate() const noexcept { return steps_per_update_; }
@@ -104,7 +114,9 @@ class SimulationLoop final : public ControlLoop {
   std::uint64_t last_update_step_ = 0;
   bool updated_before_ = false;
   std::int64_t wall_time_ns_ = 0;  // accumulated over runs and single cycles
-  std::uint64_t free_cycles_ = 0;  // free-running cycles so far, for the timing stride
+  std::uint64_t free_cycles_ = 0;  // free-running and external cycles so far, for the timing stride
+  std::int64_t external_run_start_ns_ = 0;   // cycle clock at beginExternalRun()
+  std::int64_t external_wall_before_ns_ = 0;  // wall_time_ns_ then
   // The hardware's simulated time as a number of steps on step_grid_, when
   // it lies on the grid (hardware_step_known_).
   std::uint64_t hardware_step_ = 0;

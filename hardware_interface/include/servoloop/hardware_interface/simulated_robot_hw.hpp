@@ -1,6 +1,7 @@
 #pragma once
 #include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
+#include "servoloop/hardware_interface/simulated_world.hpp"
 
 namespace servoloop::hardware_interface {
 
@@ -19,11 +20,19 @@ struct BaseGroundTruth {
 
 class SimulatedRobotHW : public RobotHW {
  public:
+  // Non-real-time, before init(): the robot is to live in `world`, which
+  // must outlive it (simulated_world.hpp). A world whose robots are
+  // simulated apart needs nothing (the default); a simulator that builds
+  // into a shared world overrides this. Throws servoloop::ConfigError when
+  // the robot cannot live in that world (another engine's).
+  virtual void joinWorld(SimulatedWorld& world);
+
   // Non-real-time. The physics time step fixed at init (world settings).
   virtual Duration timeStep() const = 0;
 
   // Real-time. Advances the simulation by one timeStep(), applying the
-  // actuator commands of the last write().
+  // actuator commands of the last write(); in a shared world, hands the
+  // commands over and the world's step() advances the physics.
   virtual ReturnType step() = 0;
 
   // Simulated time: timeStep() times the steps taken since init or reset.

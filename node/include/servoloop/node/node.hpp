@@ -1,8 +1,8 @@
 #pragma once
 // A running servoloop node: one simulated world with its robots (each a
-// RobotInstance with its own controller manager, topic bus and real-time loop
-// thread), the parameter store they share, the recorders of the launch file,
-// and the IPC servers the command line talks to (docs/node_operations.md).
+// RobotInstance with its own controller manager and topic bus), the
+// parameter store they share, the recorders of the launch file, and the IPC
+// servers the command line talks to (docs/node_operations.md).
 //
 //   Node node(loadLaunchFile("robots/one_dof/one_dof_w_jnt_ctl.launch.yaml"), options);
 //   node.start();
@@ -10,12 +10,18 @@
 //   node.shutdown();
 //   std::cout << toText(node.summary());
 //
-// Threads: one loop thread per robot (its real-time thread; see
-// robot_instance.hpp for why robots do not share one), one delivery thread per
-// robot's bus, one service thread per IPC socket plus a worker for operations
-// that wait on a loop (load, unload, switch), and the caller's thread, which
-// waits in waitUntilDone() and logs the controllers' and hardware's faults.
-// Public members are non-real-time and safe from any thread unless noted.
+// The world: the backend's shared physics world (plugin "<backend>/world",
+// where every simulated robot touches the others) or, for a backend without
+// one, robots simulated apart; either way one loop (world/world_loop.hpp)
+// runs every simulated robot's cycles in lockstep and steps the physics.
+//
+// Threads: the world loop's (the real-time thread of every simulated robot),
+// one loop thread per robot on the wall clock (hardware, or world.clock:
+// wall), one delivery thread per robot's bus, one service thread per IPC
+// socket plus a worker for operations that wait on a loop (load, unload,
+// switch), and the caller's thread, which waits in waitUntilDone() and logs
+// the controllers' and hardware's faults. Public members are non-real-time
+// and safe from any thread unless noted.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -34,6 +40,7 @@
 #include "servoloop/node/topic_recorder.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/plugin/plugin_loader.hpp"
+#include "servoloop/world/world_loop.hpp"
 
 namespace servoloop::node {
 
@@ -115,6 +122,10 @@ class Node {
   const std::vector<RecordSpec>& recordings() const { return launch_.record; }
 
  private:
+  void createWorld();
+  // Runs `change` (adding a robot to the world, or taking one out) between
+  // two cycles of the world loop when the robots touch, at once otherwise.
+  void changeWorld(const std::function<void()>& change);
   void startRobotLocked(RobotInstance& robot);
   void startServer(const std::string& socket_namespace, RobotInstance* robot);
   RobotInstance* robotForTopic(const std::string& topic);
@@ -124,6 +135,13 @@ class Node {
   double real_time_factor_ = 0.0;
   std::shared_ptr<plugin::PluginLoader> plugins_;
   params::ParameterStore parameters_;
+
+  // The simulated world and its loop (declared before robots_: the robots,
+  // built into the world and members of the loop, go first).
+  plugin::PluginPtr<hardware_interface::SimulatedWorld> world_plugin_;  // the backend's shared world
+  std::unique_ptr<hardware_interface::SimulatedWorld> separate_worlds_;  // or robots simulated apart
+  hardware_interface::SimulatedWorld* world_ = nullptr;
+  std::unique_ptr<world::WorldLoop> world_loop_;
 
   // Woken by a robot whose loop has ended (declared before robots_, whose
   // loop threads call into it, so that it outlives them).

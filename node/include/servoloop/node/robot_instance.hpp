@@ -1,22 +1,26 @@
 #pragma once
 // One robot of a running node: its hardware (a simulation backend plugin, or
 // a hardware plugin named by the launch file's `hardware:`), its topic bus,
-// its controller manager and the real-time thread that runs its loop: a
-// SimulationLoop in lockstep with the physics, or a WallClockLoop for
-// hardware (and for a simulated robot on the wall clock, world.clock: wall).
+// its controller manager and the loop that runs it:
+//   - simulated in lockstep (the default): a SimulationLoop whose cycles the
+//     node's world loop runs, together with every other simulated robot's,
+//     stepping their shared physics once per cycle (world/world_loop.hpp);
+//     the robot is a member of that world (WorldMember);
+//   - on the wall clock (hardware, or a simulated robot with world.clock:
+//     wall): a WallClockLoop on a real-time thread of the robot's own.
 //
 // On the wall clock, time is wall time since the loop's start (its first
 // deadline); timed publications and --duration count the deadlines the loop
 // covered (one period each, a cycle's or one an overrun skipped), and
-// controllers get the measured period. What follows about simulated time holds for the SimulationLoop.
+// controllers get the measured period. What follows about simulated time
+// holds for the SimulationLoop.
 //
-// Threads. The robot's loop thread is its real-time thread. It runs the loop
-// in segments (SimulationLoop::runFor) and between two segments, with no
-// cycle in progress, does the non-real-time work that must land on an exact
-// simulated time:
+// Between two runs of cycles, with no cycle of the robot in progress, the
+// thread that drives it (the world's or its own) does the non-real-time work
+// that must land on an exact simulated time:
 //   - timed publications: a publication at time T is published after the last
 //     physics step before T, so the first control update at a simulated time
-//     >= T sees it (exact to the control cycle; the loop thread pauses for the
+//     >= T sees it (exact to the control cycle; the loop pauses for the
 //     microseconds a publish takes, between cycles, never inside one);
 //   - before the first physics step, the launch file's controllers are
 //     started (see startLaunchControllers), so that their starting(), which
@@ -27,12 +31,10 @@
 //     of simulated time, so subscribers (recorders, `topic echo`) get every
 //     message even when the loop runs a thousand times faster than the bus's
 //     delivery thread wakes up.
-// Paced runs without pending publications run in one piece.
 //
-// Each robot has its own TopicBus, stamped with its own simulated time, and
-// its own simulated time (counted from when it was spawned): backends
-// simulate one robot each, so robots of a world never interact physically.
-// Everything here is non-real-time except what runs on the loop thread.
+// Each robot has its own TopicBus, stamped with its own simulated time,
+// counted from when it was spawned (a robot spawned later has a later zero).
+// Everything here is non-real-time except what runs in the loop's cycles.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -61,6 +63,8 @@
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
+#include "servoloop/hardware_interface/simulated_world.hpp"
+#include "servoloop/world/world_loop.hpp"
 
 namespace servoloop::node {
 
@@ -72,6 +76,11 @@ struct RobotWorld {
   double update_rate_hz = 0.0;            // controller manager rate; 0: 1 / time step
   double real_time_factor = 0.0;          // 0: free-running
   RealtimeSettings realtime;              // the launch file's; a robot's own win
+  // The node's simulated world and its loop: a simulated robot in lockstep
+  // is built into the world and runs on the loop. Null: the robot runs on a
+  // thread of its own, with physics of its own (tests, the wall clock).
+  hardware_interface::SimulatedWorld* simulated_world = nullptr;
+  world::WorldLoop* world_loop = nullptr;
 };
 
 struct JointReading {
@@ -81,7 +90,7 @@ struct JointReading {
   double effort = 0.0;    // N·m or N
 };
 
-class RobotInstance {
+class RobotInstance final : public world::WorldMember {
  public:
   // Reads the URDF, resolves the namespace (robot_namespace.hpp), writes the
   // world settings to <ns>/sim/{time_step,gravity,ground_plane}, creates and
@@ -99,13 +108,18 @@ class RobotInstance {
   // Before start(): a message to publish at a simulated time.
   void addTimedPublication(const TimedPublication& publication);
 
-  // Starts the loop thread; with a duration it ends after that much simulated
-  // time, else when stopped (or when the hardware asks to stop).
+  // Starts the robot's loop (its thread, or joins the world loop: then
+  // returns once its launch controllers run); with a duration it ends after
+  // that much simulated time, else when stopped (or when the hardware asks
+  // to stop).
   void start(std::optional<double> duration_s);
-  // Any thread. Ends the loop after its current cycle; joins the loop thread.
+  // Any thread. Ends the loop after its current cycle (joins the robot's
+  // thread, or leaves the world loop).
   void stop();
-  // True once the loop thread has ended (or was never started).
-  bool finished() const { return !loop_thread_.joinable() || loop_done_.load(); }
+  // True once the loop has ended (or was never started).
+  bool finished() const { return !started() || loop_done_.load(); }
+  // True when the robot's cycles run on the node's world loop.
+  bool inWorld() const { return world_loop_ != nullptr; }
   // Non-real-time, before start(): called on the loop thread right after its
   // loop has ended (finished() is then true), e.g. to wake whoever waits for it.
   void setFinishedCallback(std::function<void()> callback) { on_finished_ = std::move(callback); }
@@ -174,6 +188,18 @@ class RobotInstance {
   const std::vector<std::string>& launchFailures() const { return launch_failures_; }
 
  private:
+  // --- as a member of the world (robot_loop_driver.cpp) ---
+  void enterWorld() override;
+  std::uint64_t betweenSegments() override;
+  void leaveWorld() override;
+  controller_manager::SimulationLoop& simulationLoop() override { return *sim_loop_; }
+  // The run has ended: last delivery, finished() true, the node told.
+  void finishRun();
+  // After a fault, on the world's thread: whether recover() asked to run
+  // again (then the stop is cleared and recover() told).
+  bool resumeIfRecoveryRequested();
+
+  bool started() const { return loop_thread_.joinable() || world_started_.load(); }
   void driveLoop(std::optional<double> duration_s);
   void driveSimulationLoop(std::optional<double> duration_s);
   void driveWallClockLoop(std::optional<double> duration_s);
@@ -228,6 +254,13 @@ class RobotInstance {
 
   std::mutex lifecycle_mutex_;
   std::thread loop_thread_;
+  // In the world: the loop that runs the robot's cycles, and the run's end
+  // and flush interval in the robot's physics steps (the world's thread).
+  world::WorldLoop* world_loop_ = nullptr;
+  std::atomic<bool> world_started_{false};
+  std::uint64_t world_end_steps_ = 0;
+  std::uint64_t world_flush_steps_ = 0;
+  bool world_duration_ = false;  // the run has a duration
   std::atomic<bool> stop_requested_{false};
   std::atomic<bool> loop_done_{false};
   // A loop stopped by the hardware (fault) waits for recover() or stop().

@@ -12,6 +12,7 @@
 
 #include <urdf_model/model.h>
 
+#include "servoloop/hardware_interface/simulated_world.hpp"
 #include "servoloop/sim_common/sim_settings.hpp"
 
 namespace servoloop::sim_common {
@@ -85,6 +86,13 @@ class PhysicsEngine {
   // Non-real-time. A short name for messages, e.g. "bullet".
   virtual const char* name() const noexcept = 0;
 
+  // Non-real-time, before init(): the robot is to be built into `world`
+  // (hardware_interface/simulated_world.hpp), which outlives the engine. The
+  // default accepts a world whose robots are simulated apart; an engine that
+  // shares a world with others overrides it. Throws servoloop::ConfigError
+  // for a world it cannot build into.
+  virtual void joinWorld(hardware_interface::SimulatedWorld& world);
+
   // Non-real-time. Builds the world of `model` and places every joint of
   // `joints` at its initial position, at rest. `source_name` names the robot
   // description in errors. Throws servoloop::ConfigError when the model
@@ -120,7 +128,8 @@ class PhysicsEngine {
   // target, as the setters above do. The default calls the setters.
   virtual void applyJointCommands(std::span<const AppliedJointCommand> commands) noexcept;
 
-  // Real-time. Advances the world by one settings.time_step_s.
+  // Real-time. Advances the world by one settings.time_step_s; in a shared
+  // world, only takes the commands (the world's step() advances it).
   virtual void step() noexcept = 0;
 
   // Non-real-time. Back to the state right after init(): initial positions,

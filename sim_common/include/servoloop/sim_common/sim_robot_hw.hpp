@@ -60,6 +60,8 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   // the engine's world and registers the joint and actuator interfaces.
   // Throws servoloop::ConfigError naming the file or key at fault. Call once.
   void init(const hardware_interface::HardwareInfo& info) override;
+  // Non-real-time, before init(): the engine builds the robot into `world`.
+  void joinWorld(hardware_interface::SimulatedWorld& world) override { engine_->joinWorld(world); }
 
   // Real-time. Joint and actuator state from the engine (time and period are
   // not used: the state is the engine's after the last step()).

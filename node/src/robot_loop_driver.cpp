@@ -1,0 +1,265 @@
+// How a robot's loop is driven: by a thread of its own (a robot on the wall
+// clock: hardware, or world.clock: wall), or as a member of the node's
+// simulated world, whose loop runs every robot's cycles and steps the
+// physics once (world/world_loop.hpp). Both do the same non-real-time work
+// between runs of cycles: timed publications, delivering the topics,
+// waiting for recovery after a fault.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <future>
+#include <limits>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "servoloop/core/logging.hpp"
+#include "servoloop/core/step_grid.hpp"
+#include "servoloop/node/message_json.hpp"
+#include "servoloop/node/realtime_settings.hpp"
+#include "servoloop/node/robot_instance.hpp"
+
+namespace servoloop::node {
+namespace {
+
+// Simulated time between two bus flushes of a free-running loop.
+constexpr double kFreeRunningFlushInterval_s = 0.01;
+
+}  // namespace
+
+void RobotInstance::addTimedPublication(const TimedPublication& publication) {
+  if (started()) throw Error("RobotInstance: timed publications must be added before start()");
+  publications_.push_back(publication);
+  std::stable_sort(publications_.begin(), publications_.end(),
+                   [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+}
+
+std::uint64_t RobotInstance::stepsAt(double time_s) const {
+  const double steps = std::ceil(time_s / sim_loop_->physicsStep().seconds - 1e-9);
+  return steps <= 0.0 ? 0 : static_cast<std::uint64_t>(steps);
+}
+
+void RobotInstance::publish(const TimedPublication& publication) {
+  try {
+    servoloop::node::publishJson(*bus_, publication.topic, publication.message, publication.type);
+    logger().debug("published {} on '{}' at t = {} s",
+                   publication.message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                   publication.topic, publication.time_s);
+  } catch (const std::exception& e) {
+    logger().error("timed publication on '{}' at t = {} s failed: {}", publication.topic, publication.time_s,
+                   e.what());
+  }
+}
+
+// Each published message is delivered (flush) before the loop goes on, so
+// subscribers that hand work to the real-time side from their callback (a
+// trajectory controller building its trajectory) have done so by the next
+// cycle, whenever the delivery thread would have woken up.
+void RobotInstance::publishDue(std::uint64_t steps_taken) {
+  const std::size_t before = next_publication_;
+  while (next_publication_ < publications_.size() && stepsAt(publications_[next_publication_].time_s) <= steps_taken) {
+    bus_->setTime(Time(stepsToSeconds(steps_taken, sim_loop_->physicsStep().seconds)));
+    publish(publications_[next_publication_++]);
+  }
+  if (next_publication_ != before) bus_->flush();
+}
+
+void RobotInstance::publishDueAt(double time_s) {
+  const std::size_t before = next_publication_;
+  while (next_publication_ < publications_.size() && publications_[next_publication_].time_s <= time_s) {
+    publish(publications_[next_publication_++]);
+  }
+  if (next_publication_ != before) bus_->flush();
+}
+
+// On the wall clock the loop runs in pieces that end at the next timed
+// publication (or the duration); each piece carries on the previous piece's
+// deadline grid (WallClockLoop), and the publish between them takes a few
+// microseconds of the time before the next deadline.
+void RobotInstance::driveWallClockLoop(std::optional<double> duration_s) {
+  const double end_s = duration_s ? *duration_s : std::numeric_limits<double>::infinity();
+  const double period_s = loop_->controlPeriod().seconds;
+  while (!stop_requested_.load()) {
+    const double now_s = simTime();
+    publishDueAt(now_s);
+    if (now_s >= end_s - 0.5 * period_s || loop_->hardwareAskedToStop()) break;
+    double target_s = end_s;
+    if (next_publication_ < publications_.size()) target_s = std::min(target_s, publications_[next_publication_].time_s);
+    if (std::isinf(target_s)) {
+      loop_->run(stop_requested_);
+    } else {
+      loop_->runFor(Duration(std::max(target_s - now_s, period_s)));
+    }
+  }
+}
+
+// A run with a duration ends when the hardware stops the loop; an open-ended
+// one (a node serving clients) waits in fault for `control recover`.
+void RobotInstance::driveLoop(std::optional<double> duration_s) {
+  for (;;) {
+    if (sim_loop_ == nullptr) {
+      driveWallClockLoop(duration_s);
+    } else {
+      driveSimulationLoop(duration_s);
+    }
+    if (duration_s || stop_requested_.load() || !loop_->hardwareAskedToStop()) break;
+    bus_->flush();
+    if (!waitForRecovery()) break;
+  }
+  bus_->flush();
+  loop_done_.store(true);
+  if (on_finished_) on_finished_();
+}
+
+void RobotInstance::driveSimulationLoop(std::optional<double> duration_s) {
+  constexpr std::uint64_t kForever = std::numeric_limits<std::uint64_t>::max();
+  const double dt = sim_loop_->physicsStep().seconds;
+  const bool free_running = real_time_factor_ <= 0.0;
+  const std::uint64_t end_steps = duration_s ? stepsAt(*duration_s) : kForever;
+  const auto flush_steps = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
+
+  while (!stop_requested_.load()) {
+    const std::uint64_t taken = sim_loop_->stepsTaken();
+    publishDue(taken);
+    if (taken >= end_steps || loop_->hardwareAskedToStop()) break;
+
+    std::uint64_t target = end_steps;
+    if (next_publication_ < publications_.size()) {
+      target = std::min(target, stepsAt(publications_[next_publication_].time_s));
+    }
+    if (free_running) target = std::min(target, taken + flush_steps);
+
+    if (target == kForever) {
+      loop_->run(stop_requested_);
+    } else {
+      loop_->runFor(Duration(static_cast<double>(target - taken) * dt));
+    }
+    if (free_running) bus_->flush();
+  }
+}
+
+void RobotInstance::start(std::optional<double> duration_s) {
+  std::lock_guard lock(lifecycle_mutex_);
+  if (started()) return;
+  if (world_loop_ != nullptr) {
+    // The world's thread runs enterWorld() (the launch controllers) before
+    // add() returns.
+    const double dt = sim_loop_->physicsStep().seconds;
+    world_duration_ = duration_s.has_value();
+    world_end_steps_ = duration_s ? stepsAt(*duration_s) : std::numeric_limits<std::uint64_t>::max();
+    world_flush_steps_ =
+        std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
+    world_started_.store(true);
+    world_loop_->add(*this);
+    return;
+  }
+  // start() returns once the launch file's controllers are running, so that
+  // nobody (an IPC client, a test) sees the robot before its controllers.
+  std::promise<void> launch_controllers_started;
+  std::future<void> ready = launch_controllers_started.get_future();
+  loop_thread_ = std::thread([this, duration_s, started = std::move(launch_controllers_started)]() mutable {
+    bool started_set = false;
+    try {
+      // Scheduling, affinity and locked memory first: everything after runs as the loop will.
+      if (!realtime_.empty()) applyRealtimeSettings(realtime_, fmt::format("robot '{}'", namespace_));
+      // Before any publication: a controller's starting() forgets commands
+      // published before it.
+      startLaunchControllers();
+      started.set_value();
+      started_set = true;
+      driveLoop(duration_s);
+    } catch (const std::exception& e) {
+      if (!started_set) started.set_value();
+      logger().error("robot '{}': the control loop stopped: {}", namespace_, e.what());
+      loop_done_.store(true);
+      if (on_finished_) on_finished_();
+    }
+  });
+  ready.wait();
+}
+
+void RobotInstance::stop() {
+  std::lock_guard lock(lifecycle_mutex_);
+  {
+    std::lock_guard recovery(recovery_mutex_);
+    stop_requested_.store(true);
+  }
+  recovery_wake_.notify_all();
+  if (loop_) loop_->requestStop();
+  if (loop_thread_.joinable()) loop_thread_.join();
+  if (world_loop_ != nullptr && world_started_.load()) world_loop_->remove(*this);
+  loop_done_.store(true);
+}
+
+// --- As a member of the world: the world's thread calls these ---
+
+void RobotInstance::enterWorld() {
+  // Before any publication: a controller's starting() forgets commands
+  // published before it.
+  startLaunchControllers();
+}
+
+void RobotInstance::finishRun() {
+  bus_->flush();
+  if (loop_done_.exchange(true)) return;
+  if (on_finished_) on_finished_();
+}
+
+bool RobotInstance::resumeIfRecoveryRequested() {
+  {
+    std::lock_guard lock(recovery_mutex_);
+    if (!recovery_requested_) return false;
+    recovery_requested_ = false;
+    // Cleared here, where the loop is sure to run again (not by recover(),
+    // whose caller could otherwise see "running" for a loop that has ended).
+    safety_->clearStop();
+    loop_->clearHardwareStop();
+    resumed_ = true;
+    waiting_for_recovery_ = false;
+  }
+  recovery_wake_.notify_all();
+  return true;
+}
+
+std::uint64_t RobotInstance::betweenSegments() {
+  if (loop_done_.load() || stop_requested_.load()) return 0;
+  bool waiting = false;
+  {
+    std::lock_guard lock(recovery_mutex_);
+    waiting = waiting_for_recovery_;
+  }
+  if (waiting && !resumeIfRecoveryRequested()) return 0;
+
+  const std::uint64_t taken = sim_loop_->stepsTaken();
+  if (loop_->hardwareAskedToStop()) {
+    // A run with a duration ends when the hardware stops the loop; an
+    // open-ended one (a node serving clients) waits in fault for `control
+    // recover`, while the world runs on.
+    bus_->flush();
+    if (world_duration_) {
+      finishRun();
+      return 0;
+    }
+    logger().error("robot '{}': {}", namespace_, safety_->reason());
+    std::lock_guard lock(recovery_mutex_);
+    waiting_for_recovery_ = true;
+    return 0;
+  }
+  if (real_time_factor_ <= 0.0) bus_->flush();
+  publishDue(taken);
+  if (taken >= world_end_steps_) {
+    finishRun();
+    return 0;
+  }
+  std::uint64_t target = world_end_steps_;
+  if (next_publication_ < publications_.size()) {
+    target = std::min(target, stepsAt(publications_[next_publication_].time_s));
+  }
+  if (real_time_factor_ <= 0.0) target = std::min(target, taken + world_flush_steps_);
+  return std::max<std::uint64_t>(target - taken, 1);
+}
+
+void RobotInstance::leaveWorld() { finishRun(); }
+
+
+}  // namespace servoloop::node

@@ -1,0 +1,242 @@
+#include "servoloop/world/world_loop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "servoloop/controller_manager/loop_clock.hpp"
+#include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
+
+namespace servoloop::world {
+namespace {
+
+namespace loop_clock = controller_manager::loop_clock;
+
+// How long an idle world (no member cycling) sleeps before asking its
+// members again, unless a request wakes it first.
+constexpr auto kIdlePoll = std::chrono::milliseconds(10);
+
+bool contains(const std::vector<WorldMember*>& members, const WorldMember* member) {
+  return std::find(members.begin(), members.end(), member) != members.end();
+}
+
+}  // namespace
+
+WorldLoop::WorldLoop(hardware_interface::SimulatedWorld& world, WorldLoopOptions options)
+    : world_(world), options_(std::move(options)) {
+  const double rtf = options_.real_time_factor;
+  if (!std::isfinite(rtf) || rtf < 0.0) {
+    throw ConfigError(
+        fmt::format("world loop: real_time_factor {} must be >= 0 (0 runs as fast as possible, 1 in real time)", rtf));
+  }
+  if (rtf > 0.0) wall_per_step_ns_ = world_.settings().time_step_s / rtf * 1e9;
+  loop_clock::prepareCycleClock();  // calibrated here, not on the world's thread
+}
+
+WorldLoop::~WorldLoop() { stop(); }
+
+void WorldLoop::start() {
+  std::lock_guard lock(mutex_);
+  if (started_) return;
+  started_ = true;
+  thread_ = std::thread([this] { run(); });
+}
+
+void WorldLoop::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    if (!thread_.joinable()) return;
+    stop_requested_ = true;
+    interrupt_.store(true, std::memory_order_release);
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+bool WorldLoop::running() const {
+  std::lock_guard lock(mutex_);
+  return started_ && !stop_requested_;
+}
+
+void WorldLoop::add(WorldMember& member) {
+  std::unique_lock lock(mutex_);
+  if (contains(entered_, &member) || contains(joining_, &member)) return;
+  joining_.push_back(&member);
+  if (!started_) return;  // enters when the loop starts
+  interrupt_.store(true, std::memory_order_release);
+  wake_.notify_all();
+  wake_.wait(lock, [&] { return contains(entered_, &member) || stop_requested_; });
+}
+
+void WorldLoop::remove(WorldMember& member) {
+  std::unique_lock lock(mutex_);
+  if (const auto waiting = std::find(joining_.begin(), joining_.end(), &member); waiting != joining_.end()) {
+    joining_.erase(waiting);
+    return;
+  }
+  if (!contains(entered_, &member)) return;
+  leaving_.push_back(&member);
+  interrupt_.store(true, std::memory_order_release);
+  wake_.notify_all();
+  wake_.wait(lock, [&] { return !contains(entered_, &member); });
+}
+
+void WorldLoop::whilePaused(const std::function<void()>& change) {
+  std::unique_lock lock(mutex_);
+  if (!started_ || stop_requested_) {
+    // No thread steps the world (yet, or any more); the lock keeps a start out meanwhile.
+    change();
+    return;
+  }
+  // One pause at a time.
+  wake_.wait(lock, [&] { return !pause_requested_; });
+  pause_requested_ = true;
+  interrupt_.store(true, std::memory_order_release);
+  wake_.notify_all();
+  wake_.wait(lock, [&] { return paused_ || stop_requested_; });
+  const auto resume = [&] {
+    pause_requested_ = false;
+    wake_.notify_all();
+  };
+  lock.unlock();
+  try {
+    change();
+  } catch (...) {
+    lock.lock();
+    resume();
+    throw;
+  }
+  lock.lock();
+  resume();
+}
+
+void WorldLoop::wake() {
+  {
+    std::lock_guard lock(mutex_);
+    woken_ = true;
+    interrupt_.store(true, std::memory_order_release);
+  }
+  wake_.notify_all();
+}
+
+bool WorldLoop::requestsWaiting() const {
+  return !joining_.empty() || !leaving_.empty() || pause_requested_ || stop_requested_ || woken_;
+}
+
+void WorldLoop::serveRequests(std::unique_lock<std::mutex>& lock) {
+  for (;;) {
+    if (!leaving_.empty()) {
+      WorldMember* member = leaving_.front();
+      leaving_.erase(leaving_.begin());
+      lock.unlock();
+      member->leaveWorld();
+      std::erase(members_, member);
+      lock.lock();
+      std::erase(entered_, member);
+      wake_.notify_all();
+      continue;
+    }
+    if (!joining_.empty() && !stop_requested_) {
+      WorldMember* member = joining_.front();
+      joining_.erase(joining_.begin());
+      lock.unlock();
+      try {
+        member->enterWorld();
+      } catch (const std::exception& e) {
+        logger().error("world loop: a robot failed to enter the world: {}", e.what());
+      }
+      members_.push_back(member);
+      lock.lock();
+      entered_.push_back(member);
+      wake_.notify_all();
+      continue;
+    }
+    if (pause_requested_ && !stop_requested_) {
+      paused_ = true;
+      wake_.notify_all();
+      wake_.wait(lock, [&] { return !pause_requested_ || stop_requested_; });
+      paused_ = false;
+      continue;
+    }
+    return;
+  }
+}
+
+void WorldLoop::run() {
+  if (options_.on_thread_start) {
+    try {
+      options_.on_thread_start();
+    } catch (const std::exception& e) {
+      logger().error("world loop: preparing the world's thread failed: {}", e.what());
+    }
+  }
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    // A request from here on ends the coming segment early.
+    interrupt_.store(false, std::memory_order_relaxed);
+    woken_ = false;
+    serveRequests(lock);
+    if (stop_requested_) break;
+    lock.unlock();
+
+    std::uint64_t segment = std::numeric_limits<std::uint64_t>::max();
+    active_.clear();
+    for (WorldMember* member : members_) {
+      const std::uint64_t cycles = member->betweenSegments();
+      if (cycles == 0) continue;
+      active_.push_back(member);
+      segment = std::min(segment, cycles);
+    }
+    if (active_.empty()) {
+      lock.lock();
+      wake_.wait_for(lock, kIdlePoll, [&] { return requestsWaiting(); });
+      continue;
+    }
+    for (WorldMember* member : active_) member->simulationLoop().beginExternalRun();
+    runSegment(segment);
+    for (WorldMember* member : active_) member->simulationLoop().endExternalRun();
+    lock.lock();
+  }
+  // Stopping: every member leaves, in the order they came.
+  lock.unlock();
+  for (WorldMember* member : members_) member->leaveWorld();
+  members_.clear();
+  lock.lock();
+  entered_.clear();
+  joining_.clear();
+  leaving_.clear();
+  wake_.notify_all();
+}
+
+void WorldLoop::runSegment(std::uint64_t cycles) {
+  const bool paced = wall_per_step_ns_ > 0.0;
+  const auto max_lag_ns = static_cast<std::int64_t>(wall_per_step_ns_ * options_.max_catch_up_steps);
+  std::int64_t anchor_ns = paced ? loop_clock::nowNs() : 0;
+  std::uint64_t anchor_cycle = 0;
+  for (std::uint64_t n = 0; n < cycles; ++n) {
+    if (interrupt_.load(std::memory_order_acquire)) break;
+    for (WorldMember* member : active_) {
+      controller_manager::SimulationLoop& loop = member->simulationLoop();
+      if (!loop.hardwareAskedToStop()) loop.externalCycle();
+    }
+    world_.step();
+    steps_.fetch_add(1, std::memory_order_release);
+    if (!paced) continue;
+    const std::int64_t end_ns = loop_clock::nowNs();
+    const std::int64_t deadline_ns =
+        anchor_ns + std::llround(static_cast<double>(n - anchor_cycle + 1) * wall_per_step_ns_);
+    if (end_ns <= deadline_ns) {
+      loop_clock::sleepUntilNs(deadline_ns);
+    } else if (end_ns - deadline_ns > max_lag_ns) {
+      // Too far behind to catch up: forget the backlog, restart from now.
+      anchor_ns = end_ns;
+      anchor_cycle = n + 1;
+    }
+  }
+}
+
+}  // namespace servoloop::world
