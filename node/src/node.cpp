@@ -206,9 +206,15 @@ void Node::start() {
   if (started_) return;
   started_ = true;
   start_time_ = std::chrono::steady_clock::now();
-  if (world_loop_) world_loop_->start();
   if (options_.serve_ipc && robots_.empty()) startServer("/", nullptr);
-  for (const auto& robot : robots_) startRobotLocked(*robot);
+  // The world's robots join its loop before it runs, so all of them enter
+  // (their launch controllers start) before the world's first physics step;
+  // robots on the wall clock start their own threads.
+  for (const auto& robot : robots_) robot->start(options_.duration_s);
+  if (world_loop_) world_loop_->start();
+  if (options_.serve_ipc) {
+    for (const auto& robot : robots_) startServer(robot->robotNamespace(), robot.get());
+  }
 }
 
 void Node::waitUntilDone(const std::function<void()>& tick, std::chrono::milliseconds tick_period) {

@@ -142,8 +142,8 @@ void RobotInstance::start(std::optional<double> duration_s) {
   std::lock_guard lock(lifecycle_mutex_);
   if (started()) return;
   if (world_loop_ != nullptr) {
-    // The world's thread runs enterWorld() (the launch controllers) before
-    // add() returns.
+    // The world's thread runs enterWorld() (the launch controllers): before
+    // add() returns when the world runs, else first thing when it starts.
     const double dt = sim_loop_->physicsStep().seconds;
     world_duration_ = duration_s.has_value();
     world_end_steps_ = duration_s ? stepsAt(*duration_s) : std::numeric_limits<std::uint64_t>::max();

@@ -40,10 +40,16 @@ WorldLoop::WorldLoop(hardware_interface::SimulatedWorld& world, WorldLoopOptions
 WorldLoop::~WorldLoop() { stop(); }
 
 void WorldLoop::start() {
-  std::lock_guard lock(mutex_);
+  std::unique_lock lock(mutex_);
   if (started_) return;
   started_ = true;
+  const std::vector<WorldMember*> first = joining_;
   thread_ = std::thread([this] { run(); });
+  // The members added before all enter before the first cycle.
+  wake_.wait(lock, [&] {
+    return stop_requested_ ||
+           std::all_of(first.begin(), first.end(), [&](const WorldMember* member) { return contains(entered_, member); });
+  });
 }
 
 void WorldLoop::stop() {
@@ -197,7 +203,9 @@ void WorldLoop::run() {
       continue;
     }
     for (WorldMember* member : active_) member->simulationLoop().beginExternalRun();
+    if (options_.before_segment) options_.before_segment();
     runSegment(segment);
+    if (options_.after_segment) options_.after_segment();
     for (WorldMember* member : active_) member->simulationLoop().endExternalRun();
     lock.lock();
   }

@@ -108,8 +108,9 @@ class RobotInstance final : public world::WorldMember {
   // Before start(): a message to publish at a simulated time.
   void addTimedPublication(const TimedPublication& publication);
 
-  // Starts the robot's loop (its thread, or joins the world loop: then
-  // returns once its launch controllers run); with a duration it ends after
+  // Starts the robot's loop: its thread, or it joins the world loop (once
+  // the world runs, start() returns after the robot's launch controllers
+  // started; before that, they start when the world does); with a duration it ends after
   // that much simulated time, else when stopped (or when the hardware asks
   // to stop).
   void start(std::optional<double> duration_s);

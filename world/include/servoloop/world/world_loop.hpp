@@ -67,6 +67,10 @@ struct WorldLoopOptions {
   std::uint32_t max_catch_up_steps = 10;
   // Called first on the world's thread (e.g. its scheduling and affinity).
   std::function<void()> on_thread_start;
+  // Called on the world's thread right before and right after each segment
+  // of cycles (the real-time part), e.g. to observe it. Must not throw.
+  std::function<void()> before_segment;
+  std::function<void()> after_segment;
 };
 
 class WorldLoop {
@@ -79,7 +83,8 @@ class WorldLoop {
   WorldLoop(const WorldLoop&) = delete;
   WorldLoop& operator=(const WorldLoop&) = delete;
 
-  // Starts the world's thread; the members added before enter first.
+  // Starts the world's thread. The members added before enter first, in the
+  // order they were added, before the first cycle; returns once they have.
   void start();
   // Every member leaves (leaveWorld) and the thread ends. Idempotent.
   void stop();

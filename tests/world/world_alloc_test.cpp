@@ -1,0 +1,154 @@
+// The world loop's cycles allocate nothing with several robots in one bullet
+// world, touching: the wheeled base pushing a row of three 0.3 kg boxes (its diff
+// drive and joint state controllers publishing, timed cmd_vel publications
+// between segments), and the seed arm swinging under its position
+// controller. Counted on the world's thread, over its segments of cycles
+// (the real-time part), through operator new and Bullet's own allocator hook.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <LinearMath/btAlignedAllocator.h>
+
+#include "alloc_counter.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/robot_instance.hpp"
+#include "servoloop/world/world_loop.hpp"
+#include "temp_dir.hpp"
+#include "wait_until.hpp"
+#include "world_test_support.hpp"
+
+namespace servoloop::world_test {
+namespace {
+
+// Bullet allocates through btAlignedAlloc (malloc underneath), which the
+// operator-new counter does not see: its hook counts the allocations of the
+// thread that enabled counting.
+std::atomic<std::size_t> bullet_allocations{0};
+std::atomic<std::size_t> bullet_allocations_seen{0};  // all of them: the hook works
+thread_local bool count_bullet = false;
+void* countingBulletAlloc(std::size_t size) {
+  bullet_allocations_seen.fetch_add(1, std::memory_order_relaxed);
+  if (count_bullet) bullet_allocations.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(size);
+}
+void bulletFree(void* p) { std::free(p); }
+// Installed before any Bullet object exists.
+const bool kBulletHookInstalled = [] {
+  btAlignedAllocSetCustom(countingBulletAlloc, bulletFree);
+  return true;
+}();
+
+TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
+  ASSERT_TRUE(kBulletHookInstalled);
+  servoloop::testing::TempDir dir("servoloop-world-alloc");
+  servoloop::testing::writeFile(dir.path() / "box.urdf", boxUrdf(0.2, 0.3, 0.5));
+  const fs::path source(SERVOLOOP_SOURCE_DIR);
+  // The base and the boxes drive along y = kLane, clear of the seed arm,
+  // which is fixed to the world at the origin.
+  constexpr double kLane = 3.0;
+
+  auto plugins = std::make_shared<plugin::PluginLoader>();
+  params::ParameterStore store;
+  store.loadFile((source / "robots/diff_bot/control_config/diff_bot_controllers.yaml").string(), "/");
+  store.loadFile((source / "robots/one_dof/control_config/one_dof_ctl_params.yaml").string(), "/");
+
+  auto world = plugins->create<hardware_interface::SimulatedWorld>("bullet/world");
+  world->init({0.001, {0.0, 0.0, -9.81}, true});
+  ASSERT_TRUE(world->robotsTouch());
+
+  // Counting starts once the base has met the boxes (Bullet sizes its
+  // contact pairs and solver arrays for the contacts it has seen).
+  constexpr std::uint64_t kCountFromStep = 2500;
+  std::optional<servoloop::testing::AllocationCounter> counter;
+  std::size_t allocations = 0;
+  std::size_t counted_segments = 0;
+  world::WorldLoop* loop_ptr = nullptr;
+  world::WorldLoopOptions options;
+  options.before_segment = [&] {
+    if (loop_ptr->steps() < kCountFromStep) return;
+    counter.emplace();  // this (the world's) thread
+    count_bullet = true;
+  };
+  options.after_segment = [&] {
+    if (!counter) return;
+    count_bullet = false;
+    allocations += counter->allocations();
+    if (counter->allocations() != 0) servoloop::testing::AllocationCounter::printFirstCountedStack();
+    counter.reset();
+    ++counted_segments;
+  };
+  world::WorldLoop loop(*world, options);
+  loop_ptr = &loop;
+
+  node::RobotWorld robot_world;
+  robot_world.plugins = plugins;
+  robot_world.parameters = &store;
+  robot_world.world.backend = "bullet";
+  robot_world.world.ground_plane = true;
+  robot_world.update_rate_hz = 1000.0;
+  robot_world.simulated_world = world.get();
+  robot_world.world_loop = &loop;
+
+  std::vector<std::unique_ptr<node::RobotInstance>> robots;
+  node::RobotSpec base;
+  base.urdf = source / "robots/diff_bot/diff_bot.urdf";
+  base.robot_namespace = "/diff_bot";
+  base.pose = std::array<double, 6>{0, kLane, 0.1, 0, 0, 0};
+  base.controllers = {"joint_state_controller", "diff_drive_controller"};
+  robots.push_back(std::make_unique<node::RobotInstance>(base, robot_world));
+  for (int i = 0; i < 3; ++i) {
+    node::RobotSpec box;
+    box.urdf = dir.path() / "box.urdf";
+    box.robot_namespace = "/box" + std::to_string(i);
+    box.pose = std::array<double, 6>{0.6 + 0.21 * i, kLane, 0.1, 0, 0, 0};
+    robots.push_back(std::make_unique<node::RobotInstance>(box, robot_world));
+  }
+  node::RobotSpec arm;
+  arm.urdf = source / "robots/one_dof/minimal_robot_description_w_jnt_ctl.urdf";
+  arm.controllers = {"joint_state_controller", "joint1_position_controller"};
+  robots.push_back(std::make_unique<node::RobotInstance>(arm, robot_world));
+
+  for (double t = 0.5; t < 6.0; t += 0.25) {
+    robots.front()->addTimedPublication(node::makeTimedPublication(
+        "/diff_bot/diff_drive_controller/cmd_vel", "geometry_msgs/Twist", {{"linear", {{"x", 0.4}}}}, t, "test"));
+  }
+  for (double t = 0.0; t < 6.0; t += 1.0) {
+    robots.back()->addTimedPublication(node::makeTimedPublication(
+        "/one_DOF_robot/joint1_position_controller/command", "std_msgs/Float64", t < 0.5 ? 1.0 : -t / 6.0, t,
+        "test"));
+  }
+
+  loop.start();
+  for (const auto& robot : robots) robot->start(6.0);
+  ASSERT_TRUE(servoloop::testing::waitUntil(
+      [&] {
+        for (const auto& robot : robots) {
+          if (!robot->finished()) return false;
+        }
+        return true;
+      },
+      std::chrono::seconds(120)));
+  loop.stop();
+
+  EXPECT_EQ(allocations, 0u);
+  ASSERT_GT(bullet_allocations_seen.load(), 0u) << "the hook must see Bullet's allocations";
+  EXPECT_EQ(bullet_allocations.load(), 0u) << "Bullet allocated during the world's cycles";
+  EXPECT_GT(counted_segments, 100u);
+  // The cycles counted were the real thing: the base pushed the row of boxes.
+  hardware_interface::BaseGroundTruth first_box;
+  auto* box_hw = dynamic_cast<hardware_interface::SimulatedRobotHW*>(&robots[1]->hardware());
+  ASSERT_NE(box_hw, nullptr);
+  ASSERT_TRUE(box_hw->readBaseGroundTruth(first_box));
+  EXPECT_GT(first_box.position[0], 0.6 + 0.5);
+
+  for (const auto& robot : robots) EXPECT_NEAR(robot->simTime(), 6.0, 1e-9) << robot->robotNamespace();
+}
+
+}  // namespace
+}  // namespace servoloop::world_test
