@@ -206,10 +206,10 @@ struct BulletWorld::Impl final : detail::SceneMember {
       case FixedBase::fixed: fixed_base = true; break;
       case FixedBase::floating: fixed_base = false; break;
     }
-    if (!root_is_world) {
-      initial_root_pose.linear() = settings.initial_base_orientation.normalized().toRotationMatrix();
-      initial_root_pose.translation() = settings.initial_base_position;
-    }
+    // A robot fixed to a "world" link stands where it is spawned, as in
+    // Gazebo: the world link is placed at the spawn pose.
+    initial_root_pose.linear() = settings.initial_base_orientation.normalized().toRotationMatrix();
+    initial_root_pose.translation() = settings.initial_base_position;
     const detail::Body& root = tree.bodies.front();
     if (!fixed_base && !(root.mass_kg > 0.0)) {
       throw ConfigError("robot '" + model.getName() + "': root link '" + root.link_name +

@@ -61,6 +61,9 @@ std::string poseAttributes(const urdf::Pose& pose) {
          vec3(x, y, z) + "\"";
 }
 
+// The static body that carries a "world" root link to its spawn pose.
+constexpr const char* kSpawnFrameBody = "servoloop_spawn_frame";
+
 bool isMovable(const urdf::Joint& joint) {
   return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
          joint.type == urdf::Joint::PRISMATIC;
@@ -89,9 +92,20 @@ class MjcfWriter {
             << (settings_.self_collide ? "" : " contype=\"2\" conaffinity=\"1\"") << "/>\n";
     }
     if (root_is_world) {
+      // The "world" link stands at the spawn pose (Gazebo's): a static body
+      // there when the pose moves it, the world body itself otherwise.
+      const bool placed = !settings_.base_position.isZero() ||
+                          !settings_.base_orientation.normalized().isApprox(Eigen::Quaterniond::Identity());
+      int depth = 2;
+      if (placed) {
+        world << "    <body name=\"" << kSpawnFrameBody << "\" " << basePoseAttributes() << ">\n";
+        world_welded_links_.push_back(kSpawnFrameBody);
+        depth = 3;
+      }
       for (const auto& child : root->child_links) collectWorldWelded(*child);
-      writeGeoms(*root, world, "    ");
-      for (const auto& child : root->child_links) writeBody(*child, world, 2, /*welded_to_world=*/true);
+      writeGeoms(*root, world, std::string(2 * depth, ' '));
+      for (const auto& child : root->child_links) writeBody(*child, world, depth, /*welded_to_world=*/true);
+      if (placed) world << "    </body>\n";
     } else {
       if (!floating_base_) {  // the root body is welded to the world at the spawn pose
         world_welded_links_.push_back(root->name);

@@ -31,8 +31,9 @@ struct WorldSettings {
   // setJointPositionTarget: the motor drives the position error down with this
   // time constant (first order), as fast as the effort limit allows. >= time_step_s.
   double position_motor_time_constant_s{0.02};
-  // Pose of the root link frame in the world at construction and reset().
-  // Ignored when the root link is "world" (the root then is the world frame).
+  // Pose of the root link frame in the world at construction and reset();
+  // for a root link named "world", where that link (and everything fixed to
+  // it) stands, as Gazebo places such a robot at its spawn pose.
   Eigen::Vector3d initial_base_position{Eigen::Vector3d::Zero()};
   Eigen::Quaterniond initial_base_orientation{Eigen::Quaterniond::Identity()};
   // Rotor inertia reflected to a joint (n²·J for a reduction n, kg·m²), by

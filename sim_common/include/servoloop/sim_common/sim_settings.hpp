@@ -48,8 +48,8 @@ struct SimSettings {
   bool ground_plane = false;                       // static plane z = 0, normal +z
   std::map<std::string, double> initial_positions;  // joint → rad or m
   BaseMode base = BaseMode::automatic;
-  // Pose of the root link frame in the world at start and reset; ignored when
-  // the root link is "world" (the world frame itself).
+  // Pose of the root link frame in the world at start and reset; for a root
+  // link named "world", where that link stands (Gazebo's spawn pose).
   Eigen::Vector3d base_position{Eigen::Vector3d::Zero()};
   Eigen::Quaterniond base_orientation{Eigen::Quaterniond::Identity()};
   // Collisions between the robot's own links (parent and child never collide).
