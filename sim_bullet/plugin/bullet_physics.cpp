@@ -87,6 +87,15 @@ void BulletPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   placeAtInitialPositions();
   const GroundPenetration deepest = world_->deepestGroundPenetration();
   sim_common::warnIfStartsBelowGround(model, settings, source_name, deepest.link, deepest.depth_m);
+  if (shared_scene_ != nullptr) {
+    const MemberOverlap overlap = world_->deepestMemberOverlap();
+    if (overlap.depth_m > sim_common::kGroundPenetrationWarningDepth_m) {
+      logger().warn(
+          "{}: link '{}' starts {:.3f} m inside {} at its spawn pose; the contact pushes the two apart with a jolt "
+          "at the first step. Spawn it elsewhere (launch file: pose: [x, y, z]; spawn-model: -x -y -z)",
+          source_name, overlap.link, overlap.depth_m, overlap.other);
+    }
+  }
 }
 
 bool BulletPhysics::readBaseState(sim_common::EngineBaseState& out) const noexcept {

@@ -3,6 +3,8 @@
 // dynamics world, the ground plane and the list of members the scene steps.
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
@@ -61,6 +63,13 @@ struct SceneCore {
   std::unique_ptr<btCollisionObject> ground;  // null without a ground plane
   // In the order they joined; the scene steps them in this order.
   std::vector<SceneMember*> members;
+  // Whose each member's collider is, for messages: the robot, and the URDF
+  // link of each child of its compound shape.
+  struct ColliderOwner {
+    std::string robot;
+    std::vector<std::string> child_links;
+  };
+  std::unordered_map<const btCollisionObject*, ColliderOwner> collider_owners;
   std::uint64_t steps = 0;
 
   // Non-real-time, for each member joining: room in the solver for the

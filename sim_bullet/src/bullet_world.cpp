@@ -97,6 +97,7 @@ struct BulletWorld::Impl final : detail::SceneMember {
   detail::SceneCore* scene{nullptr};
   btMultiBodyDynamicsWorld* world{nullptr};  // the scene's
   bool joined{false};                        // in scene->members
+  std::string robot_name;                    // the URDF's, for messages
 
   // Bullet objects, removed from the world and destroyed in reverse order of creation (see ~Impl).
   std::unique_ptr<btMultiBody> body;
@@ -116,7 +117,10 @@ struct BulletWorld::Impl final : detail::SceneMember {
     if (joined) std::erase(scene->members, this);
     if (world) {
       for (auto& c : constraints) world->removeMultiBodyConstraint(c.get());
-      for (auto& c : colliders) world->removeCollisionObject(c.get());
+      for (auto& c : colliders) {
+        scene->collider_owners.erase(c.get());
+        world->removeCollisionObject(c.get());
+      }
       if (body) world->removeMultiBody(body.get());
     }
   }
@@ -430,6 +434,7 @@ struct BulletWorld::Impl final : detail::SceneMember {
         body->getLink(link).m_collider = collider.get();
       }
       world->addCollisionObject(collider.get(), group, mask);
+      scene->collider_owners[collider.get()] = {robot_name, collider_child_links.back()};
       colliders.push_back(std::move(collider));
     }
   }
@@ -525,6 +530,7 @@ BulletWorld::BulletWorld(const urdf::ModelInterface& model, const WorldSettings&
   }
   w.decideBase(model);
   w.addRotorInertias(model);
+  w.robot_name = model.getName();
   w.useScene(model, scene);
   w.createMultiBody();
   w.createJointConstraints();
@@ -683,6 +689,70 @@ GroundPenetration BulletWorld::deepestGroundPenetration() const {
       const btVector3 down_in_shape = child.getBasis().transpose() * btVector3(0, 0, -1);
       const double depth = -(child * convex->localGetSupportingVertex(down_in_shape)).z();
       if (depth > deepest.depth_m) deepest = {w.collider_child_links[k][static_cast<std::size_t>(i)], depth};
+    }
+  }
+  return deepest;
+}
+
+namespace {
+
+// The deepest contact of one collider with colliders outside `own`, with
+// the compound child in contact on each side.
+struct OverlapProbe final : btCollisionWorld::ContactResultCallback {
+  const std::vector<std::unique_ptr<btMultiBodyLinkCollider>>* own = nullptr;
+  const btCollisionObject* ground = nullptr;
+  double depth_m = 0.0;
+  int own_child = -1;
+  const btCollisionObject* other = nullptr;
+  int other_child = -1;
+
+  bool ours(const btCollisionObject* object) const {
+    return std::any_of(own->begin(), own->end(), [&](const auto& c) { return c.get() == object; });
+  }
+
+  btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper* a, int /*part0*/, int index0,
+                           const btCollisionObjectWrapper* b, int /*part1*/, int index1) override {
+    const bool first_ours = ours(a->getCollisionObject());
+    const btCollisionObject* foreign = first_ours ? b->getCollisionObject() : a->getCollisionObject();
+    if (ours(foreign) || foreign == ground) return 0;
+    const double depth = -point.getDistance();
+    if (depth > depth_m) {
+      depth_m = depth;
+      other = foreign;
+      own_child = first_ours ? index0 : index1;
+      other_child = first_ours ? index1 : index0;
+    }
+    return 0;
+  }
+};
+
+const std::string& childLink(const std::vector<std::string>& child_links, int child) {
+  static const std::string unknown = "?";
+  if (child >= 0 && child < static_cast<int>(child_links.size())) return child_links[static_cast<std::size_t>(child)];
+  return child_links.size() == 1 ? child_links.front() : unknown;
+}
+
+}  // namespace
+
+MemberOverlap BulletWorld::deepestMemberOverlap() const {
+  const Impl& w = *impl_;
+  MemberOverlap deepest;
+  w.world->updateAabbs();
+  for (std::size_t k = 0; k < w.colliders.size(); ++k) {
+    btMultiBodyLinkCollider& collider = *w.colliders[k];
+    if (!collider.getCollisionShape()->isCompound()) continue;  // a link without geometry
+    OverlapProbe probe;
+    probe.own = &w.colliders;
+    probe.ground = w.scene->ground.get();
+    w.world->contactTest(&collider, probe);
+    if (probe.other != nullptr && probe.depth_m > deepest.depth_m) {
+      deepest.depth_m = probe.depth_m;
+      deepest.link = childLink(w.collider_child_links[k], probe.own_child);
+      const auto owner = w.scene->collider_owners.find(probe.other);
+      deepest.other = owner == w.scene->collider_owners.end()
+                          ? "another body"
+                          : "robot '" + owner->second.robot + "' link '" +
+                                childLink(owner->second.child_links, probe.other_child) + "'";
     }
   }
   return deepest;

@@ -264,6 +264,28 @@ TEST(BulletScene, RemovingAMemberLeavesTheOthersRunningUnchanged) {
   EXPECT_EQ(scene.numMembers(), 1u);
 }
 
+TEST(BulletScene, AMemberStartingInsideAnotherSaysHowDeepAndInWhat) {
+  const SceneSettings scene_settings{{0, 0, -kG}, 0.001, true};
+  BulletScene scene(scene_settings);
+  BulletWorld table(*parseRobotModel(kTableUrdf, "table.urdf"), memberSettings(scene_settings), scene);
+  // The 0.2 m box's centre 0.05 m above the table top: 0.05 m of it inside.
+  BulletWorld sunk(*parseRobotModel(boxUrdf("crate", 0.2, 1.0), "crate.urdf"),
+                   placedAt(scene_settings, {0.0, 0.0, 0.55}), scene);
+  const MemberOverlap overlap = sunk.deepestMemberOverlap();
+  EXPECT_EQ(overlap.link, "box");
+  EXPECT_EQ(overlap.other, "robot 'table' link 'top'");
+  EXPECT_NEAR(overlap.depth_m, 0.05, 2e-3);
+  // Resting on the top, or beside it on the ground: nothing (the ground
+  // plane is deepestGroundPenetration's).
+  BulletWorld resting(*parseRobotModel(boxUrdf("crate", 0.2, 1.0), "crate.urdf"),
+                      placedAt(scene_settings, {0.3, 0.3, 0.6}), scene);
+  EXPECT_LT(resting.deepestMemberOverlap().depth_m, 1e-3);
+  BulletWorld aside(*parseRobotModel(boxUrdf("crate", 0.2, 1.0), "crate.urdf"),
+                    placedAt(scene_settings, {2.0, 0.0, 0.05}), scene);
+  EXPECT_EQ(aside.deepestMemberOverlap().other, "");
+  EXPECT_NEAR(aside.deepestGroundPenetration().depth_m, 0.05, 2e-3);
+}
+
 TEST(BulletScene, MemberSettingsMustMatchTheScene) {
   const SceneSettings scene_settings{{0, 0, -kG}, 0.001, true};
   BulletScene scene(scene_settings);

@@ -64,6 +64,13 @@ struct GroundPenetration {
   double depth_m = 0;  // how far below z = 0 its lowest point is (0 when none is)
 };
 
+// Where a robot starts inside another member of its scene.
+struct MemberOverlap {
+  std::string link;        // the robot's link in contact ("" when it overlaps nothing)
+  std::string other;       // what it overlaps: "robot 'box' link 'box'"
+  double depth_m = 0.0;    // how deep they overlap (0 when they do not)
+};
+
 // Mass properties of one simulated body (a moving link with the links fixed to
 // it merged in), in that link's frame. For tests and diagnostics.
 struct BodyMassProperties {
@@ -176,6 +183,13 @@ class BulletWorld {
   // step. Nothing without a ground plane; a fixed base is not counted (it
   // does not collide with the ground). Not for the real-time path.
   GroundPenetration deepestGroundPenetration() const;
+
+  // In the current pose: the deepest overlap of the robot's collision
+  // geometry with another member of its scene (a robot spawned into
+  // another, which the contacts throw apart at the first step). Links the
+  // robot's own self-collision rules exclude are not counted, nor the
+  // ground plane (deepestGroundPenetration). Not for the real-time path.
+  MemberOverlap deepestMemberOverlap() const;
 
   // Checks on Bullet's settings, for tests: true when btScalar is double.
   static bool usesDoublePrecision();

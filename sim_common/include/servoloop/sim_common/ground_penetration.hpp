@@ -18,9 +18,7 @@ inline constexpr double kGroundPenetrationWarningDepth_m = 0.01;
 
 // Logs one warning when `link` starts more than the depth above below the
 // floor: "<source>: link 'foot' starts 0.230 m below the ground plane ...;
-// Spawn it higher: a root z of at least ... m ...". For a root link named
-// `world`, which the spawn pose does not move, the fix named is in the URDF
-// or the start positions instead. Non-real-time.
+// Spawn it higher: a root z of at least ... m ...". Non-real-time.
 void warnIfStartsBelowGround(const urdf::ModelInterface& model, const SimSettings& settings,
                              const std::string& source_name, const std::string& link, double depth_m);
 
