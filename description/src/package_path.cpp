@@ -129,7 +129,13 @@ fs::path resolvePackageUri(const std::string& uri, const fs::path& near, const s
   const auto slash = rest.find('/');
   const std::string package = rest.substr(0, slash);
   const fs::path folder = findPackage(package, near, source_name);
-  return slash == std::string::npos ? folder : folder / rest.substr(slash + 1);
+  if (slash == std::string::npos) return folder;
+  const fs::path inside = fs::path(rest.substr(slash + 1)).lexically_normal();
+  if (inside.is_absolute() || (!inside.empty() && *inside.begin() == "..")) {
+    throw ConfigError(source_name + ": '" + uri + "' leads out of package '" + package + "' (" + folder.string() +
+                      "); a package:// path names a file inside its package");
+  }
+  return folder / inside;
 }
 
 }  // namespace servoloop

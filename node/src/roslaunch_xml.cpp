@@ -217,6 +217,10 @@ class Reader {
     const char* value = e->Attribute("value");
     const char* fallback = e->Attribute("default");
     if (value != nullptr && fallback != nullptr) fail(e, scope, "arg '" + name + "' has both value= and default=");
+    if (scope.args.count(name) != 0) {
+      fail(e, scope, "arg '" + name + "' is declared twice in this file (roslaunch refuses that too); keep one <arg name=\"" +
+                         name + "\">");
+    }
     const auto passed = scope.passed.find(name);
     if (value != nullptr) {
       if (passed != scope.passed.end()) {

@@ -60,6 +60,19 @@ TEST(PackagePath, RosPackagePathIsSearchedByPackageXmlName) {
   EXPECT_EQ(resolvePackageUri("package://arm_description/meshes/a.stl", elsewhere, "r.urdf"),
             dir.path() / "ws1/src/group/arm_folder/meshes/a.stl");
   EXPECT_EQ(resolvePackageUri("meshes/a.stl", elsewhere, "r.urdf"), fs::path("meshes/a.stl"));
+  // A path may wander inside its package, never out of it.
+  EXPECT_EQ(resolvePackageUri("package://arm_description/meshes/../urdf/./a.urdf", elsewhere, "r.urdf"),
+            dir.path() / "ws1/src/group/arm_folder/urdf/a.urdf");
+  for (const char* escape : {"package://arm_description/../../../../etc/passwd",
+                             "package://arm_description/meshes/../../arm_description_copy/a.stl"}) {
+    try {
+      resolvePackageUri(escape, elsewhere, "r.urdf");
+      ADD_FAILURE() << escape << " was resolved";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("leads out of package 'arm_description'"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("r.urdf"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(PackagePath, PackagesAreNotSearchedInsideOtherPackages) {

@@ -229,6 +229,8 @@ TEST_F(RoslaunchProject, MistakesNameTheFileLineAndFix) {
                   "arg 'needed' has no default and was not passed; pass needed:=value");
   EXPECT_CONTAINS(errorOf(R"~(<launch><arg name="a" default="1"/></launch>)~", {{"b", "2"}}),
                   "argument(s) b are not declared by this launch file (its <arg>s: a)");
+  EXPECT_CONTAINS(errorOf("<launch>\n<arg name=\"a\" default=\"1\"/>\n<arg name=\"a\" default=\"2\"/></launch>"),
+                  "t.launch:3: <arg>: arg 'a' is declared twice in this file");
   EXPECT_CONTAINS(errorOf(R"~(<launch><group if="maybe"/></launch>)~"),
                   "if=\"maybe\" gives 'maybe', which is neither true/1 nor false/0");
   EXPECT_CONTAINS(errorOf(R"~(<launch><nodes/></launch>)~"), "<nodes> is not a roslaunch element");

@@ -64,7 +64,12 @@ void addSpawnModelCommand(CLI::App& root) {
   spawn->add_option("--urdf", options->urdf, "URDF or xacro file")->required()->type_name("FILE");
   spawn->add_option("--xacro-arg", options->xacro_args, "xacro argument for a .xacro file (repeatable)")
       ->type_name("NAME:=VALUE");
-  spawn->add_option("--model", options->model, "Model name")->required()->type_name("NAME");
+  spawn->add_option("--model", options->model, "Model name")
+      ->required()
+      ->type_name("NAME")
+      ->check([](const std::string& name) {
+        return name.empty() ? std::string("a model needs a name (its default namespace is /NAME)") : std::string();
+      });
   spawn->add_option("-N,--namespace", options->ns,
                     "Robot namespace (default: the URDF's robotNamespace, else /<model>)")
       ->type_name("NS");

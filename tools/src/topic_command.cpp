@@ -372,6 +372,7 @@ void addTopicCommands(CLI::App& root) {
     hz->add_option("topic", options->topic, "Topic name")->required();
     hz->add_option("--window", options->window, "Intervals the statistics cover")
         ->capture_default_str()
+        ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}))
         ->type_name("N");
     hz->add_option("-n,--count", options->count, "Stop after this many messages and report")
         ->type_name("COUNT");
