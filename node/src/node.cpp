@@ -116,6 +116,9 @@ Node::~Node() {
   } catch (const std::exception& e) {
     logger().error("shutting the node down failed: {}", e.what());
   }
+  // Whatever shutdown() did not get to: nothing steps the world while the
+  // robots built into it are destroyed.
+  if (world_loop_) world_loop_->stop();
 }
 
 RobotInstance* Node::robotForTopic(const std::string& topic) {
@@ -152,9 +155,25 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
   world.simulated_world = world_;
   world.world_loop = world_loop_.get();
   std::unique_ptr<RobotInstance> robot;
-  changeWorld([&] { robot = std::make_unique<RobotInstance>(spec, world); });
+  // The namespace is taken while the world stands, so that a robot refused
+  // for it never moves in the world.
+  changeWorld([&] {
+    robot = std::make_unique<RobotInstance>(spec, world);
+    std::lock_guard names(namespaces_mutex_);
+    if (!namespaces_.insert(robot->robotNamespace()).second) {
+      const std::string ns = robot->robotNamespace();
+      robot.reset();
+      throw Error(fmt::format("a robot with namespace '{}' exists already; give the new one another --namespace", ns));
+    }
+  });
   // A robot that cannot be added leaves the world as it came (between two cycles).
-  const auto discard = [&] { changeWorld([&] { robot.reset(); }); };
+  const auto discard = [&] {
+    {
+      std::lock_guard names(namespaces_mutex_);
+      namespaces_.erase(robot->robotNamespace());
+    }
+    changeWorld([&] { robot.reset(); });
+  };
   robot->setFinishedCallback([this] {
     {
       std::lock_guard lock(finished_mutex_);
@@ -171,11 +190,6 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
     throw Error(why);
   };
   if (!accepting_robots_) refuse("the node is shutting down; no robot can be spawned any more");
-  for (const auto& existing : robots_) {
-    if (existing->robotNamespace() == ns) {
-      refuse(fmt::format("a robot with namespace '{}' exists already; give the new one another --namespace", ns));
-    }
-  }
   logger().info("spawned robot '{}' ({}) from {} on the {} backend", robot->robotName(), ns, spec.urdf.string(),
                 robot->backendName());
   RobotInstance& added = *robots_.emplace_back(std::move(robot));

@@ -240,10 +240,13 @@ std::uint64_t RobotInstance::betweenSegments() {
       finishRun();
       return 0;
     }
-    logger().error("robot '{}': {}", namespace_, safety_->reason());
-    std::lock_guard lock(recovery_mutex_);
-    waiting_for_recovery_ = true;
-    return 0;
+    {
+      std::lock_guard lock(recovery_mutex_);
+      if (!waiting_for_recovery_) logger().error("robot '{}': {}", namespace_, safety_->reason());
+      waiting_for_recovery_ = true;
+    }
+    // A recover() that came before this call is served now.
+    if (!resumeIfRecoveryRequested()) return 0;
   }
   if (real_time_factor_ <= 0.0) bus_->flush();
   publishDue(taken);

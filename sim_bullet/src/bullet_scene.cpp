@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -42,7 +43,10 @@ bool smallerFriction(btManifoldPoint& point, const btCollisionObjectWrapper* obj
 
 void useSceneFriction(btCollisionObject& collider) {
   collider.setCollisionFlags(collider.getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
-  gContactAddedCallback = &smallerFriction;  // process-wide in Bullet; acts on flagged colliders only
+  // Process-wide in Bullet (it acts on flagged colliders only): set once, as
+  // other scenes may be stepping on other threads.
+  static std::once_flag installed;
+  std::call_once(installed, [] { gContactAddedCallback = &smallerFriction; });
 }
 
 SceneCore::SceneCore(const SceneSettings& scene_settings) : settings(scene_settings) {

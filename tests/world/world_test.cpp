@@ -122,8 +122,11 @@ TEST(World, ARobotSpawnedIntoARunningWorldTouchesTheOthers) {
 
 // Two arms on a backend whose hardware of /a asks to stop at its 500th
 // physics step: /a stands in fault, /b runs on in the same world loop; once
-// /a recovers, both run.
-TEST(World, AHardwareStopInOneRobotLeavesTheOthersRunning) {
+// /a recovers, both run. Free-running, and paced with no timed publication
+// left (the loop's segments then end only when something asks).
+class WorldFault : public ::testing::TestWithParam<double> {};
+
+TEST_P(WorldFault, AHardwareStopInOneRobotLeavesTheOthersRunning) {
   TempDir dir("servoloop-world-fault");
   writeFile(dir.path() / "arm.urdf", R"(<robot name="arm"><link name="world"/>
   <joint name="base" type="fixed"><parent link="world"/><child link="base_link"/></joint>
@@ -154,7 +157,7 @@ joint1_position_controller:
 
   NodeOptions options;
   options.serve_ipc = false;
-  options.real_time_factor = 0.0;
+  options.real_time_factor = GetParam();
   options.plugin_directories = {SERVOLOOP_WORLD_PLUGIN_DIR};
   Node node(launch, options);
   node.start();
@@ -179,6 +182,11 @@ joint1_position_controller:
   node.requestShutdown();
   node.shutdown();
 }
+
+INSTANTIATE_TEST_SUITE_P(FreeAndPaced, WorldFault, ::testing::Values(0.0, 4.0),
+                         [](const ::testing::TestParamInfo<double>& info) {
+                           return info.param == 0.0 ? std::string("free_running") : std::string("paced");
+                         });
 
 }  // namespace
 }  // namespace servoloop::world_test

@@ -47,8 +47,9 @@ void WorldLoop::start() {
   thread_ = std::thread([this] { run(); });
   // The members added before all enter before the first cycle.
   wake_.wait(lock, [&] {
-    return stop_requested_ ||
-           std::all_of(first.begin(), first.end(), [&](const WorldMember* member) { return contains(entered_, member); });
+    return stop_requested_ || std::all_of(first.begin(), first.end(), [&](const WorldMember* member) {
+             return contains(entered_, member) || !contains(joining_, member);
+           });
   });
 }
 
@@ -82,10 +83,13 @@ void WorldLoop::remove(WorldMember& member) {
   std::unique_lock lock(mutex_);
   if (const auto waiting = std::find(joining_.begin(), joining_.end(), &member); waiting != joining_.end()) {
     joining_.erase(waiting);
+    wake_.notify_all();
     return;
   }
+  // One entering now is waited for, then taken out like any other.
+  wake_.wait(lock, [&] { return entering_ != &member; });
   if (!contains(entered_, &member)) return;
-  leaving_.push_back(&member);
+  if (!contains(leaving_, &member)) leaving_.push_back(&member);
   interrupt_.store(true, std::memory_order_release);
   wake_.notify_all();
   wake_.wait(lock, [&] { return !contains(entered_, &member); });
@@ -93,17 +97,18 @@ void WorldLoop::remove(WorldMember& member) {
 
 void WorldLoop::whilePaused(const std::function<void()>& change) {
   std::unique_lock lock(mutex_);
-  if (!started_ || stop_requested_) {
+  if (stop_requested_) wake_.wait(lock, [&] { return !started_ || thread_exited_; });
+  if (!started_ || thread_exited_) {
     // No thread steps the world (yet, or any more); the lock keeps a start out meanwhile.
     change();
     return;
   }
   // One pause at a time.
-  wake_.wait(lock, [&] { return !pause_requested_; });
+  wake_.wait(lock, [&] { return !pause_requested_ || thread_exited_; });
   pause_requested_ = true;
   interrupt_.store(true, std::memory_order_release);
   wake_.notify_all();
-  wake_.wait(lock, [&] { return paused_ || stop_requested_; });
+  wake_.wait(lock, [&] { return paused_ || thread_exited_; });
   const auto resume = [&] {
     pause_requested_ = false;
     wake_.notify_all();
@@ -149,6 +154,7 @@ void WorldLoop::serveRequests(std::unique_lock<std::mutex>& lock) {
     if (!joining_.empty() && !stop_requested_) {
       WorldMember* member = joining_.front();
       joining_.erase(joining_.begin());
+      entering_ = member;
       lock.unlock();
       try {
         member->enterWorld();
@@ -158,6 +164,7 @@ void WorldLoop::serveRequests(std::unique_lock<std::mutex>& lock) {
       members_.push_back(member);
       lock.lock();
       entered_.push_back(member);
+      entering_ = nullptr;
       wake_.notify_all();
       continue;
     }
@@ -217,6 +224,7 @@ void WorldLoop::run() {
   entered_.clear();
   joining_.clear();
   leaving_.clear();
+  thread_exited_ = true;
   wake_.notify_all();
 }
 
@@ -229,7 +237,11 @@ void WorldLoop::runSegment(std::uint64_t cycles) {
     if (interrupt_.load(std::memory_order_acquire)) break;
     for (WorldMember* member : active_) {
       controller_manager::SimulationLoop& loop = member->simulationLoop();
-      if (!loop.hardwareAskedToStop()) loop.externalCycle();
+      if (loop.hardwareAskedToStop()) continue;
+      loop.externalCycle();
+      // Its hardware stopped it: the segment ends, so that the member sees
+      // its fault (and a recovery) between segments.
+      if (loop.hardwareAskedToStop()) interrupt_.store(true, std::memory_order_relaxed);
     }
     world_.step();
     steps_.fetch_add(1, std::memory_order_release);

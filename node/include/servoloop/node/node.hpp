@@ -30,6 +30,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -148,6 +149,11 @@ class Node {
   std::mutex finished_mutex_;
   std::condition_variable finished_wake_;
   bool robot_finished_ = false;  // under finished_mutex_
+
+  // The robots' namespaces, taken while a robot is built (never held while
+  // waiting for the world loop).
+  std::mutex namespaces_mutex_;
+  std::set<std::string> namespaces_;
 
   mutable std::mutex robots_mutex_;
   std::vector<std::unique_ptr<RobotInstance>> robots_;

@@ -131,7 +131,9 @@ class WorldLoop {
   bool paused_ = false;
   bool stop_requested_ = false;
   bool started_ = false;
+  bool thread_exited_ = false;  // run() has returned: nothing steps the world
   bool woken_ = false;
+  WorldMember* entering_ = nullptr;  // whose enterWorld() runs now
 
   // The world's thread only.
   std::vector<WorldMember*> members_;
