@@ -9,6 +9,7 @@
 #include <string>
 
 #include "csv_columns.hpp"
+#include "servoloop/core/errors.hpp"
 #include "servoloop/node/node.hpp"
 #include "temp_dir.hpp"
 #include "wait_until.hpp"
@@ -116,6 +117,18 @@ TEST(World, ARobotSpawnedIntoARunningWorldTouchesTheOthers) {
                         std::chrono::seconds(60)))
       << "the box spawned in the base's path was not pushed; it is at x = " << box_pose.latest().position.x;
   EXPECT_NEAR(box_pose.latest().position.x - base_pose.latest().position.x, kContactGap, 0.02);
+  // The same namespace again: one error, and the world goes on as it was.
+  try {
+    node.spawnRobot(box);
+    ADD_FAILURE() << "a second /box was spawned";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a robot with namespace '/box' exists already"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(node.robotNamespaces().size(), 2u);
+  const double pushed_to = box_pose.latest().position.x;
+  ASSERT_TRUE(waitUntil([&] { return box_pose.latest().position.x > pushed_to + 0.1; }, std::chrono::seconds(60)))
+      << "the world stopped after the refused spawn";
   node.requestShutdown();
   node.shutdown();
 }
