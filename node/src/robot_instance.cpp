@@ -129,8 +129,11 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
 
   // A simulated robot in lockstep lives in the node's world: built into its
   // physics, its cycles run by the world's loop.
-  const bool joins_world = world.world_loop != nullptr && world.simulated_world != nullptr && sim_hw_ != nullptr &&
-                           !hardware_robot && !world.world.wall_clock;
+  const bool joins_world = sim_hw_ != nullptr && !hardware_robot && !world.world.wall_clock;
+  if (joins_world && (world.world_loop == nullptr || world.simulated_world == nullptr)) {
+    throw Error("RobotInstance: a simulated robot in lockstep runs in its world; set RobotWorld::simulated_world "
+                "and RobotWorld::world_loop");
+  }
   if (joins_world) {
     try {
       sim_hw_->joinWorld(*world.simulated_world);

@@ -97,11 +97,7 @@ void RobotInstance::driveWallClockLoop(std::optional<double> duration_s) {
 // one (a node serving clients) waits in fault for `control recover`.
 void RobotInstance::driveLoop(std::optional<double> duration_s) {
   for (;;) {
-    if (sim_loop_ == nullptr) {
-      driveWallClockLoop(duration_s);
-    } else {
-      driveSimulationLoop(duration_s);
-    }
+    driveWallClockLoop(duration_s);
     if (duration_s || stop_requested_.load() || !loop_->hardwareAskedToStop()) break;
     bus_->flush();
     if (!waitForRecovery()) break;
@@ -109,33 +105,6 @@ void RobotInstance::driveLoop(std::optional<double> duration_s) {
   bus_->flush();
   loop_done_.store(true);
   if (on_finished_) on_finished_();
-}
-
-void RobotInstance::driveSimulationLoop(std::optional<double> duration_s) {
-  constexpr std::uint64_t kForever = std::numeric_limits<std::uint64_t>::max();
-  const double dt = sim_loop_->physicsStep().seconds;
-  const bool free_running = real_time_factor_ <= 0.0;
-  const std::uint64_t end_steps = duration_s ? stepsAt(*duration_s) : kForever;
-  const auto flush_steps = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(kFreeRunningFlushInterval_s / dt)));
-
-  while (!stop_requested_.load()) {
-    const std::uint64_t taken = sim_loop_->stepsTaken();
-    publishDue(taken);
-    if (taken >= end_steps || loop_->hardwareAskedToStop()) break;
-
-    std::uint64_t target = end_steps;
-    if (next_publication_ < publications_.size()) {
-      target = std::min(target, stepsAt(publications_[next_publication_].time_s));
-    }
-    if (free_running) target = std::min(target, taken + flush_steps);
-
-    if (target == kForever) {
-      loop_->run(stop_requested_);
-    } else {
-      loop_->runFor(Duration(static_cast<double>(target - taken) * dt));
-    }
-    if (free_running) bus_->flush();
-  }
 }
 
 void RobotInstance::start(std::optional<double> duration_s) {

@@ -120,11 +120,6 @@ void BulletScene::step() {
   ++scene.steps;
 }
 
-void BulletScene::reset() {
-  for (detail::SceneMember* member : core_->members) member->resetMember();
-  core_->steps = 0;
-}
-
 double BulletScene::time() const { return static_cast<double>(core_->steps) * core_->settings.time_step_s; }
 double BulletScene::timeStep() const { return core_->settings.time_step_s; }
 const SceneSettings& BulletScene::settings() const { return core_->settings; }

@@ -24,8 +24,6 @@ class SceneMember {
   virtual void beforeSceneStep() noexcept = 0;
   // Real-time. After it: what the member's actuators applied, commands cleared.
   virtual void afterSceneStep() noexcept = 0;
-  // Non-real-time. Back to the member's initial state.
-  virtual void resetMember() = 0;
 };
 
 // Every collider of a scene is flagged for Bullet's contact-added callback,

@@ -154,7 +154,8 @@ struct BulletWorld::Impl final : detail::SceneMember {
     ++steps;
   }
 
-  void resetMember() override {
+  // Back to the initial state: joints at 0 at rest, base at its initial pose, time 0.
+  void resetMember() {
     btMultiBody& mb = *body;
     for (std::size_t j = 0; j < joints.size(); ++j) {
       mb.setJointPos(int(j), 0.0);
@@ -617,8 +618,6 @@ void BulletWorld::setJointState(std::size_t joint, double position, double veloc
 void BulletWorld::step() {
   if (impl_->own_scene) impl_->own_scene->step();
 }
-
-bool BulletWorld::sharesScene() const { return impl_->own_scene == nullptr; }
 
 double BulletWorld::time() const { return static_cast<double>(impl_->steps) * impl_->settings.time_step_s; }
 double BulletWorld::timeStep() const { return impl_->settings.time_step_s; }

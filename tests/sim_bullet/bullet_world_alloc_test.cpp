@@ -1,15 +1,13 @@
 // After construction, stepping and the joint setters/getters allocate nothing:
 // counted through global operator new (servoloop's code) and through Bullet's
 // own allocator hook (btAlignedAlloc, which calls malloc directly).
-#include <atomic>
-#include <cstdlib>
 #include <memory>
 #include <vector>
 
-#include <LinearMath/btAlignedAllocator.h>
 #include <gtest/gtest.h>
 
 #include "alloc_counter.hpp"
+#include "bullet_alloc_hook.hpp"
 #include "servoloop/description/robot_model.hpp"
 #include "servoloop/sim_bullet/bullet_scene.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
@@ -17,19 +15,7 @@
 namespace servoloop::sim_bullet {
 namespace {
 
-std::atomic<std::size_t> bullet_allocations{0};
-void* countingBulletAlloc(std::size_t size) {
-  bullet_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size);
-}
-void bulletFree(void* p) { std::free(p); }
-
-// Installed before any Bullet object exists, so every block is freed by the
-// same allocator that made it.
-const bool kBulletHookInstalled = [] {
-  btAlignedAllocSetCustom(countingBulletAlloc, bulletFree);
-  return true;
-}();
+namespace bullet_alloc = servoloop::testing::bullet_alloc;
 
 TEST(BulletWorldAllocation, SteadyStateStepAllocatesNothing) {
   const auto model = loadRobotModelFile(std::string(SERVOLOOP_SEED_DIR) +
@@ -48,9 +34,9 @@ TEST(BulletWorldAllocation, SteadyStateStepAllocatesNothing) {
     world.step();
   }
 
-  ASSERT_TRUE(kBulletHookInstalled);
-  ASSERT_GT(bullet_allocations.load(), 0u) << "the hook must see Bullet's allocations";
-  const std::size_t bullet_allocations_before = bullet_allocations.load();
+  ASSERT_TRUE(bullet_alloc::kInstalled);
+  ASSERT_GT(bullet_alloc::all.load(), 0u) << "the hook must see Bullet's allocations";
+  const std::size_t bullet_allocations_before = bullet_alloc::all.load();
   servoloop::testing::AllocationCounter counter;
   double sum = 0.0;
   for (int k = 0; k < 1000; ++k) {
@@ -62,7 +48,7 @@ TEST(BulletWorldAllocation, SteadyStateStepAllocatesNothing) {
   }
   world.setJointState(0, 0.5, 0.0);
   EXPECT_EQ(counter.allocations(), 0u);
-  EXPECT_EQ(bullet_allocations.load() - bullet_allocations_before, 0u);
+  EXPECT_EQ(bullet_alloc::all.load() - bullet_allocations_before, 0u);
   EXPECT_GT(sum, 0.0);
 }
 
@@ -98,7 +84,7 @@ TEST(BulletWorldAllocation, SharedSceneStepAllocatesNothing) {
     arm.setJointEffort(0, 1.0);
     scene.step();
   }
-  const std::size_t bullet_allocations_before = bullet_allocations.load();
+  const std::size_t bullet_allocations_before = bullet_alloc::all.load();
   servoloop::testing::AllocationCounter counter;
   double sum = 0.0;
   for (int k = 0; k < 1000; ++k) {
@@ -108,7 +94,7 @@ TEST(BulletWorldAllocation, SharedSceneStepAllocatesNothing) {
     sum += boxes.front()->baseState().position.x() + arm.jointPosition(0);
   }
   EXPECT_EQ(counter.allocations(), 0u);
-  EXPECT_EQ(bullet_allocations.load() - bullet_allocations_before, 0u);
+  EXPECT_EQ(bullet_alloc::all.load() - bullet_allocations_before, 0u);
   EXPECT_GT(boxes.front()->baseState().position.x(), -0.3) << "the boxes were pushed";
   EXPECT_NE(sum, 0.0);
 }

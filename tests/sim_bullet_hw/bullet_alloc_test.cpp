@@ -1,32 +1,18 @@
 // 100,000 read/write/step cycles of the bullet backend allocate nothing:
 // counted through global operator new and Bullet's own allocator hook.
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
 
-#include <LinearMath/btAlignedAllocator.h>
 #include <gtest/gtest.h>
 
 #include "alloc_counter.hpp"
+#include "bullet_alloc_hook.hpp"
 #include "backend_test_workloads.hpp"
 #include "bullet_robot_hw.hpp"
 
 namespace servoloop::sim_bullet {
 namespace {
 
-std::atomic<std::size_t> bullet_allocations{0};
-void* countingBulletAlloc(std::size_t size) {
-  bullet_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size);
-}
-void bulletFree(void* p) { std::free(p); }
-
-// Installed before any Bullet object exists, so every block is freed by the
-// allocator that made it.
-const bool kBulletHookInstalled = [] {
-  btAlignedAllocSetCustom(countingBulletAlloc, bulletFree);
-  return true;
-}();
+namespace bullet_alloc = servoloop::testing::bullet_alloc;
 
 TEST(BulletRobotHWAllocation, HundredThousandCyclesAllocateNothing) {
   BulletRobotHW hw;
@@ -38,13 +24,13 @@ TEST(BulletRobotHWAllocation, HundredThousandCyclesAllocateNothing) {
   workload.run(30000);
   hw.setEmergencyStop(false);
 
-  ASSERT_TRUE(kBulletHookInstalled);
-  ASSERT_GT(bullet_allocations.load(), 0u) << "the hook must see Bullet's allocations";
-  const std::size_t bullet_allocations_before = bullet_allocations.load();
+  ASSERT_TRUE(bullet_alloc::kInstalled);
+  ASSERT_GT(bullet_alloc::all.load(), 0u) << "the hook must see Bullet's allocations";
+  const std::size_t bullet_allocations_before = bullet_alloc::all.load();
   servoloop::testing::AllocationCounter counter;
   const double checksum = workload.run(100000);
   EXPECT_EQ(counter.allocations(), 0u);
-  EXPECT_EQ(bullet_allocations.load() - bullet_allocations_before, 0u);
+  EXPECT_EQ(bullet_alloc::all.load() - bullet_allocations_before, 0u);
   EXPECT_TRUE(std::isfinite(checksum));
 }
 

@@ -6,16 +6,13 @@
 // (the real-time part), through operator new and Bullet's own allocator hook.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <chrono>
-#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include <LinearMath/btAlignedAllocator.h>
-
 #include "alloc_counter.hpp"
+#include "bullet_alloc_hook.hpp"
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/robot_instance.hpp"
 #include "servoloop/world/world_loop.hpp"
@@ -26,26 +23,10 @@
 namespace servoloop::world_test {
 namespace {
 
-// Bullet allocates through btAlignedAlloc (malloc underneath), which the
-// operator-new counter does not see: its hook counts the allocations of the
-// thread that enabled counting.
-std::atomic<std::size_t> bullet_allocations{0};
-std::atomic<std::size_t> bullet_allocations_seen{0};  // all of them: the hook works
-thread_local bool count_bullet = false;
-void* countingBulletAlloc(std::size_t size) {
-  bullet_allocations_seen.fetch_add(1, std::memory_order_relaxed);
-  if (count_bullet) bullet_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size);
-}
-void bulletFree(void* p) { std::free(p); }
-// Installed before any Bullet object exists.
-const bool kBulletHookInstalled = [] {
-  btAlignedAllocSetCustom(countingBulletAlloc, bulletFree);
-  return true;
-}();
+namespace bullet_alloc = servoloop::testing::bullet_alloc;
 
 TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
-  ASSERT_TRUE(kBulletHookInstalled);
+  ASSERT_TRUE(bullet_alloc::kInstalled);
   servoloop::testing::TempDir dir("servoloop-world-alloc");
   servoloop::testing::writeFile(dir.path() / "box.urdf", boxUrdf(0.2, 0.3, 0.5));
   const fs::path source(SERVOLOOP_SOURCE_DIR);
@@ -73,11 +54,11 @@ TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   options.before_segment = [&] {
     if (loop_ptr->steps() < kCountFromStep) return;
     counter.emplace();  // this (the world's) thread
-    count_bullet = true;
+    bullet_alloc::counting = true;
   };
   options.after_segment = [&] {
     if (!counter) return;
-    count_bullet = false;
+    bullet_alloc::counting = false;
     allocations += counter->allocations();
     if (counter->allocations() != 0) servoloop::testing::AllocationCounter::printFirstCountedStack();
     counter.reset();
@@ -137,8 +118,8 @@ TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   loop.stop();
 
   EXPECT_EQ(allocations, 0u);
-  ASSERT_GT(bullet_allocations_seen.load(), 0u) << "the hook must see Bullet's allocations";
-  EXPECT_EQ(bullet_allocations.load(), 0u) << "Bullet allocated during the world's cycles";
+  ASSERT_GT(bullet_alloc::all.load(), 0u) << "the hook must see Bullet's allocations";
+  EXPECT_EQ(bullet_alloc::counted.load(), 0u) << "Bullet allocated during the world's cycles";
   EXPECT_GT(counted_segments, 100u);
   // The cycles counted were the real thing: the base pushed the row of boxes.
   hardware_interface::BaseGroundTruth first_box;

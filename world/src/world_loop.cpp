@@ -64,11 +64,6 @@ void WorldLoop::stop() {
   thread_.join();
 }
 
-bool WorldLoop::running() const {
-  std::lock_guard lock(mutex_);
-  return started_ && !stop_requested_;
-}
-
 void WorldLoop::add(WorldMember& member) {
   std::unique_lock lock(mutex_);
   if (contains(entered_, &member) || contains(joining_, &member)) return;
@@ -244,7 +239,8 @@ void WorldLoop::runSegment(std::uint64_t cycles) {
       if (loop.hardwareAskedToStop()) interrupt_.store(true, std::memory_order_relaxed);
     }
     world_.step();
-    steps_.fetch_add(1, std::memory_order_release);
+    // Only this thread writes it: no read-modify-write needed.
+    steps_.store(steps_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
     if (!paced) continue;
     const std::int64_t end_ns = loop_clock::nowNs();
     const std::int64_t deadline_ns =

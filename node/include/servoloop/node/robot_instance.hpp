@@ -77,8 +77,8 @@ struct RobotWorld {
   double real_time_factor = 0.0;          // 0: free-running
   RealtimeSettings realtime;              // the launch file's; a robot's own win
   // The node's simulated world and its loop: a simulated robot in lockstep
-  // is built into the world and runs on the loop. Null: the robot runs on a
-  // thread of its own, with physics of its own (tests, the wall clock).
+  // is built into the world and runs on the loop (both required for it);
+  // robots on the wall clock do not use them.
   hardware_interface::SimulatedWorld* simulated_world = nullptr;
   world::WorldLoop* world_loop = nullptr;
 };
@@ -119,8 +119,6 @@ class RobotInstance final : public world::WorldMember {
   void stop();
   // True once the loop has ended (or was never started).
   bool finished() const { return !started() || loop_done_.load(); }
-  // True when the robot's cycles run on the node's world loop.
-  bool inWorld() const { return world_loop_ != nullptr; }
   // Non-real-time, before start(): called on the loop thread right after its
   // loop has ended (finished() is then true), e.g. to wake whoever waits for it.
   void setFinishedCallback(std::function<void()> callback) { on_finished_ = std::move(callback); }
@@ -202,7 +200,6 @@ class RobotInstance final : public world::WorldMember {
 
   bool started() const { return loop_thread_.joinable() || world_started_.load(); }
   void driveLoop(std::optional<double> duration_s);
-  void driveSimulationLoop(std::optional<double> duration_s);
   void driveWallClockLoop(std::optional<double> duration_s);
   std::uint64_t stepsAt(double time_s) const;
   void publishDue(std::uint64_t steps_taken);

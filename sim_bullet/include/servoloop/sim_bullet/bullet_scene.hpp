@@ -15,7 +15,7 @@
 // takes the body's own.
 //
 // Threading: construction, adding and removing members (building or
-// destroying a BulletWorld on the scene) and reset() are non-real-time and
+// destroying a BulletWorld on the scene) are non-real-time and
 // must not overlap step(); step() is real-time safe once every member is built.
 #include <cstddef>
 #include <cstdint>
@@ -49,8 +49,6 @@ class BulletScene {
   // damping), one step of time_step_s for the whole scene, then every
   // member's applied efforts read back.
   void step();
-  // Non-real-time. Every member back to its initial state, time 0.
-  void reset();
 
   double time() const;  // s since construction or reset()
   double timeStep() const;

@@ -157,7 +157,6 @@ class BulletWorld {
   // Advances exactly one time step of settings.time_step_s: the robot's own
   // scene; nothing when it shares one (the scene's step() moves it).
   void step();
-  bool sharesScene() const;
   double time() const;  // s of steps the robot took since construction or reset()
   double timeStep() const;
   // Back to the initial state: joints at 0 at rest, base at its initial pose at

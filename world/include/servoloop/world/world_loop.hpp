@@ -88,7 +88,6 @@ class WorldLoop {
   void start();
   // Every member leaves (leaveWorld) and the thread ends. Idempotent.
   void stop();
-  bool running() const;
 
   // Adds a member (it must stay alive until removed or the loop stopped).
   // Once the loop runs, returns after the member's enterWorld() has run on
@@ -107,7 +106,6 @@ class WorldLoop {
 
   // Physics steps of the world so far (any thread).
   std::uint64_t steps() const noexcept { return steps_.load(std::memory_order_acquire); }
-  const hardware_interface::SimulatedWorld& world() const noexcept { return world_; }
 
  private:
   void run();
