@@ -97,6 +97,13 @@ void SimulationLoop::syncHardwareStep() noexcept {
   hardware_step_known_ = step_grid_.stepsAt(hw_.simTime().seconds, &hardware_step_);
 }
 
+void SimulationLoop::rewind() noexcept {
+  steps_taken_.store(0, std::memory_order_release);
+  last_update_step_ = 0;
+  updated_before_ = false;
+  syncHardwareStep();
+}
+
 ReturnType SimulationLoop::runCycle(bool* control_updated) noexcept {
   const std::uint64_t step = steps_taken_.load(std::memory_order_relaxed);
   // The hardware's steps × dt, on the decimal step grid so stamps read

@@ -100,6 +100,58 @@ void Node::createWorld() {
     options.on_thread_start = [realtime = launch_.realtime] { applyRealtimeSettings(realtime, "the world loop"); };
   }
   world_loop_ = std::make_unique<world::WorldLoop>(*world_, std::move(options));
+  if (options_.start_paused) world_loop_->pause();
+}
+
+world::WorldLoop& Node::requireWorldLoop(const char* what) const {
+  if (!world_loop_) {
+    throw Error(fmt::format("{}: this world runs on the wall clock (world.clock: wall): its robots keep their own time, "
+                            "so it cannot be paused, stepped or reset",
+                            what));
+  }
+  return *world_loop_;
+}
+
+void Node::pauseWorld() { requireWorldLoop("pause").pause(); }
+
+void Node::unpauseWorld() { requireWorldLoop("unpause").unpause(); }
+
+std::uint64_t Node::stepWorld(std::uint64_t cycles) {
+  world::WorldLoop& loop = requireWorldLoop("step");
+  if (!started_) throw Error("step: the world has not started yet");
+  return loop.stepPaused(cycles);
+}
+
+std::string Node::resetWorld(const std::vector<std::string>& changed_parameters) {
+  world::WorldLoop& loop = requireWorldLoop("reset");
+  for (RobotInstance* robot : robots()) {
+    if (robot->wallClock()) {
+      throw Error(fmt::format("reset: robot '{}' runs on hardware (or the wall clock); hardware cannot be reset, "
+                              "so the world is left as it is",
+                              robot->robotNamespace()));
+    }
+  }
+  std::string failures;
+  std::lock_guard lock(robots_mutex_);  // no robot joins or leaves meanwhile
+  loop.whilePaused([&] {
+    for (const auto& robot : robots_) {
+      const std::string failed = robot->resetToStart(changed_parameters);
+      if (!failed.empty()) failures += (failures.empty() ? "" : "; ") + robot->robotNamespace() + ": " + failed;
+    }
+    world_->restart();
+    loop.rewindSteps();
+  });
+  return failures;
+}
+
+WorldState Node::worldState() const {
+  WorldState state;
+  state.sim_time_s = simTime();
+  if (world_loop_) {
+    state.paused = world_loop_->paused();
+    state.steps = world_loop_->steps();
+  }
+  return state;
 }
 
 void Node::changeWorld(const std::function<void()>& change) {
@@ -145,6 +197,7 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
       parameters_.loadFile(parameters.file.string(), parameters.ns);
     }
   }
+  for (const auto& [name, value] : options_.parameter_overrides) parameters_.setNode(name, value);
   RobotWorld world;
   world.plugins = plugins_;
   world.parameters = &parameters_;
@@ -225,7 +278,11 @@ void Node::start() {
   // (their launch controllers start) before the world's first physics step;
   // robots on the wall clock start their own threads.
   for (const auto& robot : robots_) robot->start(options_.duration_s);
-  if (world_loop_) world_loop_->start();
+  if (world_loop_) {
+    // A new world steps as a reset one does (SimulatedWorld::restart).
+    world_->restart();
+    world_loop_->start();
+  }
   if (options_.serve_ipc) {
     for (const auto& robot : robots_) startServer(robot->robotNamespace(), robot.get());
   }

@@ -33,6 +33,8 @@ using nlohmann::json;
 // A switch whose request says "timeout: 0" (wait forever) waits this long at
 // most, so a node shutting down never waits on a loop that has stopped.
 constexpr double kMaxSwitchWait_s = 10.0;
+// One `world.step` runs at most this many physics steps (over 11 days at 1 ms).
+constexpr std::uint64_t kMaxWorldSteps = 1'000'000'000;
 
 std::string requireString(const json& request, const char* field) {
   const auto it = request.find(field);
@@ -149,6 +151,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     node_.requestShutdown();
     return nullptr;
   }
+  if (op.starts_with("world.")) return worldOp(op, request, connection);
   if (op == "model.spawn") {
     return deferToWorker(request, connection, [this, request] { return modelSpawn(request); });
   }
@@ -233,7 +236,47 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
               "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries,"
               "safety,estop,recover,stats}, "
               "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, "
-              "action.{list,send,status,cancel}, model.spawn, world.shutdown");
+              "action.{list,send,status,cancel}, model.spawn, world.{state,pause,unpause,step,reset,shutdown}");
+}
+
+json NodeOperations::worldState() {
+  const WorldState state = node_.worldState();
+  return {{"paused", state.paused}, {"steps", state.steps}, {"sim_time", state.sim_time_s}};
+}
+
+json NodeOperations::worldOp(const std::string& op, const json& request, ipc::IpcConnection& connection) {
+  if (op == "world.state") return worldState();
+  if (op == "world.pause") {
+    node_.pauseWorld();
+    return worldState();
+  }
+  if (op == "world.unpause") {
+    node_.unpauseWorld();
+    return worldState();
+  }
+  if (op == "world.step") {
+    std::uint64_t steps = 1;
+    if (const auto given = request.find("steps"); given != request.end()) {
+      if (!given->is_number_unsigned() || given->get<std::uint64_t>() < 1 || given->get<std::uint64_t>() > kMaxWorldSteps) {
+        throw Error(fmt::format("'world.step': steps {} must be a whole number from 1 to {}", given->dump(),
+                                kMaxWorldSteps));
+      }
+      steps = given->get<std::uint64_t>();
+    }
+    return deferToWorker(request, connection, [this, steps] {
+      json reply = worldState();
+      reply["stepped"] = node_.stepWorld(steps);
+      return reply;
+    });
+  }
+  if (op == "world.reset") {
+    return deferToWorker(request, connection, [this] {
+      const std::string failures = node_.resetWorld();
+      if (!failures.empty()) throw Error("the world was reset, but " + failures);
+      return worldState();
+    });
+  }
+  throw Error("unknown op '" + op + "'; the world serves world.{state,pause,unpause,step,reset,shutdown}");
 }
 
 json NodeOperations::ping() {

@@ -379,11 +379,18 @@ std::string RobotInstance::whereParametersAre(const std::string& name, const par
 // different divisors start in separate STRICT switches, largest divisor
 // first; one that cannot start is reported and the others run.
 void RobotInstance::startLaunchControllers() {
-  if (launch_controllers_.empty()) return;
+  startControllersAtStart(launch_controllers_, [this](const std::vector<std::string>& controllers, const std::string& why) {
+    reportLaunchStartFailure(controllers, why);
+  });
+}
+
+// Controllers with a slower rate start first, so that each one's first
+// update comes at t = 0: at -k control periods for a divisor of k.
+void RobotInstance::startControllersAtStart(const std::vector<std::string>& names, const StartFailure& failed) {
+  if (names.empty()) return;
   std::map<std::uint32_t, std::vector<std::string>, std::greater<>> by_divisor;
   for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) {
-    if (std::find(launch_controllers_.begin(), launch_controllers_.end(), controller.name) !=
-        launch_controllers_.end()) {
+    if (std::find(names.begin(), names.end(), controller.name) != names.end()) {
       by_divisor[std::max<std::uint32_t>(controller.update_divisor, 1)].push_back(controller.name);
     }
   }
@@ -403,11 +410,11 @@ void RobotInstance::startLaunchControllers() {
       // update; ours follows in the next one.
       if (manager_->switchPending()) manager_->update(time, period);
       if (const controller_manager::ServiceResult result = manager_->requestSwitch(request); !result) {
-        reportLaunchStartFailure(group->second, result.message);
+        failed(group->second, result.message);
       } else {
         manager_->update(time, period);
         if (const controller_manager::ServiceResult done = manager_->finishSwitch(); !done) {
-          reportLaunchStartFailure(group->second, done.message);
+          failed(group->second, done.message);
         }
         continue;
       }

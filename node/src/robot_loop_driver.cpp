@@ -233,5 +233,61 @@ std::uint64_t RobotInstance::betweenSegments() {
 
 void RobotInstance::leaveWorld() { finishRun(); }
 
+std::string RobotInstance::resetToStart(const std::vector<std::string>& changed_parameters) {
+  if (sim_loop_ == nullptr || sim_hw_ == nullptr) {
+    throw Error(fmt::format("robot '{}' runs on {} (the wall clock); hardware cannot be reset, only a simulated world",
+                            namespace_, sim_hw_ == nullptr ? "hardware" : "its own thread"));
+  }
+  if (manager_->switchPending()) {
+    throw Error(fmt::format("robot '{}': a controller switch waits for the next cycle; reset once it is done", namespace_));
+  }
+  // What was published before the reset is delivered now, to the state it had.
+  bus_->flush();
+  std::vector<std::string> running;
+  for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) {
+    if (controller.state == controller_manager::ControllerState::running) running.push_back(controller.name);
+  }
+  const Duration period = loop_->controlPeriod();
+  if (!running.empty()) {
+    controller_manager::SwitchRequest request;
+    request.stop_controllers = running;
+    request.strictness = controller_manager::SwitchStrictness::BEST_EFFORT;
+    // No cycle runs while the world stands: this thread is the real-time
+    // side, and one update carries the stop out (nothing is left to update).
+    if (manager_->requestSwitch(request)) {
+      manager_->update(Time(simTime()), period);
+      (void)manager_->finishSwitch();
+    }
+  }
+  std::string failures;
+  // Controllers whose parameters changed read them again: loaded anew.
+  for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) {
+    const std::string prefix = (namespace_ == "/" ? "" : namespace_) + "/" + controller.name;
+    const bool changed = std::any_of(changed_parameters.begin(), changed_parameters.end(), [&](const std::string& name) {
+      return name == prefix || (name.size() > prefix.size() && name.starts_with(prefix) && name[prefix.size()] == '/');
+    });
+    if (!changed) continue;
+    controller_manager::ServiceResult reloaded = manager_->unloadController(controller.name);
+    if (reloaded) reloaded = loadController(controller.name);
+    if (!reloaded) {
+      failures += (failures.empty() ? "" : "; ") +
+                  fmt::format("controller '{}' did not load again with its new parameters: {}", controller.name,
+                              reloaded.message);
+    }
+  }
+  sim_hw_->reset();
+  sim_loop_->rewind();
+  if (ground_truth_) ground_truth_->restart();
+  bus_->setTime(Time(0.0));
+  next_publication_ = 0;
+  startControllersAtStart(running, [&](const std::vector<std::string>& controllers, const std::string& why) {
+    std::string names;
+    for (const std::string& name : controllers) names += (names.empty() ? "'" : ", '") + name + "'";
+    failures += (failures.empty() ? "" : "; ") + fmt::format("controller(s) {} did not start again: {}", names, why);
+  });
+  if (!failures.empty()) logger().error("robot '{}': reset: {}", namespace_, failures);
+  return failures;
+}
+
 
 }  // namespace servoloop::node

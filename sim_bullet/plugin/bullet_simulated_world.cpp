@@ -20,4 +20,8 @@ ReturnType BulletSimulatedWorld::step() noexcept {
   return ReturnType::ok;
 }
 
+void BulletSimulatedWorld::restart() {
+  if (scene_) scene_->restart();
+}
+
 }  // namespace servoloop::sim_bullet

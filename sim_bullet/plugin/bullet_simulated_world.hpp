@@ -14,6 +14,7 @@ class BulletSimulatedWorld final : public hardware_interface::SimulatedWorld {
   const hardware_interface::SimulatedWorldSettings& settings() const noexcept override { return settings_; }
   bool robotsTouch() const noexcept override { return true; }
   ReturnType step() noexcept override;
+  void restart() override;
 
   // The scene robots build into; null before init().
   BulletScene* scene() noexcept { return scene_.get(); }

@@ -101,6 +101,39 @@ void SceneCore::reserveForMember(int bodies, int degrees_of_freedom) {
   solver->reserveRows(reserved_bodies * kRowsPerBody, 2 * (6 + largest_dofs), total_dofs);
 }
 
+void SceneCore::rebuildBroadphase() {
+  btCollisionObjectArray& objects = world->getCollisionObjectArray();
+  struct Filter {
+    int group;
+    int mask;
+  };
+  std::vector<Filter> filters;
+  filters.reserve(static_cast<std::size_t>(objects.size()));
+  // Each proxy out of the old broadphase, its pairs (and their contact
+  // manifolds) released through the dispatcher.
+  for (int i = 0; i < objects.size(); ++i) {
+    btCollisionObject& object = *objects[i];
+    btBroadphaseProxy* proxy = object.getBroadphaseHandle();
+    filters.push_back({proxy->m_collisionFilterGroup, proxy->m_collisionFilterMask});
+    broadphase->getOverlappingPairCache()->cleanProxyFromPairs(proxy, dispatcher.get());
+    broadphase->destroyProxy(proxy, dispatcher.get());
+    object.setBroadphaseHandle(nullptr);
+  }
+  auto fresh = std::make_unique<btDbvtBroadphase>();
+  world->setBroadphase(fresh.get());
+  broadphase = std::move(fresh);
+  for (int i = 0; i < objects.size(); ++i) {
+    btCollisionObject& object = *objects[i];
+    btVector3 aabb_min;
+    btVector3 aabb_max;
+    object.getCollisionShape()->getAabb(object.getWorldTransform(), aabb_min, aabb_max);
+    const Filter filter = filters[static_cast<std::size_t>(i)];
+    object.setBroadphaseHandle(broadphase->createProxy(aabb_min, aabb_max,
+                                                       object.getCollisionShape()->getShapeType(), &object,
+                                                       filter.group, filter.mask, dispatcher.get()));
+  }
+}
+
 SceneCore::~SceneCore() {
   if (ground) world->removeCollisionObject(ground.get());
 }
@@ -118,6 +151,13 @@ void BulletScene::step() {
   scene.world->stepSimulation(scene.settings.time_step_s, 0, scene.settings.time_step_s);
   for (detail::SceneMember* member : scene.members) member->afterSceneStep();
   ++scene.steps;
+}
+
+void BulletScene::restart() {
+  detail::SceneCore& scene = *core_;
+  scene.rebuildBroadphase();
+  scene.solver->reset();  // its random seed (unused by the default solver order) back to the start
+  scene.steps = 0;
 }
 
 double BulletScene::time() const { return static_cast<double>(core_->steps) * core_->settings.time_step_s; }

@@ -70,6 +70,10 @@ struct SceneCore {
   std::unordered_map<const btCollisionObject*, ColliderOwner> collider_owners;
   std::uint64_t steps = 0;
 
+  // Non-real-time: a new broadphase holding every collision object, in the
+  // world's order, with its filter, and no contact manifold (BulletScene::restart).
+  void rebuildBroadphase();
+
   // Non-real-time, for each member joining: room in the solver for the
   // contacts and joint rows the scene may meet (SceneSolver).
   void reserveForMember(int bodies, int degrees_of_freedom);

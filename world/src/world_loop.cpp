@@ -120,6 +120,43 @@ void WorldLoop::whilePaused(const std::function<void()>& change) {
   resume();
 }
 
+void WorldLoop::pause() {
+  std::unique_lock lock(mutex_);
+  if (physics_paused_) return;
+  physics_paused_ = true;
+  step_budget_ = 0;
+  standing_ = false;
+  if (!started_ || thread_exited_) return;
+  interrupt_.store(true, std::memory_order_release);
+  wake_.notify_all();
+  wake_.wait(lock, [&] { return standing_ || stop_requested_ || thread_exited_; });
+}
+
+void WorldLoop::unpause() {
+  {
+    std::lock_guard lock(mutex_);
+    physics_paused_ = false;
+    step_budget_ = 0;
+  }
+  wake_.notify_all();
+}
+
+bool WorldLoop::paused() const {
+  std::lock_guard lock(mutex_);
+  return physics_paused_;
+}
+
+std::uint64_t WorldLoop::stepPaused(std::uint64_t cycles) {
+  std::unique_lock lock(mutex_);
+  if (!physics_paused_) throw Error("the world is running; pause it first to step it");
+  if (!started_ || thread_exited_ || stop_requested_) throw Error("the world is not running; nothing can step it");
+  const std::uint64_t before = steps_.load(std::memory_order_acquire);
+  step_budget_ = cycles;
+  wake_.notify_all();
+  wake_.wait(lock, [&] { return step_budget_ == 0 || !physics_paused_ || stop_requested_ || thread_exited_; });
+  return steps_.load(std::memory_order_acquire) - before;
+}
+
 void WorldLoop::wake() {
   {
     std::lock_guard lock(mutex_);
@@ -130,7 +167,8 @@ void WorldLoop::wake() {
 }
 
 bool WorldLoop::requestsWaiting() const {
-  return !joining_.empty() || !leaving_.empty() || pause_requested_ || stop_requested_ || woken_;
+  return !joining_.empty() || !leaving_.empty() || pause_requested_ || stop_requested_ || woken_ ||
+         (standing_ && (!physics_paused_ || step_budget_ > 0));
 }
 
 void WorldLoop::serveRequests(std::unique_lock<std::mutex>& lock) {
@@ -189,9 +227,17 @@ void WorldLoop::run() {
     woken_ = false;
     serveRequests(lock);
     if (stop_requested_) break;
+    // Paused with no step asked for: the members do their work between
+    // segments, and no cycle runs.
+    const bool hold = physics_paused_ && step_budget_ == 0;
+    const std::uint64_t budget = physics_paused_ ? step_budget_ : std::numeric_limits<std::uint64_t>::max();
+    if (hold != standing_) {
+      standing_ = hold;
+      wake_.notify_all();
+    }
     lock.unlock();
 
-    std::uint64_t segment = std::numeric_limits<std::uint64_t>::max();
+    std::uint64_t segment = budget;
     active_.clear();
     for (WorldMember* member : members_) {
       const std::uint64_t cycles = member->betweenSegments();
@@ -199,17 +245,29 @@ void WorldLoop::run() {
       active_.push_back(member);
       segment = std::min(segment, cycles);
     }
-    if (active_.empty()) {
+    if (active_.empty() || hold) {
       lock.lock();
+      if (active_.empty() && step_budget_ > 0) {
+        step_budget_ = 0;  // nobody cycles: the steps asked for cannot be run
+        wake_.notify_all();
+      }
+      if (!standing_ && physics_paused_) {
+        standing_ = true;
+        wake_.notify_all();
+      }
       wake_.wait_for(lock, kIdlePoll, [&] { return requestsWaiting(); });
       continue;
     }
     for (WorldMember* member : active_) member->simulationLoop().beginExternalRun();
     if (options_.before_segment) options_.before_segment();
-    runSegment(segment);
+    const std::uint64_t ran = runSegment(segment);
     if (options_.after_segment) options_.after_segment();
     for (WorldMember* member : active_) member->simulationLoop().endExternalRun();
     lock.lock();
+    if (physics_paused_ && step_budget_ > 0) {
+      step_budget_ -= std::min(ran, step_budget_);
+      if (step_budget_ == 0) wake_.notify_all();
+    }
   }
   // Stopping: every member leaves, in the order they came.
   lock.unlock();
@@ -220,15 +278,17 @@ void WorldLoop::run() {
   joining_.clear();
   leaving_.clear();
   thread_exited_ = true;
+  standing_ = false;
   wake_.notify_all();
 }
 
-void WorldLoop::runSegment(std::uint64_t cycles) {
+std::uint64_t WorldLoop::runSegment(std::uint64_t cycles) {
   const bool paced = wall_per_step_ns_ > 0.0;
   const auto max_lag_ns = static_cast<std::int64_t>(wall_per_step_ns_ * options_.max_catch_up_steps);
   std::int64_t anchor_ns = paced ? loop_clock::nowNs() : 0;
   std::uint64_t anchor_cycle = 0;
-  for (std::uint64_t n = 0; n < cycles; ++n) {
+  std::uint64_t n = 0;
+  for (; n < cycles; ++n) {
     if (interrupt_.load(std::memory_order_acquire)) break;
     for (WorldMember* member : active_) {
       controller_manager::SimulationLoop& loop = member->simulationLoop();
@@ -253,6 +313,7 @@ void WorldLoop::runSegment(std::uint64_t cycles) {
       anchor_cycle = n + 1;
     }
   }
+  return n;
 }
 
 }  // namespace servoloop::world

@@ -86,10 +86,15 @@ class SimulationLoop final : public ControlLoop {
   ReturnType externalCycle() noexcept;
   void endExternalRun() noexcept;
 
+  // Non-real-time, outside any run or cycle, after the hardware's reset():
+  // the loop starts over as a new one would: its step count back to 0 and
+  // its next cycle updating the controllers. Statistics are kept.
+  void rewind() noexcept;
+
   Duration physicsStep() const noexcept { return physics_step_; }
   // k: the manager is updated every k-th physics step.
   std::uint64_t stepsPerControlUpdate() const noexcept { return steps_per_update_; }
-  // Physics steps this loop has taken since it was built.
+  // Physics steps this loop has taken since it was built (or rewound).
   std::uint64_t stepsTaken() const noexcept { return steps_taken_.load(std::memory_order_acquire); }
 
  private:

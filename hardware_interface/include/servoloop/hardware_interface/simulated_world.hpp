@@ -45,6 +45,15 @@ class SimulatedWorld {
   // Real-time. One physics step of everything the robots share, after every
   // robot's cycle of this step (their commands handed over by their step()).
   virtual ReturnType step() noexcept = 0;
+
+  // Non-real-time, never during step(): after every robot of the world was
+  // reset (SimulatedRobotHW::reset), the world forgets what it carried from
+  // step to step (contact caches, its broadphase) and its own time restarts,
+  // so that the steps that follow are those of a world just built with its
+  // bodies where they are now. The node calls it before the world's first
+  // step too, so that a reset world and a new one step alike. Nothing by
+  // default (a world that carries nothing between steps).
+  virtual void restart() {}
 };
 
 // Robots simulated apart, each advancing its own physics in its step(): the

@@ -29,6 +29,8 @@ class GroundTruthPublisher final : public controller_manager::LoopCycleHook {
   // Real-time: publishes when 1/rate of control time has passed since the
   // last message (and at the first update). No allocation, lock or throw.
   void afterUpdate(const Time& time, const Duration& period) noexcept override;
+  // Non-real-time, no cycle running: time starts again (the next update publishes).
+  void restart() noexcept { next_time_s_ = -1e300; }
 
  private:
   const hardware_interface::SimulatedRobotHW& hardware_;

@@ -32,7 +32,10 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <yaml-cpp/yaml.h>
 
 #include "servoloop/ipc/ipc_server.hpp"
 #include "servoloop/node/launch_file.hpp"
@@ -62,6 +65,20 @@ struct NodeOptions {
   bool serve_ipc = true;
   // Searched before SERVOLOOP_PLUGIN_PATH and the default plugin folder.
   std::vector<std::filesystem::path> plugin_directories;
+  // The world starts paused (its robots' launch controllers start; no
+  // physics step until unpauseWorld() or stepWorld()).
+  bool start_paused = false;
+  // Parameters set after each robot's parameter files are loaded and before
+  // its controllers load (full names, e.g.
+  // /one_DOF_robot/joint1_position_controller/pid/p): a run's own values.
+  std::vector<std::pair<std::string, YAML::Node>> parameter_overrides;
+};
+
+// Where the world stands (world.state).
+struct WorldState {
+  bool paused = false;
+  std::uint64_t steps = 0;  // physics steps since the start or the last reset
+  double sim_time_s = 0.0;  // the longest simulated time of any robot, s
 };
 
 class Node {
@@ -107,6 +124,25 @@ class Node {
   // a robot with that namespace exists.
   std::string spawnRobot(const RobotSpec& spec);
 
+  // World control, as Gazebo's pause_physics, unpause_physics, the step
+  // button and reset_simulation (docs/simulation.md). They act on the
+  // simulated world's loop; a node with no such loop (world.clock: wall)
+  // refuses them with servoloop::Error, as resetWorld() does for a world
+  // with a robot on hardware.
+  void pauseWorld();
+  void unpauseWorld();
+  // While paused: `cycles` physics steps (and the control cycles on them);
+  // returns the steps run (fewer when no robot cycles).
+  std::uint64_t stepWorld(std::uint64_t cycles);
+  // Every robot and object back at its start, atomically between two cycles
+  // (RobotInstance::resetToStart), then the world restarted (its time 0,
+  // SimulatedWorld::restart); a paused world stays paused. Returns what did
+  // not come back (controllers that did not start again), empty when all did.
+  // A controller with a parameter under one of `changed_parameters` (full
+  // names) is reloaded on the way, so that it reads the new values.
+  std::string resetWorld(const std::vector<std::string>& changed_parameters = {});
+  WorldState worldState() const;
+
   // The robot of a namespace, or nullptr. Robots live until the node is destroyed.
   RobotInstance* findRobot(const std::string& robot_namespace);
   std::vector<std::string> robotNamespaces() const;
@@ -127,6 +163,7 @@ class Node {
   // Runs `change` (adding a robot to the world, or taking one out) between
   // two cycles of the world loop when the robots touch, at once otherwise.
   void changeWorld(const std::function<void()>& change);
+  world::WorldLoop& requireWorldLoop(const char* what) const;
   void startRobotLocked(RobotInstance& robot);
   void startServer(const std::string& socket_namespace, RobotInstance* robot);
   RobotInstance* robotForTopic(const std::string& topic);

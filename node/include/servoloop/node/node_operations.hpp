@@ -47,6 +47,8 @@ class NodeOperations {
   using Job = std::function<void()>;
 
   RobotInstance& robotFor(const std::string& op);
+  nlohmann::json worldOp(const std::string& op, const nlohmann::json& request, ipc::IpcConnection& connection);
+  nlohmann::json worldState();
   nlohmann::json deferToWorker(const nlohmann::json& request, ipc::IpcConnection& connection,
                                std::function<nlohmann::json()> work);
   void workerLoop();

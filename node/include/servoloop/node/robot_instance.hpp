@@ -182,6 +182,22 @@ class RobotInstance final : public world::WorldMember {
   // <ns>/diagnostics when a second of wall time has passed since the last.
   void publishDiagnosticsIfDue();
 
+  // Non-real-time, only while the world stands between two segments
+  // (WorldLoop::whilePaused): the robot goes back to the start of its run,
+  // as Gazebo's reset_simulation does, and as a fresh launch would start it:
+  // its running controllers are stopped (stopping()), its simulated
+  // hardware reset (joints at their initial positions and at rest, the base
+  // at its spawn pose, commands zero, time 0), its loop rewound, then the
+  // same controllers started again as at launch (starting(), so their state
+  // resets), and the launch file's timed publications are published again
+  // at their times. The world's own reset (SimulatedWorld::restart) follows
+  // the reset of its every robot. Returns why a controller did not start
+  // again (empty when all did). A controller with a parameter under one of
+  // `changed_parameters` (full names) is unloaded and loaded again while
+  // stopped, so that it starts with the new values. Throws servoloop::Error
+  // for a robot on hardware or on the wall clock (hardware cannot be reset).
+  std::string resetToStart(const std::vector<std::string>& changed_parameters = {});
+
   // What the launch asked for and did not happen: controllers that did not
   // load, switches that did not start them. Read after stop().
   const std::vector<std::string>& launchFailures() const { return launch_failures_; }
@@ -209,6 +225,8 @@ class RobotInstance final : public world::WorldMember {
   void loadControllers(const RobotSpec& spec, const params::ParameterStore& store);
   std::string whereParametersAre(const std::string& name, const params::ParameterStore& store) const;
   void startLaunchControllers();
+  using StartFailure = std::function<void(const std::vector<std::string>& controllers, const std::string& why)>;
+  void startControllersAtStart(const std::vector<std::string>& names, const StartFailure& failed);
   void reportLaunchStartFailure(const std::vector<std::string>& controllers, const std::string& why);
   bool waitForRecovery();
   // Why the safety state forbids this switch now (empty: it is allowed): no

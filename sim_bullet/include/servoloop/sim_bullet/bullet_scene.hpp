@@ -50,7 +50,15 @@ class BulletScene {
   // member's applied efforts read back.
   void step();
 
-  double time() const;  // s since construction or reset()
+  // Non-real-time, not during step(), with every member back at its start
+  // pose (BulletWorld::reset): the scene forgets what it carried from step to
+  // step (contact points and their warm-start impulses, the broadphase's
+  // pairs and tree) and its time is 0, so that the steps that follow are
+  // those of a scene just built with its bodies where they are now: the same
+  // inputs give bit-identical results.
+  void restart();
+
+  double time() const;  // s since construction or restart()
   double timeStep() const;
   const SceneSettings& settings() const;
   std::size_t numMembers() const;

@@ -20,6 +20,12 @@
 // says so again; the others run on, and the world's physics goes on with
 // them (its bodies keep their last commands' motors and get no efforts).
 //
+// Pause (Gazebo's pause_physics): no cycle runs and simulated time stands,
+// while the members still do their between-segment work (topics delivered,
+// requests served); stepPaused() then runs a given number of cycles. A
+// reset happens inside whilePaused (the node's resetWorld), which may also
+// set the step count back to 0 (rewindSteps).
+//
 // Pacing: free-running (real-time factor 0) runs cycles back to back; paced,
 // the cycle ending simulated time t ends no earlier than the segment's start
 // + (t - t_segment) / real_time_factor in wall time, with the catch-up rule
@@ -104,12 +110,30 @@ class WorldLoop {
   // runs soon (e.g. after a request it serves there).
   void wake();
 
+  // Pauses the world: no cycle runs until unpause() (or stepPaused());
+  // returns once the segment in progress has ended, so the world's time
+  // stands. Before start(), the world starts paused (its members still
+  // enter). Idempotent.
+  void pause();
+  // Lets the world run again (any steps still asked for are dropped).
+  void unpause();
+  bool paused() const;
+  // While paused: runs `cycles` more cycles (each active member's, then one
+  // physics step) and returns how many ran once they have: fewer when no
+  // member cycles (all finished or in a fault) or the loop stops. Throws
+  // servoloop::Error when the world is not paused or not running.
+  std::uint64_t stepPaused(std::uint64_t cycles);
+
   // Physics steps of the world so far (any thread).
   std::uint64_t steps() const noexcept { return steps_.load(std::memory_order_acquire); }
+  // Only inside whilePaused's change (or before start()): the step count
+  // starts again from 0 (a reset world).
+  void rewindSteps() noexcept { steps_.store(0, std::memory_order_release); }
 
  private:
   void run();
-  void runSegment(std::uint64_t cycles);
+  // Returns how many cycles it ran (fewer when interrupted).
+  std::uint64_t runSegment(std::uint64_t cycles);
   // Under mutex_: joins and leaves waiting, a pause, a stop.
   bool requestsWaiting() const;
   void serveRequests(std::unique_lock<std::mutex>& lock);
@@ -131,6 +155,9 @@ class WorldLoop {
   bool started_ = false;
   bool thread_exited_ = false;  // run() has returned: nothing steps the world
   bool woken_ = false;
+  bool physics_paused_ = false;   // pause() .. unpause()
+  std::uint64_t step_budget_ = 0;  // cycles stepPaused() still asks for
+  bool standing_ = false;         // the thread holds the paused world (no segment runs)
   WorldMember* entering_ = nullptr;  // whose enterWorld() runs now
 
   // The world's thread only.

@@ -1,0 +1,137 @@
+// The `servoloop._servoloop` extension module: World (python_world.hpp) for
+// Python, values crossing as JSON (numbers, strings, lists, dicts) and joint
+// states as numpy arrays. The GIL is released while a World steps or resets,
+// so Worlds in several Python threads run in parallel.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "python_world.hpp"
+#include "servoloop/core/errors.hpp"
+
+namespace py = pybind11;
+
+namespace servoloop::python {
+namespace {
+
+// Python value -> JSON through Python's own json module (exact for floats).
+nlohmann::json toJson(const py::handle& value) {
+  const py::object dumps = py::module_::import("json").attr("dumps");
+  return nlohmann::json::parse(dumps(value, py::arg("allow_nan") = false).cast<std::string>());
+}
+
+py::object fromJson(const nlohmann::json& value) {
+  const py::object loads = py::module_::import("json").attr("loads");
+  return loads(value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+}
+
+py::array_t<double> array(const std::vector<double>& values) {
+  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+}  // namespace
+}  // namespace servoloop::python
+
+PYBIND11_MODULE(_servoloop, module) {
+  using servoloop::python::World;
+  using servoloop::python::WorldOptions;
+  module.doc() = "servoloop: ros_control-style robot control, simulated in-process";
+
+  // servoloop.Error (a RuntimeError) and servoloop.ConfigError (an Error),
+  // with the command line's messages.
+  static py::exception<servoloop::Error> error(module, "Error", PyExc_RuntimeError);
+  static py::exception<servoloop::ConfigError> config_error(module, "ConfigError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const servoloop::ConfigError& e) {
+      config_error(e.what());
+    } catch (const servoloop::Error& e) {
+      error(e.what());
+    }
+  });
+
+  py::class_<World>(module, "World", R"(A world of robots from a launch file, run in this process.
+
+It starts paused at time 0 with the launch file's controllers running; step()
+and step_cycles() advance it, reset() brings it back to its start.)")
+      .def(py::init([](const std::string& launch_file, std::optional<std::string> backend, py::object params,
+                       const std::string& log_level) {
+             WorldOptions options;
+             options.backend = std::move(backend);
+             options.log_level = log_level;
+             if (!params.is_none()) {
+               for (const auto& [name, value] : params.cast<py::dict>()) {
+                 options.params[py::str(name).cast<std::string>()] =
+                     servoloop::python::toJson(value).dump();
+               }
+             }
+             py::gil_scoped_release release;
+             return std::make_unique<World>(launch_file, options);
+           }),
+           py::arg("launch_file"), py::arg("backend") = py::none(), py::arg("params") = py::none(),
+           py::arg("log_level") = "warn",
+           "launch_file: a servoloop launch file (.launch.yaml or ROS .launch); backend: bullet, mujoco or mock "
+           "instead of the file's; params: {full parameter name: value} set after the launch file's parameter "
+           "files, before the controllers load; log_level: the node's log level (trace .. off)")
+      .def("reset", &World::reset, py::call_guard<py::gil_scoped_release>(),
+           "Every robot and object back at its start, controllers restarted (reloaded when set_param changed "
+           "theirs), time 0")
+      .def("step", &World::step, py::arg("seconds"), py::call_guard<py::gil_scoped_release>(),
+           "Run `seconds` of simulated time (whole physics steps); returns the steps run")
+      .def("step_cycles", &World::stepCycles, py::arg("n"), py::call_guard<py::gil_scoped_release>(),
+           "Run n physics steps (with the control cycles on them); returns the steps run")
+      .def_property_readonly("time", &World::time, "Simulated time, s")
+      .def_property_readonly("time_step", &World::timeStep, "One physics step, s")
+      .def_property_readonly("namespaces", &World::namespaces, "The robots' namespaces")
+      .def(
+          "publish",
+          [](World& world, const std::string& topic, const py::object& value, const std::string& type) {
+            world.publish(topic, servoloop::python::toJson(value), type);
+          },
+          py::arg("topic"), py::arg("value"), py::arg("type") = "",
+          "Publish on a robot's topic: a number (std_msgs/Float64), a list (Float64MultiArray) or a dict of the "
+          "message's fields; type as `servoloop topic pub` takes it, default the topic's own")
+      .def(
+          "subscribe",
+          [](World& world, const std::string& topic) { return servoloop::python::fromJson(world.subscribe(topic)); },
+          py::arg("topic"),
+          "The messages on `topic` since the last call, as dicts {stamp, type, msg}; the first call subscribes")
+      .def(
+          "joint_state",
+          [](const World& world, const std::string& ns) {
+            const servoloop::python::JointStates states = world.jointState(ns);
+            py::dict result;
+            result["name"] = states.name;
+            result["position"] = servoloop::python::array(states.position);
+            result["velocity"] = servoloop::python::array(states.velocity);
+            result["effort"] = servoloop::python::array(states.effort);
+            return result;
+          },
+          py::arg("ns") = "",
+          "A robot's joints: {name, position, velocity, effort} (numpy arrays); ns may be left out when the "
+          "world has one robot")
+      .def(
+          "model_state",
+          [](const World& world, const std::string& name) {
+            return servoloop::python::fromJson(world.modelState(name));
+          },
+          py::arg("name"), "A model's pose and twist in the world frame (Gazebo's get_model_state)")
+      .def(
+          "set_param",
+          [](World& world, const std::string& name, const py::object& value) {
+            world.setParam(name, servoloop::python::toJson(value).dump());
+          },
+          py::arg("name"), py::arg("value"),
+          "Set a parameter; a controller's takes effect at the next reset (the controller is reloaded)")
+      .def(
+          "get_param",
+          [](const World& world, const std::string& name) { return servoloop::python::fromJson(world.getParam(name)); },
+          py::arg("name"), "A parameter's value, or a namespace's as a dict")
+      .def("close", &World::close, py::call_guard<py::gil_scoped_release>(), "Stop the world")
+      .def("__enter__", [](World& world) -> World& { return world; })
+      .def("__exit__", [](World& world, const py::args&) {
+        py::gil_scoped_release release;
+        world.close();
+      });
+}
