@@ -12,6 +12,7 @@ packages=(
   libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libmujoco-dev libpng-dev gnuplot-nox libassimp-dev
+  python3-dev pybind11-dev python3-numpy python3-yaml python3-distributed
   "$@"
 )
 

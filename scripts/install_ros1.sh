@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh \
   ros-core libroscpp-dev \
   libstd-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libtrajectory-msgs-dev \
-  libtf2-msgs-dev libros-rosgraph-msgs-dev libdiagnostic-msgs-dev \
+  libtf2-msgs-dev libros-rosgraph-msgs-dev libdiagnostic-msgs-dev libstd-srvs-dev python3-std-srvs \
   ros-std-msgs ros-geometry-msgs ros-trajectory-msgs python3-gencpp python3-genpy \
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-trajectory-msgs \
   python3-tf2-msgs python3-diagnostic-msgs python3-rosgraph-msgs \

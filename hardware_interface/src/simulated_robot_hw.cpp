@@ -12,4 +12,9 @@ void SimulatedRobotHW::joinWorld(SimulatedWorld& world) {
   }
 }
 
+void SimulatedRobotHW::setJointPositions(const std::vector<std::string>& /*joints*/,
+                                         const std::vector<double>& /*positions*/) {
+  throw Error("this simulator cannot move its joints directly (set_model_configuration)");
+}
+
 }  // namespace servoloop::hardware_interface

@@ -144,6 +144,37 @@ std::string Node::resetWorld(const std::vector<std::string>& changed_parameters)
   return failures;
 }
 
+RobotInstance* Node::findModel(const std::string& model) {
+  if (model.empty()) return nullptr;
+  const std::string ns = model.front() == '/' ? model : "/" + model;
+  std::lock_guard lock(robots_mutex_);
+  for (const auto& robot : robots_) {
+    if (robot->robotNamespace() == ns) return robot.get();
+  }
+  for (const auto& robot : robots_) {
+    if (robot->robotName() == model) return robot.get();
+  }
+  return nullptr;
+}
+
+void Node::setModelConfiguration(const std::string& model, const std::vector<std::string>& joints,
+                                 const std::vector<double>& positions) {
+  RobotInstance* robot = findModel(model);
+  if (robot == nullptr) {
+    std::string names;
+    for (const std::string& ns : robotNamespaces()) names += (names.empty() ? "" : ", ") + ns;
+    throw Error(fmt::format("set_model_configuration: no model '{}' in this world (it has: {})", model, names));
+  }
+  auto* simulated = dynamic_cast<hardware_interface::SimulatedRobotHW*>(&robot->hardware());
+  if (simulated == nullptr || robot->wallClock()) {
+    throw Error(fmt::format("set_model_configuration: robot '{}' runs on hardware (or the wall clock); its joints "
+                            "cannot be moved by the world",
+                            robot->robotNamespace()));
+  }
+  world::WorldLoop& loop = requireWorldLoop("set_model_configuration");
+  loop.whilePaused([&] { simulated->setJointPositions(joints, positions); });
+}
+
 WorldState Node::worldState() const {
   WorldState state;
   state.sim_time_s = simTime();

@@ -152,6 +152,20 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     return nullptr;
   }
   if (op.starts_with("world.")) return worldOp(op, request, connection);
+  if (op == "model.set_configuration") {
+    const std::string model = requireString(request, "model");
+    std::vector<double> positions;
+    const auto given = request.find("joint_positions");
+    if (given == request.end() || !given->is_array()) {
+      throw Error("'model.set_configuration' needs 'joint_positions': a list of numbers, one per joint name");
+    }
+    for (const json& position : *given) {
+      if (!position.is_number()) throw Error("'model.set_configuration': joint position " + position.dump() + " is not a number");
+      positions.push_back(position.get<double>());
+    }
+    node_.setModelConfiguration(model, stringList(request, "joint_names"), positions);
+    return nullptr;
+  }
   if (op == "model.spawn") {
     return deferToWorker(request, connection, [this, request] { return modelSpawn(request); });
   }
@@ -236,7 +250,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
               "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries,"
               "safety,estop,recover,stats}, "
               "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, "
-              "action.{list,send,status,cancel}, model.spawn, world.{state,pause,unpause,step,reset,shutdown}");
+              "action.{list,send,status,cancel}, model.{spawn,set_configuration}, world.{state,pause,unpause,step,reset,shutdown}");
 }
 
 json NodeOperations::worldState() {

@@ -97,6 +97,14 @@ double World::timeStep() const { return time_step_s_; }
 
 std::vector<std::string> World::namespaces() const { return node().robotNamespaces(); }
 
+std::map<std::string, std::string> World::topics() const {
+  std::map<std::string, std::string> topics;
+  for (node::RobotInstance* robot : node().robots()) {
+    for (const realtime::TopicInfo& topic : robot->topics().list()) topics[topic.name] = topic.type;
+  }
+  return topics;
+}
+
 void World::flushBuses() const {
   for (node::RobotInstance* robot : node().robots()) robot->topics().flush();
 }

@@ -55,6 +55,8 @@ class World {
   double time() const;
   double timeStep() const;
   std::vector<std::string> namespaces() const;
+  // Every robot's topics: {name: type} ("" while a topic has no type yet).
+  std::map<std::string, std::string> topics() const;
 
   // A message on a robot's topic (the robot whose namespace holds the topic),
   // delivered before the next step. `value` is JSON: a number (std_msgs/Float64),

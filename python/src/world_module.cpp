@@ -84,6 +84,7 @@ and step_cycles() advance it, reset() brings it back to its start.)")
       .def_property_readonly("time", &World::time, "Simulated time, s")
       .def_property_readonly("time_step", &World::timeStep, "One physics step, s")
       .def_property_readonly("namespaces", &World::namespaces, "The robots' namespaces")
+      .def_property_readonly("topics", &World::topics, "Every robot's topics: {name: message type}")
       .def(
           "publish",
           [](World& world, const std::string& topic, const py::object& value, const std::string& type) {

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/description/robot_model.hpp"
@@ -443,6 +445,27 @@ void SimRobotHW::reset() {
     for (std::size_t j = 0; j < applied_.size(); ++j) {
       estop_positions_[j] = transmissions_->joint(JointIndex(j)).position;
     }
+  }
+}
+
+void SimRobotHW::setJointPositions(const std::vector<std::string>& joints, const std::vector<double>& positions) {
+  if (!transmissions_) throw Error("SimRobotHW::setJointPositions: call init() first");
+  if (joints.size() != positions.size()) {
+    throw Error(fmt::format("{}: {} joint names but {} positions; give one position per joint", source_name_,
+                            joints.size(), positions.size()));
+  }
+  std::vector<std::size_t> indices;
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    indices.push_back(transmissions_->jointIndex(joints[k]).value());
+    if (!std::isfinite(positions[k])) {
+      throw Error(fmt::format("{}: position {} of joint '{}' is not a finite number", source_name_, positions[k],
+                              joints[k]));
+    }
+  }
+  for (std::size_t k = 0; k < joints.size(); ++k) engine_->setJointState(indices[k], positions[k], 0.0);
+  readEngineState();
+  if (estop_active_) {
+    for (const std::size_t j : indices) estop_positions_[j] = transmissions_->joint(JointIndex(j)).position;
   }
 }
 

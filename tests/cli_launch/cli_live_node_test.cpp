@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -147,6 +148,42 @@ TEST(CliLiveNode, ClientCommandsAgainstAWallClockNode) {
 // `spawn-model` into a running world shows what the node warned about while
 // spawning — here the hopper (tests/assets/features/hopper.urdf) spawned at
 // z = 0.3 with its foot 0.25 m in the floor — not only the node's log.
+// `servoloop world ...` against a node launched paced in real time: a paused
+// world stands (two steps of 10 add exactly 20 physics steps), a running
+// world refuses to step, and a reset brings it back to t = 0, still paused.
+TEST(CliLiveNode, WorldPauseStepResetAndUnpause) {
+  ScopedRunDir run_dir;
+  const fs::path& scratch = run_dir.scratch();
+  CliProcess launch({"launch", kSeedLaunch}, scratch);
+  ASSERT_TRUE(waitForNode(scratch, 60.0)) << launch.currentOut();
+  const std::regex state(R"((paused|running) at t = ([0-9.e+-]+) s \(([0-9]+) physics steps\))");
+  const auto steps = [&](const CliResult& result) -> long long {
+    std::smatch match;
+    if (!std::regex_search(result.out, match, state)) return -1;
+    return std::stoll(match[3].str());
+  };
+
+  const CliResult refused = runCli({"world", "step", "5"}, scratch, 30.0);
+  EXPECT_NE(refused.status, 0);
+  EXPECT_THAT(refused.err, HasSubstr("pause it first"));
+
+  const CliResult paused = runCli({"world", "pause"}, scratch, 30.0);
+  ASSERT_EQ(paused.status, 0) << paused.err;
+  EXPECT_THAT(paused.out, HasSubstr("paused at t ="));
+  const long long at_pause = steps(paused);
+  ASSERT_GT(at_pause, 0);
+  EXPECT_EQ(steps(runCli({"world", "step", "10"}, scratch, 30.0)), at_pause + 10);
+  EXPECT_EQ(steps(runCli({"world", "step", "10"}, scratch, 30.0)), at_pause + 20);
+  EXPECT_EQ(steps(runCli({"world", "state"}, scratch, 30.0)), at_pause + 20) << "a paused world stands";
+
+  const CliResult reset = runCli({"world", "reset"}, scratch, 30.0);
+  ASSERT_EQ(reset.status, 0) << reset.err;
+  EXPECT_THAT(reset.out, HasSubstr("paused at t = 0 s (0 physics steps)"));
+  const CliResult running = runCli({"world", "unpause"}, scratch, 30.0);
+  EXPECT_THAT(running.out, HasSubstr("running at t ="));
+  EXPECT_NE(runCli({"world", "step", "0"}, scratch, 30.0).status, 0) << "0 steps is refused";
+}
+
 TEST(CliLiveNode, SpawnModelShowsTheWarningsOfTheSpawn) {
   ScopedRunDir run_dir;
   const fs::path& scratch = run_dir.scratch();

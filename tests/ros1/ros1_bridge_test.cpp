@@ -327,6 +327,50 @@ TEST_F(Ros1BridgeTest, SwitchControllerFollowsRosControlSemantics) {
               HasSubstr("ok: False"));
 }
 
+// Gazebo's world services, as a ROS user calls them, reach the node's world:
+// pause, set_model_configuration, step (servoloop's own command), reset.
+// The joint is read back through /gazebo/get_joint_properties, i.e. from the
+// joint states the node publishes while it steps.
+TEST_F(Ros1BridgeTest, GazeboWorldServicesPauseSetConfigurationAndReset) {
+  const auto joint1Position = [&]() -> std::optional<double> {
+    static const std::regex pattern(R"(position: \[([-+0-9.eE]+))");
+    const std::string out = run({ros("rosservice"), "call", "/gazebo/get_joint_properties", "joint_name: joint1"}).out;
+    std::smatch match;
+    if (!std::regex_search(out, match, pattern)) return std::nullopt;
+    return std::stod(match[1].str());
+  };
+  const ProcessResult pause = run({ros("rosservice"), "call", "/gazebo/pause_physics"});
+  ASSERT_EQ(pause.status, 0) << pause.err;
+  EXPECT_THAT(runCli({"world", "state"}, run_.scratch()).out, HasSubstr("paused at t ="));
+
+  const ProcessResult set = run({ros("rosservice"), "call", "/gazebo/set_model_configuration",
+                                 "{model_name: one_DOF_robot, joint_names: [joint1], joint_positions: [0.7]}"});
+  ASSERT_EQ(set.status, 0) << set.err;
+  EXPECT_THAT(set.out, HasSubstr("success: True"));
+  EXPECT_THAT(run({ros("rosservice"), "call", "/gazebo/set_model_configuration",
+                   "{model_name: one_DOF_robot, joint_names: [elbow], joint_positions: [0.7]}"}).out,
+              AllOf(HasSubstr("success: False"), HasSubstr("elbow")));
+  // 40 steps: the joint states of two 50 Hz cycles; in 40 ms the joint,
+  // held by its position controller, moves by far less than 0.05 rad.
+  ASSERT_EQ(runCli({"world", "step", "40"}, run_.scratch()).status, 0);
+  EXPECT_TRUE(waitUntil([&] {
+    const auto position = joint1Position();
+    return position && std::abs(*position - 0.7) < 0.05;
+  }, 20.0)) << "joint1 is at " << joint1Position().value_or(NAN);
+
+  const ProcessResult reset = run({ros("rosservice"), "call", "/gazebo/reset_simulation"});
+  ASSERT_EQ(reset.status, 0) << reset.err;
+  EXPECT_THAT(runCli({"world", "state"}, run_.scratch()).out, HasSubstr("paused at t = 0 s (0 physics steps)"));
+  ASSERT_EQ(runCli({"world", "step", "40"}, run_.scratch()).status, 0);
+  EXPECT_TRUE(waitUntil([&] {
+    const auto position = joint1Position();
+    return position && std::abs(*position) < 1e-3;
+  }, 20.0)) << "after the reset joint1 is at " << joint1Position().value_or(NAN);
+
+  ASSERT_EQ(run({ros("rosservice"), "call", "/gazebo/unpause_physics"}).status, 0);
+  EXPECT_THAT(runCli({"world", "state"}, run_.scratch()).out, HasSubstr("running at t ="));
+}
+
 TEST_F(Ros1BridgeTest, TrajectoryGoalThroughActionlib) {
   // A trajectory controller for the seed's joint, loaded and started through
   // ros_control's services; its action server appears in ROS.

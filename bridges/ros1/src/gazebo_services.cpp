@@ -10,7 +10,9 @@
 #include <gazebo_msgs/ApplyJointEffort.h>
 #include <gazebo_msgs/GetJointProperties.h>
 #include <gazebo_msgs/GetModelState.h>
+#include <gazebo_msgs/SetModelConfiguration.h>
 #include <ros/ros.h>
+#include <std_srvs/Empty.h>
 #include <tinyxml2.h>
 
 #include "ros_message_json.hpp"
@@ -64,6 +66,9 @@ double EffortSchedule::sumAt(double now_s) {
 }
 
 namespace {
+
+// A reset or pause waits for the world's loop to stand between two cycles.
+constexpr double kWorldCallTimeoutS = 30.0;
 
 // Gazebo names a joint "joint1" or, scoped, "model::joint1".
 std::string unscoped(const std::string& name) {
@@ -179,6 +184,49 @@ GazeboServices::GazeboServices(ros::NodeHandle& nh, NodeLink& link, const RobotS
         response.status_message = "GetModelState: got properties";
         return true;
       }));
+
+  // The world's controls. std_srvs/Empty has no way to say "failed" but
+  // returning false, which rosservice reports as a failed call; the reason
+  // goes to the log.
+  const auto world_control = [this](const char* service, const char* op) {
+    return [this, service, op](std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+      try {
+        link_.call(op, json::object(), kWorldCallTimeoutS);
+        return true;
+      } catch (const std::exception& e) {
+        ROS_ERROR("%s: %s", service, e.what());
+        return false;
+      }
+    };
+  };
+  // Gazebo's reset_world keeps the simulated time; servoloop resets both
+  // (a world's time and its bodies' state go back together), so both
+  // services do what reset_simulation does.
+  for (const auto& [service, op] : {std::pair{"/gazebo/reset_simulation", "world.reset"},
+                                    std::pair{"/gazebo/reset_world", "world.reset"},
+                                    std::pair{"/gazebo/pause_physics", "world.pause"},
+                                    std::pair{"/gazebo/unpause_physics", "world.unpause"}}) {
+    servers_.push_back(
+        nh.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(service, world_control(service, op)));
+  }
+
+  servers_.push_back(
+      nh.advertiseService<gazebo_msgs::SetModelConfiguration::Request, gazebo_msgs::SetModelConfiguration::Response>(
+          "/gazebo/set_model_configuration",
+          [this](gazebo_msgs::SetModelConfiguration::Request& request,
+                 gazebo_msgs::SetModelConfiguration::Response& response) {
+            try {
+              link_.call("model.set_configuration", {{"model", request.model_name},
+                                                     {"joint_names", request.joint_names},
+                                                     {"joint_positions", request.joint_positions}});
+              response.success = true;
+              response.status_message = "SetModelConfiguration: success";
+            } catch (const std::exception& e) {
+              response.success = false;
+              response.status_message = std::string("SetModelConfiguration: ") + e.what();
+            }
+            return true;
+          }));
 
   ticker_ = std::thread([this] {
     while (!stop_.load()) {

@@ -15,7 +15,11 @@
 //                                 changes (in the node's simulated time, read
 //                                 every 1 ms of wall time);
 //   /gazebo/get_model_state       the robot's pose and twist: the ground truth
-//                                 of a floating base, else its spawn pose.
+//                                 of a floating base, else its spawn pose;
+//   /gazebo/pause_physics, /gazebo/unpause_physics, /gazebo/reset_simulation,
+//   /gazebo/reset_world           the world's controls (servoloop world ...;
+//                                 both resets also restart the time);
+//   /gazebo/set_model_configuration  joint positions of a model, at rest.
 //
 // A call the bridge cannot serve answers success=false with the reason in
 // status_message (for example, no effort controller on the joint).

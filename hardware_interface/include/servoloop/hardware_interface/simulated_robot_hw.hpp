@@ -1,4 +1,7 @@
 #pragma once
+#include <string>
+#include <vector>
+
 #include "servoloop/hardware_interface/hardware_info.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/hardware_interface/simulated_world.hpp"
@@ -41,6 +44,14 @@ class SimulatedRobotHW : public RobotHW {
   // Non-real-time. Back to the initial state: initial joint positions, zero
   // velocities, zero commands, simulated time 0.
   virtual void reset() = 0;
+
+  // Non-real-time, with no cycle running (the world paused between two):
+  // moves the named joints to `positions` (rad or m), at rest, as Gazebo's
+  // set_model_configuration does; the others stay. Throws servoloop::Error
+  // naming an unknown joint, a non-finite position, or lists of different
+  // lengths (then nothing moved). By default: refused (a simulator that
+  // cannot move its joints directly).
+  virtual void setJointPositions(const std::vector<std::string>& joints, const std::vector<double>& positions);
 
   // Real-time safe. While engaged, position commands freeze at the position
   // measured when it was engaged and effort/velocity commands are zero, as

@@ -142,6 +142,14 @@ class Node {
   // names) is reloaded on the way, so that it reads the new values.
   std::string resetWorld(const std::vector<std::string>& changed_parameters = {});
   WorldState worldState() const;
+  // Gazebo's set_model_configuration: the named joints of the robot with
+  // that namespace or model name moved to `positions`, at rest, between two
+  // cycles. Throws servoloop::Error for an unknown model or joint, a
+  // non-finite position, or a robot on hardware.
+  void setModelConfiguration(const std::string& model, const std::vector<std::string>& joints,
+                             const std::vector<double>& positions);
+  // The robot with that namespace ("/name" or "name") or model name, or nullptr.
+  RobotInstance* findModel(const std::string& model);
 
   // The robot of a namespace, or nullptr. Robots live until the node is destroyed.
   RobotInstance* findRobot(const std::string& robot_namespace);

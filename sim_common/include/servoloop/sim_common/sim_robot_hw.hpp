@@ -92,6 +92,8 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   void reset() override;
   // Real-time safe, from any thread; takes effect at the next write().
   void setEmergencyStop(bool engaged) override;
+  // Non-real-time, no cycle running: the engine's joints teleported, at rest.
+  void setJointPositions(const std::vector<std::string>& joints, const std::vector<double>& positions) override;
 
   // Real-time safe. Sets a joint's command mode directly, as doSwitch does
   // (for a loop without a controller manager, and for tests).
