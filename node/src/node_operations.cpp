@@ -278,8 +278,9 @@ json NodeOperations::worldOp(const std::string& op, const json& request, ipc::Ip
       steps = given->get<std::uint64_t>();
     }
     return deferToWorker(request, connection, [this, steps] {
+      const std::uint64_t stepped = node_.stepWorld(steps);
       json reply = worldState();
-      reply["stepped"] = node_.stepWorld(steps);
+      reply["stepped"] = stepped;
       return reply;
     });
   }
