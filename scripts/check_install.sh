@@ -162,4 +162,37 @@ list_types installed_example -u SERVOLOOP_PLUGIN_PATH
 check_types installed_example "$installed_plugin_dir/libmy_controllers.so" ||
   { cat "$work/installed_example.err" >&2; fail "see above"; }
 
+# --- 6. the Python package ----------------------------------------------------------------
+python_module=$(find "$prefix" -name '_servoloop*.so' -print -quit)
+if [[ -n "$python_module" ]]; then
+  python_root=$(dirname "$(dirname "$python_module")")
+  step "the installed Python package runs a world (PYTHONPATH=$python_root, installed plugins only)"
+  if ! env -u SERVOLOOP_PLUGIN_PATH PYTHONPATH="$python_root" /usr/bin/python3 - "$source_dir" >"$work/python.log" 2>&1 <<'PY'
+import os, sys
+import servoloop
+launch = os.path.join(sys.argv[1], "robots", "one_dof", "one_dof_w_jnt_ctl.launch.yaml")
+with servoloop.World(launch) as world:
+    assert world.step(0.25) == 250, world.time
+    assert world.joint_state()["name"] == ["joint1"]
+print("World ran", world)
+PY
+  then
+    show_log "$work/python.log"
+    fail "the installed Python package did not run a world"
+  fi
+  step "the installed servoloop sweep runs a sweep with the installed Python package"
+  cat >"$work/tiny.sweep.yaml" <<YAML
+launch: $source_dir/robots/one_dof/one_dof_w_jnt_ctl.launch.yaml
+duration: 0.2
+vary: {/one_DOF_robot/joint1_position_controller/pid/p: [5.0, 10.0]}
+measure: {q: {topic: /one_DOF_robot/joint_states, field: "position[0]", reduce: last}}
+YAML
+  if ! env -u SERVOLOOP_PLUGIN_PATH -u PYTHONPATH "$prefix/bin/servoloop" sweep "$work/tiny.sweep.yaml" \
+      --out "$work/tiny-sweep" --jobs 1 >"$work/sweep.log" 2>&1; then
+    show_log "$work/sweep.log"
+    fail "the installed servoloop sweep failed"
+  fi
+  [[ $(wc -l <"$work/tiny-sweep/episodes.csv") -eq 3 ]] || fail "the installed sweep did not write its two rows"
+fi
+
 step "OK: servoloop installs, builds an out-of-tree controller and loads it"
