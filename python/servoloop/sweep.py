@@ -112,22 +112,80 @@ def _measure(world: World, task: dict) -> dict:
     return results
 
 
+class _WorldCache(threading.local):
+    """Each thread's World, kept from one episode to the next when every
+    parameter the sweep sets belongs to a controller (<ns>/<controller>/...,
+    a namespace with a `type`): then an episode is set_param + reset(), which
+    reloads the changed controllers and gives the run a fresh World gives
+    (docs/simulation.md, "Pause, step and reset"), in a fraction of the time.
+    Any other parameter (the simulation's, a robot's) needs a new World."""
+
+    world = None
+    source = None  # (launch, backend) of `world`
+    controllers: set = frozenset()
+
+    def drop(self):
+        if self.world is not None:
+            try:
+                self.world.close()
+            except Exception:  # noqa: BLE001 - a broken world is dropped anyway
+                pass
+        self.world, self.source, self.controllers = None, None, frozenset()
+
+
+_cache = _WorldCache()
+
+
+def _controller_namespaces(tree, prefix: str = "") -> set:
+    found = set()
+    if isinstance(tree, dict):
+        if isinstance(tree.get("type"), str) and "/" in tree["type"]:
+            found.add(prefix)
+        for key, value in tree.items():
+            found |= _controller_namespaces(value, f"{prefix}/{key}")
+    return found
+
+
+def _world_for(task: dict) -> World:
+    """The world of an episode: this thread's, reset with the episode's
+    parameters when it may be reused, else a new one (kept for the next)."""
+    source = (task["launch"], task["backend"])
+    params = task["params"]
+    reusable = _cache.world is not None and _cache.source == source and all(
+        any(path.startswith(ns + "/") for ns in _cache.controllers) for path in params)
+    if reusable:
+        for path, value in params.items():
+            _cache.world.set_param(path, value)
+        _cache.world.reset()
+        return _cache.world
+    _cache.drop()
+    world = World(task["launch"], backend=task["backend"], params=params, log_level="error")
+    _cache.world, _cache.source = world, source
+    _cache.controllers = _controller_namespaces(world.get_param("/"))
+    return world
+
+
 def run_episode(task: dict) -> dict:
-    """One episode, self-contained so that a Dask worker can run it: build the
-    world with the episode's parameters, publish at the given times, step to
-    the duration, reduce the measures. Never raises: a failure is the row's
-    `error`."""
+    """One episode, self-contained so that a Dask worker can run it: the
+    world with the episode's parameters (_world_for), publications at their
+    times, steps to the duration, the measures reduced. Never raises: a
+    failure is the row's `error` (and the world is not reused)."""
     start = time.perf_counter()
     row = {"id": task["id"], "params": task["params"], "repeat": task["repeat"], "measures": {}, "error": ""}
     try:
-        with World(task["launch"], backend=task["backend"], params=task["params"], log_level="error") as world:
-            row["measures"] = _measure(world, task)
+        row["measures"] = _measure(_world_for(task), task)
     except Exception as e:  # noqa: BLE001 - any failure belongs in the row, and the sweep goes on
+        _cache.drop()
         row["measures"] = {}
         row["error"] = _one_line(e)
     row["worker"] = _worker_name()
     row["wall_time_s"] = time.perf_counter() - start
     return row
+
+
+def run_batch(tasks: list[dict]) -> list[dict]:
+    """Several episodes in one Dask task (fewer round trips to the scheduler)."""
+    return [run_episode(task) for task in tasks]
 
 
 def make_tasks(spec, episode_list: list[dict]) -> list[dict]:
@@ -315,27 +373,34 @@ def run_dask(client, tasks: list[dict], spec_hash: str, results: Results, progre
         return
     if not client.scheduler_info().get("workers"):
         sys.stderr.write(f"{PROG}: the Dask scheduler has no workers yet; waiting for `dask-worker` to join\n")
-    keys = [f"servoloop-episode-{spec_hash}-{task['id']}" for task in tasks]
-    by_key = dict(zip(keys, tasks))
-    futures = client.map(run_episode, tasks, key=keys, pure=False)
+    # Batches of episodes: about 8 per worker at least, at most 25 episodes
+    # each, so that the scheduler's work per episode stays small and a worker
+    # that dies loses little.
+    workers = max(1, len(client.scheduler_info().get("workers", {})))
+    size = max(1, min(25, -(-len(tasks) // (8 * workers))))
+    batches = [tasks[i:i + size] for i in range(0, len(tasks), size)]
+    keys = [f"servoloop-episodes-{spec_hash}-{batch[0]['id']}-{batch[-1]['id']}" for batch in batches]
+    by_key = dict(zip(keys, batches))
+    futures = client.map(run_batch, batches, key=keys, pure=False)
     pending = set(futures)
     try:
         for future in distributed.as_completed(futures, loop=client.loop):
             pending.discard(future)
             try:
-                row = future.result()
+                rows = future.result()
             except distributed.KilledWorker as e:
-                task = by_key[future.key]
-                row = {"id": task["id"], "params": task["params"], "repeat": task["repeat"], "measures": {},
-                       "worker": "", "wall_time_s": None,
-                       "error": f"the episode's Dask workers died each time it ran ({_one_line(e)})"}
+                rows = [{"id": task["id"], "params": task["params"], "repeat": task["repeat"], "measures": {},
+                         "worker": "", "wall_time_s": None,
+                         "error": f"the episode's Dask workers died each time it ran ({_one_line(e)})"}
+                        for task in by_key[future.key]]
             except ModuleNotFoundError as e:
                 package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
                 raise SweepError(f"a Dask worker cannot import what an episode needs ({e}); start dask-worker "
                                  f"with PYTHONPATH={package} (where the servoloop package is)") from None
             except Exception as e:  # noqa: BLE001 - the cluster failed, not the episode
-                raise SweepError(f"Dask could not run episode {future.key}: {_one_line(e)}") from None
-            results.add(row)
+                raise SweepError(f"Dask could not run episodes {future.key}: {_one_line(e)}") from None
+            for row in rows:
+                results.add(row)
             future.release()
             progress.update()
     finally:

@@ -170,13 +170,43 @@ class SweepTest(unittest.TestCase):
     def assert_ran(self, done, status=0):
         self.assertEqual(done.returncode, status, f"stdout: {done.stdout}\nstderr: {done.stderr}")
 
+    def test_a_parameter_read_at_start_gives_each_episode_a_new_world(self):
+        # A robot's simulation setting (read when its hardware starts, not by
+        # a controller): each episode must start from its own value, also
+        # when one thread runs them all.
+        params = os.path.join(self.dir, "start.yaml")
+        with open(params, "w", encoding="utf-8") as stream:
+            stream.write("one_DOF_robot: {sim: {initial_positions: {joint1: 0.0}}}\n")
+        launch = os.path.join(self.dir, "start.launch.yaml")
+        with open(SEED, encoding="utf-8") as stream:
+            seed = yaml.safe_load(stream)
+        robot = seed["robots"][0]
+        robot["urdf"] = os.path.join(os.path.dirname(SEED), robot["urdf"])
+        robot["params"] = [os.path.join(os.path.dirname(SEED), file) for file in robot["params"]] + [params]
+        with open(launch, "w", encoding="utf-8") as stream:
+            yaml.safe_dump(seed, stream, sort_keys=False)
+        starts = [0.0, 0.5, 1.25]
+        measure = {"first_q": {"topic": JOINT_STATES, "field": "position[0]", "reduce": "first"}}
+        spec = write_spec(self.dir, spec_of(duration=0.1, measure=measure, launch=launch,
+                                            vary={"/one_DOF_robot/sim/initial_positions/joint1": starts}))
+        out = self.out("starts")
+        self.assert_ran(run_sweep(spec, out, "--jobs", "1"))
+        _, rows = read_csv(out)
+        self.assertEqual([float(row["first_q"]) for row in rows], starts)
+
     def test_a_grids_rows_are_the_episodes_run_one_by_one(self):
         gains = [5.0, 10.0, 20.0]
         measure = {"final_q": {"topic": JOINT_STATES, "field": "position[0]", "reduce": "last"},
                    "peak_q": {"topic": JOINT_STATES, "field": "position[0]", "reduce": "max"}}
         spec = write_spec(self.dir, spec_of(duration=1.0, vary={P_GAIN: gains}, measure=measure))
-        out = self.out("grid")
-        self.assert_ran(run_sweep(spec, out, "--jobs", "2"))
+        # One thread runs every episode in one World (set_param and reset);
+        # two threads each build their own: both give the fresh runs' rows.
+        for jobs in ("1", "2"):
+            with self.subTest(jobs=jobs):
+                self.check_grid_rows(spec, self.out(f"grid{jobs}"), jobs, gains)
+
+    def check_grid_rows(self, spec, out, jobs, gains):
+        self.assert_ran(run_sweep(spec, out, "--jobs", jobs))
         header, rows = read_csv(out)
         self.assertEqual(header, ["id", P_GAIN, "repeat", "final_q", "peak_q", *FIXED])
         self.assertEqual([row["id"] for row in rows], ["0", "1", "2"])
