@@ -2,6 +2,7 @@
 #include "servoloop/node/node.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <thread>
 
 #include <fmt/format.h>
@@ -157,13 +158,55 @@ RobotInstance* Node::findModel(const std::string& model) {
   return nullptr;
 }
 
+namespace {
+
+std::string modelNames(const std::vector<std::string>& namespaces) {
+  std::string names;
+  for (const std::string& ns : namespaces) names += (names.empty() ? "" : ", ") + ns;
+  return names;
+}
+
+}  // namespace
+
+ModelState Node::modelState(const std::string& model) {
+  RobotInstance* robot = findModel(model);
+  if (robot == nullptr) {
+    throw Error(fmt::format("no model '{}' in this world (it has: {})", model, modelNames(robotNamespaces())));
+  }
+  ModelState state;
+  state.name = robot->robotName();
+  state.ns = robot->robotNamespace();
+  auto* simulated = dynamic_cast<hardware_interface::SimulatedRobotHW*>(&robot->hardware());
+  hardware_interface::BaseGroundTruth base;
+  if (simulated != nullptr && simulated->readBaseGroundTruth(base)) {
+    std::copy(std::begin(base.position), std::end(base.position), state.position);
+    std::copy(std::begin(base.orientation), std::end(base.orientation), state.orientation);
+    std::copy(std::begin(base.linear_velocity), std::end(base.linear_velocity), state.linear_velocity);
+    std::copy(std::begin(base.angular_velocity), std::end(base.angular_velocity), state.angular_velocity);
+    return state;
+  }
+  // A fixed base stays where it was spawned (<ns>/sim/pose: x y z roll pitch yaw).
+  state.fixed = true;
+  const std::string ns = state.ns == "/" ? "" : state.ns;
+  std::vector<double> pose = parameters_.get<std::vector<double>>(ns + "/sim/pose", std::vector<double>(6, 0.0));
+  pose.resize(6, 0.0);
+  std::copy(pose.begin(), pose.begin() + 3, state.position);
+  const double cr = std::cos(pose[3] / 2), sr = std::sin(pose[3] / 2);
+  const double cp = std::cos(pose[4] / 2), sp = std::sin(pose[4] / 2);
+  const double cy = std::cos(pose[5] / 2), sy = std::sin(pose[5] / 2);
+  state.orientation[0] = sr * cp * cy - cr * sp * sy;
+  state.orientation[1] = cr * sp * cy + sr * cp * sy;
+  state.orientation[2] = cr * cp * sy - sr * sp * cy;
+  state.orientation[3] = cr * cp * cy + sr * sp * sy;
+  return state;
+}
+
 void Node::setModelConfiguration(const std::string& model, const std::vector<std::string>& joints,
                                  const std::vector<double>& positions) {
   RobotInstance* robot = findModel(model);
   if (robot == nullptr) {
-    std::string names;
-    for (const std::string& ns : robotNamespaces()) names += (names.empty() ? "" : ", ") + ns;
-    throw Error(fmt::format("set_model_configuration: no model '{}' in this world (it has: {})", model, names));
+    throw Error(fmt::format("set_model_configuration: no model '{}' in this world (it has: {})", model,
+                            modelNames(robotNamespaces())));
   }
   auto* simulated = dynamic_cast<hardware_interface::SimulatedRobotHW*>(&robot->hardware());
   if (simulated == nullptr || robot->wallClock()) {

@@ -152,6 +152,12 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     return nullptr;
   }
   if (op.starts_with("world.")) return worldOp(op, request, connection);
+  if (op == "model.list") {
+    json models = json::array();
+    for (const std::string& ns : node_.robotNamespaces()) models.push_back(modelStateJson(node_.modelState(ns)));
+    return {{"models", std::move(models)}};
+  }
+  if (op == "model.get") return modelStateJson(node_.modelState(requireString(request, "model")));
   if (op == "model.set_configuration") {
     const std::string model = requireString(request, "model");
     std::vector<double> positions;
@@ -250,7 +256,20 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
               "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries,"
               "safety,estop,recover,stats}, "
               "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, "
-              "action.{list,send,status,cancel}, model.{spawn,set_configuration}, world.{state,pause,unpause,step,reset,shutdown}");
+              "action.{list,send,status,cancel}, model.{list,get,spawn,set_configuration}, world.{state,pause,unpause,step,reset,shutdown}");
+}
+
+json NodeOperations::modelStateJson(const ModelState& state) {
+  const auto vector3 = [](const double (&v)[3]) { return json{{"x", v[0]}, {"y", v[1]}, {"z", v[2]}}; };
+  return {{"name", state.name},
+          {"namespace", state.ns},
+          {"fixed", state.fixed},
+          {"pose",
+           {{"position", vector3(state.position)},
+            {"orientation",
+             {{"x", state.orientation[0]}, {"y", state.orientation[1]}, {"z", state.orientation[2]},
+              {"w", state.orientation[3]}}}}},
+          {"twist", {{"linear", vector3(state.linear_velocity)}, {"angular", vector3(state.angular_velocity)}}}};
 }
 
 json NodeOperations::worldState() {

@@ -8,7 +8,6 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
-#include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/message_json.hpp"
 
@@ -185,37 +184,16 @@ JointStates World::jointState(const std::string& robot_namespace) const {
 }
 
 nlohmann::json World::modelState(const std::string& name) const {
-  node::RobotInstance& robot = robotFor(name);
-  nlohmann::json state = {{"name", robot.robotName()}, {"namespace", robot.robotNamespace()}};
-  auto* simulated = dynamic_cast<hardware_interface::SimulatedRobotHW*>(&robot.hardware());
-  hardware_interface::BaseGroundTruth base;
-  if (simulated != nullptr && simulated->readBaseGroundTruth(base)) {
-    state["pose"] = {{"position", vector3(base.position)},
-                     {"orientation",
-                      {{"x", base.orientation[0]}, {"y", base.orientation[1]}, {"z", base.orientation[2]},
-                       {"w", base.orientation[3]}}}};
-    state["twist"] = {{"linear", vector3(base.linear_velocity)}, {"angular", vector3(base.angular_velocity)}};
-    state["fixed"] = false;
-    return state;
-  }
-  // A fixed base stays where it was spawned (<ns>/sim/pose: x y z roll pitch yaw).
-  const std::string ns = robot.robotNamespace() == "/" ? "" : robot.robotNamespace();
-  const auto pose = node().parameters().get<std::vector<double>>(ns + "/sim/pose", std::vector<double>(6, 0.0));
-  const double roll = pose.size() > 3 ? pose[3] : 0.0;
-  const double pitch = pose.size() > 4 ? pose[4] : 0.0;
-  const double yaw = pose.size() > 5 ? pose[5] : 0.0;
-  const double cr = std::cos(roll / 2), sr = std::sin(roll / 2);
-  const double cp = std::cos(pitch / 2), sp = std::sin(pitch / 2);
-  const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2);
-  state["pose"] = {{"position", {{"x", pose.at(0)}, {"y", pose.at(1)}, {"z", pose.at(2)}}},
-                   {"orientation",
-                    {{"x", sr * cp * cy - cr * sp * sy},
-                     {"y", cr * sp * cy + sr * cp * sy},
-                     {"z", cr * cp * sy - sr * sp * cy},
-                     {"w", cr * cp * cy + sr * sp * sy}}}};
-  state["twist"] = {{"linear", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}, {"angular", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}};
-  state["fixed"] = true;
-  return state;
+  const node::ModelState state = node().modelState(name);
+  return {{"name", state.name},
+          {"namespace", state.ns},
+          {"fixed", state.fixed},
+          {"pose",
+           {{"position", vector3(state.position)},
+            {"orientation",
+             {{"x", state.orientation[0]}, {"y", state.orientation[1]}, {"z", state.orientation[2]},
+              {"w", state.orientation[3]}}}}},
+          {"twist", {{"linear", vector3(state.linear_velocity)}, {"angular", vector3(state.angular_velocity)}}}};
 }
 
 void World::setParam(const std::string& name, const std::string& value_json) {

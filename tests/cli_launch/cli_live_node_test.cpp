@@ -176,6 +176,18 @@ TEST(CliLiveNode, WorldPauseStepResetAndUnpause) {
   EXPECT_EQ(steps(runCli({"world", "step", "10"}, scratch, 30.0)), at_pause + 20);
   EXPECT_EQ(steps(runCli({"world", "state"}, scratch, 30.0)), at_pause + 20) << "a paused world stands";
 
+  // Gazebo's model services: the arm's state (a fixed base at its spawn
+  // pose), its joint moved; an unknown joint refused by name.
+  const CliResult model = runCli({"model", "get", "one_DOF_robot"}, scratch, 30.0);
+  ASSERT_EQ(model.status, 0) << model.err;
+  EXPECT_THAT(model.out, HasSubstr("one_DOF_robot (/one_DOF_robot), fixed base"));
+  EXPECT_THAT(model.out, HasSubstr("position:    [0, 0, 0]"));
+  EXPECT_THAT(runCli({"model", "list"}, scratch, 30.0).out, HasSubstr("one_DOF_robot (/one_DOF_robot)"));
+  EXPECT_EQ(runCli({"model", "set-configuration", "one_DOF_robot", "--joint", "joint1=0.7"}, scratch, 30.0).status, 0);
+  const CliResult unknown = runCli({"model", "set-configuration", "one_DOF_robot", "--joint", "elbow=0.7"}, scratch, 30.0);
+  EXPECT_NE(unknown.status, 0);
+  EXPECT_THAT(unknown.err, HasSubstr("elbow"));
+
   const CliResult reset = runCli({"world", "reset"}, scratch, 30.0);
   ASSERT_EQ(reset.status, 0) << reset.err;
   EXPECT_THAT(reset.out, HasSubstr("paused at t = 0 s (0 physics steps)"));

@@ -170,6 +170,38 @@ class SweepTest(unittest.TestCase):
     def assert_ran(self, done, status=0):
         self.assertEqual(done.returncode, status, f"stdout: {done.stdout}\nstderr: {done.stderr}")
 
+    @unittest.skipUnless(os.environ.get("SERVOLOOP_CLI"), "needs SERVOLOOP_CLI (the servoloop executable)")
+    def test_a_sweeps_rows_equal_single_servoloop_launches(self):
+        # Each gain run by hand as a user would: `servoloop launch` with the
+        # gain in a parameter file, the command at t = 0, joint states
+        # recorded; the recording's last position is the row's final_q.
+        gains = [5.0, 40.0]
+        spec = write_spec(self.dir, spec_of(duration=1.0, vary={P_GAIN: gains}))
+        out = self.out("against-launch")
+        self.assert_ran(run_sweep(spec, out, "--jobs", "1"))
+        _, rows = read_csv(out)
+        with open(SEED, encoding="utf-8") as stream:
+            seed = yaml.safe_load(stream)
+        for gain, row in zip(gains, rows):
+            gain_file = os.path.join(self.dir, f"gain_{gain}.yaml")
+            with open(gain_file, "w", encoding="utf-8") as stream:
+                stream.write(f"one_DOF_robot: {{joint1_position_controller: {{pid: {{p: {gain!r}}}}}}}\n")
+            robot = dict(seed["robots"][0])
+            robot["urdf"] = os.path.join(os.path.dirname(SEED), robot["urdf"])
+            robot["params"] = [os.path.join(os.path.dirname(SEED), f) for f in robot["params"]] + [gain_file]
+            launch = os.path.join(self.dir, f"gain_{gain}.launch.yaml")
+            with open(launch, "w", encoding="utf-8") as stream:
+                yaml.safe_dump({**seed, "robots": [robot]}, stream, sort_keys=False)
+            recording = os.path.join(self.dir, f"gain_{gain}.csv")
+            done = subprocess.run([os.environ["SERVOLOOP_CLI"], "launch", launch, "--duration", "1.0",
+                                   "--pub", f"{COMMAND}:=1.0", "--record", f"{JOINT_STATES}={recording}"],
+                                  capture_output=True, text=True, timeout=120)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            with open(recording, newline="", encoding="utf-8") as stream:
+                recorded = list(csv.DictReader(stream))
+            self.assertEqual(len(recorded), 50)
+            self.assertEqual(float(row["final_q"]), float(recorded[-1]["joint1.position"]))
+
     def test_a_parameter_read_at_start_gives_each_episode_a_new_world(self):
         # A robot's simulation setting (read when its hardware starts, not by
         # a controller): each episode must start from its own value, also

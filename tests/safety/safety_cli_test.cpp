@@ -326,6 +326,19 @@ TEST_F(SafetyOnHardware, AHardwareThatDeactivatesIsAFaultTheNodeSurvivesAndRecov
   expectLoopKeepsItsRate();
 }
 
+// Hardware cannot be reset: `servoloop world reset` (Gazebo's
+// reset_simulation) is refused with one error, and the robot runs on.
+TEST_F(SafetyOnHardware, AResetOfAWorldWithHardwareIsRefusedAndTheRobotRunsOn) {
+  command(0.5);
+  ASSERT_TRUE(positionReaches(0.5, 1e-9));
+  const CliResult reset = cli({"world", "reset"});
+  EXPECT_NE(reset.status, 0);
+  EXPECT_THAT(reset.err, HasSubstr("hardware cannot be reset"));
+  EXPECT_EQ(state(), "running");
+  command(0.9);
+  ASSERT_TRUE(positionReaches(0.9, 1e-9));
+}
+
 TEST_F(SafetyOnHardware, AnEmergencyStopPressedBeforeAFaultIsReleasedWhileTheLoopStands) {
   command(0.5);
   ASSERT_TRUE(positionReaches(0.5, 1e-9));

@@ -5,7 +5,11 @@
 // contact) and on mujoco.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <functional>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -152,6 +156,42 @@ TEST(WorldControl, APausedWorldStandsAndStepsExactlyTheStepsAskedFor) {
   EXPECT_FALSE(world.worldState().paused);
   world.pauseWorld();
   EXPECT_GE(world.worldState().steps, stepped.steps);
+}
+
+// Gazebo's set_model_configuration and get_model_state: joints moved to
+// the positions given, at rest; a free box's pose and a fixed arm's.
+TEST(WorldControl, SetModelConfigurationMovesJointsAtRestAndModelStateReportsPoses) {
+  TempDir dir("servoloop-world-configuration");
+  const fs::path push = writePushWorld(dir.path(), "bullet", 0.4, 1.0, 0.6);
+  LaunchFile launch = node::loadLaunchFile(push);
+  Node world(launch, pausedOptions());
+  world.start();
+  (void)trajectory(world, 1, 50);
+  world.setModelConfiguration("diff_bot", {"left_wheel_joint"}, {0.75});
+  const auto joints = world.findRobot("/diff_bot")->joints();
+  const auto left = std::find_if(joints.begin(), joints.end(), [](const auto& j) { return j.name == "left_wheel_joint"; });
+  ASSERT_NE(left, joints.end());
+  EXPECT_EQ(left->position, 0.75);
+  EXPECT_EQ(left->velocity, 0.0);
+  for (const auto& [model, joint_names, positions, expected] :
+       std::vector<std::tuple<std::string, std::vector<std::string>, std::vector<double>, std::string>>{
+           {"diff_bot", {"elbow"}, {0.1}, "elbow"},
+           {"diff_bot", {"left_wheel_joint"}, {NAN}, "finite"},
+           {"diff_bot", {"left_wheel_joint"}, {0.1, 0.2}, "one position per joint"},
+           {"nobody", {"left_wheel_joint"}, {0.1}, "/diff_bot"}}) {
+    try {
+      world.setModelConfiguration(model, joint_names, positions);
+      ADD_FAILURE() << "accepted: " << model << " " << expected;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+  const node::ModelState box = world.modelState("box");
+  EXPECT_FALSE(box.fixed);
+  EXPECT_NEAR(box.position[0], 0.6, 1e-3);
+  EXPECT_NEAR(box.position[2], 0.1, 2e-3);  // resting on the ground, 0.2 m high
+  EXPECT_NEAR(box.orientation[3], 1.0, 1e-6);
+  EXPECT_THROW(world.modelState("nobody"), Error);
 }
 
 TEST(WorldControl, AWorldOnTheWallClockRefusesPauseStepAndReset) {

@@ -74,6 +74,17 @@ struct NodeOptions {
   std::vector<std::pair<std::string, YAML::Node>> parameter_overrides;
 };
 
+// A model's state in the world frame, as Gazebo's get_model_state gives it.
+struct ModelState {
+  std::string name;        // the model (URDF robot) name
+  std::string ns;          // its namespace
+  bool fixed = false;      // a fixed base: at its spawn pose, at rest
+  double position[3] = {0.0, 0.0, 0.0};          // m
+  double orientation[4] = {0.0, 0.0, 0.0, 1.0};  // quaternion x, y, z, w
+  double linear_velocity[3] = {0.0, 0.0, 0.0};   // m/s, world axes
+  double angular_velocity[3] = {0.0, 0.0, 0.0};  // rad/s, world axes
+};
+
 // Where the world stands (world.state).
 struct WorldState {
   bool paused = false;
@@ -150,6 +161,10 @@ class Node {
                              const std::vector<double>& positions);
   // The robot with that namespace ("/name" or "name") or model name, or nullptr.
   RobotInstance* findModel(const std::string& model);
+  // A model's pose and twist: a floating base's ground truth (exact while
+  // the world is paused, else of a recent step), a fixed base's spawn pose.
+  // Throws servoloop::Error naming the models there are for an unknown one.
+  ModelState modelState(const std::string& model);
 
   // The robot of a namespace, or nullptr. Robots live until the node is destroyed.
   RobotInstance* findRobot(const std::string& robot_namespace);

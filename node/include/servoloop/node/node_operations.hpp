@@ -28,6 +28,7 @@
 namespace servoloop::node {
 
 class Node;
+struct ModelState;
 class RobotInstance;
 
 class NodeOperations {
@@ -49,6 +50,7 @@ class NodeOperations {
   RobotInstance& robotFor(const std::string& op);
   nlohmann::json worldOp(const std::string& op, const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json worldState();
+  static nlohmann::json modelStateJson(const ModelState& state);
   nlohmann::json deferToWorker(const nlohmann::json& request, ipc::IpcConnection& connection,
                                std::function<nlohmann::json()> work);
   void workerLoop();
