@@ -125,16 +125,11 @@ std::uint64_t Node::stepWorld(std::uint64_t cycles) {
 
 std::string Node::resetWorld(const std::vector<std::string>& changed_parameters) {
   world::WorldLoop& loop = requireWorldLoop("reset");
-  for (RobotInstance* robot : robots()) {
-    if (robot->wallClock()) {
-      throw Error(fmt::format("reset: robot '{}' runs on hardware (or the wall clock); hardware cannot be reset, "
-                              "so the world is left as it is",
-                              robot->robotNamespace()));
-    }
-  }
   std::string failures;
   std::lock_guard lock(robots_mutex_);  // no robot joins or leaves meanwhile
   loop.whilePaused([&] {
+    // Every robot checked before any changes: the world resets whole or not at all.
+    for (const auto& robot : robots_) robot->checkResettable();
     for (const auto& robot : robots_) {
       const std::string failed = robot->resetToStart(changed_parameters);
       if (!failed.empty()) failures += (failures.empty() ? "" : "; ") + robot->robotNamespace() + ": " + failed;
@@ -412,8 +407,10 @@ void Node::shutdown() {
     std::lock_guard lock(robots_mutex_);
     accepting_robots_ = false;
   }
-  // No new requests while the world is taken down; open streams end here.
+  // No new requests while the world is taken down; open streams end here,
+  // and a `world.step` still running ends now.
   for (auto& server : servers_) server->stop();
+  if (world_loop_) world_loop_->cancelSteps();
   operations_.clear();
   for (RobotInstance* robot : robots()) robot->stop();
   if (world_loop_) world_loop_->stop();

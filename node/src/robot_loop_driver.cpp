@@ -233,7 +233,7 @@ std::uint64_t RobotInstance::betweenSegments() {
 
 void RobotInstance::leaveWorld() { finishRun(); }
 
-std::string RobotInstance::resetToStart(const std::vector<std::string>& changed_parameters) {
+void RobotInstance::checkResettable() const {
   if (sim_loop_ == nullptr || sim_hw_ == nullptr) {
     throw Error(fmt::format("robot '{}' runs on {} (the wall clock); hardware cannot be reset, only a simulated world",
                             namespace_, sim_hw_ == nullptr ? "hardware" : "its own thread"));
@@ -241,11 +241,24 @@ std::string RobotInstance::resetToStart(const std::vector<std::string>& changed_
   if (manager_->switchPending()) {
     throw Error(fmt::format("robot '{}': a controller switch waits for the next cycle; reset once it is done", namespace_));
   }
+}
+
+std::string RobotInstance::resetToStart(const std::vector<std::string>& changed_parameters) {
+  checkResettable();
   // What was published before the reset is delivered now, to the state it had.
   bus_->flush();
   std::vector<std::string> running;
   for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) {
     if (controller.state == controller_manager::ControllerState::running) running.push_back(controller.name);
+  }
+  // Started again: the launch file's controllers (also one that failed) and
+  // those running now, in load order.
+  std::vector<std::string> to_start;
+  for (const controller_manager::ControllerSpec& controller : manager_->listControllers()) {
+    const bool launched =
+        std::find(launch_controllers_.begin(), launch_controllers_.end(), controller.name) != launch_controllers_.end();
+    const bool was_running = std::find(running.begin(), running.end(), controller.name) != running.end();
+    if (launched || was_running) to_start.push_back(controller.name);
   }
   const Duration period = loop_->controlPeriod();
   if (!running.empty()) {
@@ -280,7 +293,7 @@ std::string RobotInstance::resetToStart(const std::vector<std::string>& changed_
   if (ground_truth_) ground_truth_->restart();
   bus_->setTime(Time(0.0));
   next_publication_ = 0;
-  startControllersAtStart(running, [&](const std::vector<std::string>& controllers, const std::string& why) {
+  startControllersAtStart(to_start, [&](const std::vector<std::string>& controllers, const std::string& why) {
     std::string names;
     for (const std::string& name : controllers) names += (names.empty() ? "'" : ", '") + name + "'";
     failures += (failures.empty() ? "" : "; ") + fmt::format("controller(s) {} did not start again: {}", names, why);

@@ -94,12 +94,17 @@ def _measure(world: World, task: dict) -> dict:
     wanted = sorted({entry["topic"] for entry in task["measure"].values()})
     for topic in wanted:
         world.subscribe(topic)  # the first call subscribes
+    def step_to(time_s):
+        if time_s > world.time:
+            wanted = round((time_s - world.time) / world.time_step)
+            ran = world.step(time_s - world.time)
+            if ran < wanted:
+                raise Error(f"the world ran {ran} of {wanted} steps to t = {time_s} s (a robot stopped: see the log)")
+
     for entry in sorted(task["publish"], key=lambda entry: entry["time"]):
-        if entry["time"] > world.time:
-            world.step(entry["time"] - world.time)
+        step_to(entry["time"])
         world.publish(entry["topic"], entry["value"], entry["type"])
-    if task["duration"] > world.time:
-        world.step(task["duration"] - world.time)
+    step_to(task["duration"])
     messages = {topic: world.subscribe(topic) for topic in wanted}
     results = {}
     for name, entry in task["measure"].items():
@@ -121,7 +126,7 @@ class _WorldCache(threading.local):
     Any other parameter (the simulation's, a robot's) needs a new World."""
 
     world = None
-    source = None  # (launch, backend) of `world`
+    source = None  # (launch, backend, the parameter names a sweep sets) of `world`
     controllers: set = frozenset()
 
     def drop(self):
@@ -149,15 +154,20 @@ def _controller_namespaces(tree, prefix: str = "") -> set:
 def _world_for(task: dict) -> World:
     """The world of an episode: this thread's, reset with the episode's
     parameters when it may be reused, else a new one (kept for the next)."""
-    source = (task["launch"], task["backend"])
     params = task["params"]
+    # The same names every episode of one sweep: a World of another sweep
+    # (another set of names) keeps values this one would not overwrite.
+    source = (task["launch"], task["backend"], frozenset(params))
     reusable = _cache.world is not None and _cache.source == source and all(
         any(path.startswith(ns + "/") for ns in _cache.controllers) for path in params)
     if reusable:
-        for path, value in params.items():
-            _cache.world.set_param(path, value)
-        _cache.world.reset()
-        return _cache.world
+        try:
+            for path, value in params.items():
+                _cache.world.set_param(path, value)
+            _cache.world.reset()
+            return _cache.world
+        except Error:
+            pass  # a controller that cannot be reloaded in place: a new World decides
     _cache.drop()
     world = World(task["launch"], backend=task["backend"], params=params, log_level="error")
     _cache.world, _cache.source = world, source

@@ -27,6 +27,12 @@ nlohmann::json vector3(const double (&v)[3]) { return {{"x", v[0]}, {"y", v[1]},
 
 }  // namespace
 
+World::Busy::Busy(std::atomic<bool>& busy) : busy_(busy) {
+  if (busy_.exchange(true)) {
+    throw Error("this World is in use by another thread (step, reset, set_param or close); use one World per thread");
+  }
+}
+
 World::World(const std::string& launch_file, const WorldOptions& options) {
   setLogLevel(options.log_level);
   node::NodeOptions node_options;
@@ -63,12 +69,14 @@ node::Node& World::node() const {
 
 void World::close() {
   if (!node_) return;
+  const Busy busy(busy_);
   inboxes_.clear();
   node_->shutdown();
   node_.reset();
 }
 
 void World::reset() {
+  const Busy busy(busy_);
   const std::string failures = node().resetWorld(changed_parameters_);
   changed_parameters_.clear();
   flushBuses();
@@ -86,6 +94,7 @@ std::uint64_t World::step(double seconds) {
 
 std::uint64_t World::stepCycles(std::uint64_t cycles) {
   if (cycles > 1'000'000'000'000ULL) throw Error(fmt::format("step_cycles: {} steps is more than 1e12", cycles));
+  const Busy busy(busy_);
   const std::uint64_t ran = cycles == 0 ? 0 : node().stepWorld(cycles);
   flushBuses();
   return ran;
@@ -198,6 +207,7 @@ nlohmann::json World::modelState(const std::string& name) const {
 
 void World::setParam(const std::string& name, const std::string& value_json) {
   if (name.empty() || name == "/") throw Error("set_param: name a parameter, e.g. /robot/controller/pid/p");
+  const Busy busy(busy_);
   YAML::Node value;
   try {
     value = YAML::Load(value_json);

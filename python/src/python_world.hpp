@@ -4,9 +4,12 @@
 // (no Python type here): world_module.cpp binds it, converting values as
 // JSON text and arrays, and releasing the GIL while it steps.
 //
-// Threading: one World is used by one Python thread at a time (the binding
-// holds the GIL between calls); Worlds in several threads run in parallel.
+// Threading: one World is used by one Python thread at a time: a call that
+// steps, resets, sets a parameter or closes while another of these runs in
+// another thread is refused (servoloop::Error). Worlds in several threads
+// run in parallel.
 #include <cstdint>
+#include <atomic>
 #include <deque>
 #include <map>
 #include <memory>
@@ -85,6 +88,19 @@ class World {
   node::RobotInstance& robotForTopic(const std::string& topic) const;
   void flushBuses() const;
 
+  // Marks the World busy for one call (see Threading); throws when it is.
+  class Busy {
+   public:
+    explicit Busy(std::atomic<bool>& busy);
+    ~Busy() { busy_.store(false); }
+    Busy(const Busy&) = delete;
+    Busy& operator=(const Busy&) = delete;
+
+   private:
+    std::atomic<bool>& busy_;
+  };
+
+  std::atomic<bool> busy_{false};
   std::unique_ptr<node::Node> node_;
   double time_step_s_ = 0.001;
   std::vector<std::string> changed_parameters_;  // since the last reset

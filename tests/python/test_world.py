@@ -133,13 +133,22 @@ class WorldTest(unittest.TestCase):
 
             thread = threading.Thread(target=run)
             counted = 0
+            refused = None
             thread.start()
             while not done.is_set():
                 counted += 1
+                if refused is None and world.time > 0.0:
+                    # One World, one thread at a time: a second call is refused.
+                    try:
+                        world.step_cycles(1)
+                        refused = "accepted"
+                    except servoloop.Error as e:
+                        refused = str(e)
             thread.join()
             self.assertEqual(result["steps"], 60000)
             # Python ran here all along; with the GIL held it could not have.
             self.assertGreater(counted, 1000)
+            self.assertIn("in use by another thread", refused)
 
     def test_worlds_in_two_threads_give_what_each_gives_alone(self):
         def episode(gain, out, key):

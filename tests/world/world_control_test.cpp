@@ -114,6 +114,9 @@ TEST(WorldControl, AResetBulletWorldOfRobotsInContactRunsBitIdenticallyToAFreshL
 // The seed robot on mujoco, its position controller (PID with an integral
 // term) commanded by a timed publication: the controller's state resets too.
 TEST(WorldControl, AResetMujocoWorldRunsBitIdenticallyToAFreshLaunch) {
+#ifndef SERVOLOOP_TEST_MUJOCO
+  GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
+#endif
   TempDir dir("servoloop-world-reset-mujoco");
   LaunchFile launch = node::loadLaunchFile(fs::path(SERVOLOOP_SOURCE_DIR) / "robots/one_dof/one_dof_w_jnt_ctl.launch.yaml");
   launch.world.backend = "mujoco";

@@ -122,9 +122,12 @@ void WorldLoop::whilePaused(const std::function<void()>& change) {
 
 void WorldLoop::pause() {
   std::unique_lock lock(mutex_);
-  if (physics_paused_) return;
+  const bool was_paused = physics_paused_;
   physics_paused_ = true;
+  // Steps asked for meanwhile end here too.
+  const bool stepping = step_budget_ > 0;
   step_budget_ = 0;
+  if (was_paused && !stepping) return;
   standing_ = false;
   if (!started_ || thread_exited_) return;
   interrupt_.store(true, std::memory_order_release);
@@ -149,12 +152,27 @@ bool WorldLoop::paused() const {
 std::uint64_t WorldLoop::stepPaused(std::uint64_t cycles) {
   std::unique_lock lock(mutex_);
   if (!physics_paused_) throw Error("the world is running; pause it first to step it");
-  if (!started_ || thread_exited_ || stop_requested_) throw Error("the world is not running; nothing can step it");
-  const std::uint64_t before = steps_.load(std::memory_order_acquire);
-  step_budget_ = cycles;
+  if (!started_ || thread_exited_ || stop_requested_ || steps_cancelled_) {
+    throw Error("the world is not running; nothing can step it");
+  }
+  const std::uint64_t before = steps_stepped_;
+  const std::uint64_t target = before + cycles;
+  step_budget_ += cycles;
   wake_.notify_all();
-  wake_.wait(lock, [&] { return step_budget_ == 0 || !physics_paused_ || stop_requested_ || thread_exited_; });
-  return steps_.load(std::memory_order_acquire) - before;
+  wake_.wait(lock, [&] {
+    return steps_stepped_ >= target || step_budget_ == 0 || !physics_paused_ || stop_requested_ || thread_exited_ ||
+           steps_cancelled_;
+  });
+  return std::min(cycles, steps_stepped_ - before);
+}
+
+void WorldLoop::cancelSteps() {
+  {
+    std::lock_guard lock(mutex_);
+    steps_cancelled_ = true;
+    step_budget_ = 0;
+  }
+  wake_.notify_all();
 }
 
 void WorldLoop::wake() {
@@ -168,7 +186,7 @@ void WorldLoop::wake() {
 
 bool WorldLoop::requestsWaiting() const {
   return !joining_.empty() || !leaving_.empty() || pause_requested_ || stop_requested_ || woken_ ||
-         (standing_ && (!physics_paused_ || step_budget_ > 0));
+         (standing_ && (!physics_paused_ || step_budget_ > 0)) || (physics_paused_ && !standing_);
 }
 
 void WorldLoop::serveRequests(std::unique_lock<std::mutex>& lock) {
@@ -265,7 +283,11 @@ void WorldLoop::run() {
     for (WorldMember* member : active_) member->simulationLoop().endExternalRun();
     lock.lock();
     if (physics_paused_ && step_budget_ > 0) {
-      step_budget_ -= std::min(ran, step_budget_);
+      const std::uint64_t counted = std::min(ran, step_budget_);
+      step_budget_ -= counted;
+      steps_stepped_ += counted;
+      // Waiters wake when all the steps asked for ran (calls from several
+      // threads share one budget).
       if (step_budget_ == 0) wake_.notify_all();
     }
   }

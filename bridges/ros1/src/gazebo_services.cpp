@@ -192,6 +192,12 @@ GazeboServices::GazeboServices(ros::NodeHandle& nh, NodeLink& link, const RobotS
     return [this, service, op](std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
       try {
         link_.call(op, json::object(), kWorldCallTimeoutS);
+        if (std::string(op) == "world.reset") {
+          // The effort controllers start again at zero: the efforts still
+          // applied are sent again at the next tick.
+          std::lock_guard lock(mutex_);
+          published_.clear();
+        }
         return true;
       } catch (const std::exception& e) {
         ROS_ERROR("%s: %s", service, e.what());

@@ -188,8 +188,9 @@ class RobotInstance final : public world::WorldMember {
   // its running controllers are stopped (stopping()), its simulated
   // hardware reset (joints at their initial positions and at rest, the base
   // at its spawn pose, commands zero, time 0), its loop rewound, then the
-  // same controllers started again as at launch (starting(), so their state
-  // resets), and the launch file's timed publications are published again
+  // launch file's controllers and those that were running started again as
+  // at launch (starting(), so their state resets; a launch controller that
+  // had failed starts again too), and the launch file's timed publications are published again
   // at their times. The world's own reset (SimulatedWorld::restart) follows
   // the reset of its every robot. Returns why a controller did not start
   // again (empty when all did). A controller with a parameter under one of
@@ -197,6 +198,9 @@ class RobotInstance final : public world::WorldMember {
   // stopped, so that it starts with the new values. Throws servoloop::Error
   // for a robot on hardware or on the wall clock (hardware cannot be reset).
   std::string resetToStart(const std::vector<std::string>& changed_parameters = {});
+  // Throws what resetToStart would refuse for, changing nothing: a robot on
+  // hardware or the wall clock, a controller switch waiting for a cycle.
+  void checkResettable() const;
 
   // What the launch asked for and did not happen: controllers that did not
   // load, switches that did not start them. Read after stop().

@@ -120,9 +120,13 @@ class WorldLoop {
   bool paused() const;
   // While paused: runs `cycles` more cycles (each active member's, then one
   // physics step) and returns how many ran once they have: fewer when no
-  // member cycles (all finished or in a fault) or the loop stops. Throws
-  // servoloop::Error when the world is not paused or not running.
+  // member cycles (all finished or in a fault), when pause() or unpause()
+  // comes meanwhile, or the loop stops. Calls from several threads add up.
+  // Throws servoloop::Error when the world is not paused or not running.
   std::uint64_t stepPaused(std::uint64_t cycles);
+  // Ends every stepPaused() waiting now and refuses later ones (a node
+  // shutting down).
+  void cancelSteps();
 
   // Physics steps of the world so far (any thread).
   std::uint64_t steps() const noexcept { return steps_.load(std::memory_order_acquire); }
@@ -157,6 +161,8 @@ class WorldLoop {
   bool woken_ = false;
   bool physics_paused_ = false;   // pause() .. unpause()
   std::uint64_t step_budget_ = 0;  // cycles stepPaused() still asks for
+  std::uint64_t steps_stepped_ = 0;  // cycles run for stepPaused() since the start
+  bool steps_cancelled_ = false;
   bool standing_ = false;         // the thread holds the paused world (no segment runs)
   WorldMember* entering_ = nullptr;  // whose enterWorld() runs now
 
