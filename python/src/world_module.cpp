@@ -2,6 +2,8 @@
 // Python, values crossing as JSON (numbers, strings, lists, dicts) and joint
 // states as numpy arrays. The GIL is released while a World steps or resets,
 // so Worlds in several Python threads run in parallel.
+#include <cstdint>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -20,9 +22,42 @@ nlohmann::json toJson(const py::handle& value) {
   return nlohmann::json::parse(dumps(value, py::arg("allow_nan") = false).cast<std::string>());
 }
 
+// JSON -> Python objects directly (no text in between): numbers keep their
+// type (a NaN stays a float NaN), strings are decoded as UTF-8 with any
+// invalid byte replaced.
 py::object fromJson(const nlohmann::json& value) {
-  const py::object loads = py::module_::import("json").attr("loads");
-  return loads(value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  using Type = nlohmann::json::value_t;
+  switch (value.type()) {
+    case Type::boolean:
+      return py::bool_(value.get<bool>());
+    case Type::number_integer:
+      return py::int_(value.get<std::int64_t>());
+    case Type::number_unsigned:
+      return py::int_(value.get<std::uint64_t>());
+    case Type::number_float:
+      return py::float_(value.get<double>());
+    case Type::string: {
+      const std::string& text = value.get_ref<const std::string&>();
+      return py::reinterpret_steal<py::object>(
+          PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace"));
+    }
+    case Type::array: {
+      py::list list(value.size());
+      std::size_t index = 0;
+      for (const nlohmann::json& item : value) list[index++] = fromJson(item);
+      return list;
+    }
+    case Type::object: {
+      py::dict dict;
+      for (const auto& [key, item] : value.items()) {
+        dict[py::reinterpret_steal<py::object>(
+            PyUnicode_DecodeUTF8(key.data(), static_cast<Py_ssize_t>(key.size()), "replace"))] = fromJson(item);
+      }
+      return dict;
+    }
+    default:  // null, and nothing else a message holds
+      return py::none();
+  }
 }
 
 py::array_t<double> array(const std::vector<double>& values) {
