@@ -154,10 +154,10 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   if (op.starts_with("world.")) return worldOp(op, request, connection);
   if (op == "model.list") {
     json models = json::array();
-    for (const std::string& ns : node_.robotNamespaces()) models.push_back(modelStateJson(node_.modelState(ns)));
+    for (const std::string& ns : node_.robotNamespaces()) models.push_back(modelStateToJson(node_.modelState(ns)));
     return {{"models", std::move(models)}};
   }
-  if (op == "model.get") return modelStateJson(node_.modelState(requireString(request, "model")));
+  if (op == "model.get") return modelStateToJson(node_.modelState(requireString(request, "model")));
   if (op == "model.set_configuration") {
     const std::string model = requireString(request, "model");
     std::vector<double> positions;
@@ -259,7 +259,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
               "action.{list,send,status,cancel}, model.{list,get,spawn,set_configuration}, world.{state,pause,unpause,step,reset,shutdown}");
 }
 
-json NodeOperations::modelStateJson(const ModelState& state) {
+json modelStateToJson(const ModelState& state) {
   const auto vector3 = [](const double (&v)[3]) { return json{{"x", v[0]}, {"y", v[1]}, {"z", v[2]}}; };
   return {{"name", state.name},
           {"namespace", state.ns},

@@ -10,20 +10,13 @@
 #include "servoloop/core/logging.hpp"
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/message_json.hpp"
+#include "servoloop/node/node_operations.hpp"
 
 namespace servoloop::python {
 namespace {
 
 // Messages one subscription keeps between two calls; older ones are dropped.
 constexpr std::size_t kMaxInboxMessages = 1'000'000;
-
-// True if topic lies under namespace ns ("/a" holds "/a/b", "/" everything).
-bool topicUnder(const std::string& topic, const std::string& ns) {
-  if (ns == "/") return true;
-  return topic.size() > ns.size() && topic.compare(0, ns.size(), ns) == 0 && topic[ns.size()] == '/';
-}
-
-nlohmann::json vector3(const double (&v)[3]) { return {{"x", v[0]}, {"y", v[1]}, {"z", v[2]}}; }
 
 }  // namespace
 
@@ -118,34 +111,29 @@ void World::flushBuses() const {
 }
 
 node::RobotInstance& World::robotFor(const std::string& robot_namespace) const {
-  const std::vector<node::RobotInstance*> robots = node().robots();
   if (robot_namespace.empty()) {
+    const std::vector<node::RobotInstance*> robots = node().robots();
     if (robots.size() == 1) return *robots.front();
-    std::string names;
-    for (const node::RobotInstance* robot : robots) names += (names.empty() ? "" : ", ") + robot->robotNamespace();
     throw Error(robots.empty() ? std::string("this world has no robot")
-                               : fmt::format("this world has several robots ({}); name one", names));
+                               : fmt::format("this world has several robots ({}); name one", robotNames()));
   }
-  const std::string wanted = robot_namespace.front() == '/' ? robot_namespace : "/" + robot_namespace;
-  for (node::RobotInstance* robot : robots) {
-    if (robot->robotNamespace() == wanted || robot->robotName() == robot_namespace) return *robot;
+  node::RobotInstance* robot = node().findModel(robot_namespace);
+  if (robot == nullptr) {
+    throw Error(fmt::format("no robot or model '{}' in this world (it has: {})", robot_namespace, robotNames()));
   }
+  return *robot;
+}
+
+std::string World::robotNames() const {
   std::string names;
-  for (const node::RobotInstance* robot : robots) names += (names.empty() ? "" : ", ") + robot->robotNamespace();
-  throw Error(fmt::format("no robot or model '{}' in this world (it has: {})", robot_namespace, names));
+  for (const std::string& ns : node().robotNamespaces()) names += (names.empty() ? "" : ", ") + ns;
+  return names;
 }
 
 node::RobotInstance& World::robotForTopic(const std::string& topic) const {
-  node::RobotInstance* best = nullptr;
-  const std::vector<node::RobotInstance*> robots = node().robots();
-  for (node::RobotInstance* robot : robots) {
-    const std::string& ns = robot->robotNamespace();
-    if (topicUnder(topic, ns) && (best == nullptr || ns.size() > best->robotNamespace().size())) best = robot;
-  }
-  // As the node does: a topic outside every namespace is the first robot's.
-  if (best == nullptr && !robots.empty()) best = robots.front();
-  if (best == nullptr) throw Error(fmt::format("'{}': this world has no robot to carry the topic", topic));
-  return *best;
+  node::RobotInstance* robot = node().robotForTopic(topic);
+  if (robot == nullptr) throw Error(fmt::format("'{}': this world has no robot to carry the topic", topic));
+  return *robot;
 }
 
 void World::publish(const std::string& topic, const nlohmann::json& value, const std::string& type) {
@@ -193,16 +181,7 @@ JointStates World::jointState(const std::string& robot_namespace) const {
 }
 
 nlohmann::json World::modelState(const std::string& name) const {
-  const node::ModelState state = node().modelState(name);
-  return {{"name", state.name},
-          {"namespace", state.ns},
-          {"fixed", state.fixed},
-          {"pose",
-           {{"position", vector3(state.position)},
-            {"orientation",
-             {{"x", state.orientation[0]}, {"y", state.orientation[1]}, {"z", state.orientation[2]},
-              {"w", state.orientation[3]}}}}},
-          {"twist", {{"linear", vector3(state.linear_velocity)}, {"angular", vector3(state.angular_velocity)}}}};
+  return node::modelStateToJson(node().modelState(name));
 }
 
 void World::setParam(const std::string& name, const std::string& value_json) {

@@ -86,6 +86,7 @@ class World {
   node::Node& node() const;
   node::RobotInstance& robotFor(const std::string& robot_namespace) const;
   node::RobotInstance& robotForTopic(const std::string& topic) const;
+  std::string robotNames() const;  // the robots' namespaces, for messages
   void flushBuses() const;
 
   // Marks the World busy for one call (see Threading); throws when it is.

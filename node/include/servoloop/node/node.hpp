@@ -161,6 +161,9 @@ class Node {
                              const std::vector<double>& positions);
   // The robot with that namespace ("/name" or "name") or model name, or nullptr.
   RobotInstance* findModel(const std::string& model);
+  // The robot whose bus carries `topic`: the one with the longest namespace
+  // holding it, else the first robot; nullptr in a world with no robot.
+  RobotInstance* robotForTopic(const std::string& topic);
   // A model's pose and twist: a floating base's ground truth (exact while
   // the world is paused, else of a recent step), a fixed base's spawn pose.
   // Throws servoloop::Error naming the models there are for an unknown one.
@@ -189,7 +192,6 @@ class Node {
   world::WorldLoop& requireWorldLoop(const char* what) const;
   void startRobotLocked(RobotInstance& robot);
   void startServer(const std::string& socket_namespace, RobotInstance* robot);
-  RobotInstance* robotForTopic(const std::string& topic);
 
   LaunchFile launch_;
   NodeOptions options_;

@@ -31,6 +31,10 @@ class Node;
 struct ModelState;
 class RobotInstance;
 
+// A model's state as model.get replies it (and the Python package gives it):
+// name, namespace, fixed, pose {position, orientation}, twist {linear, angular}.
+nlohmann::json modelStateToJson(const ModelState& state);
+
 class NodeOperations {
  public:
   // robot: the socket's robot; nullptr for the world socket.
@@ -50,7 +54,6 @@ class NodeOperations {
   RobotInstance& robotFor(const std::string& op);
   nlohmann::json worldOp(const std::string& op, const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json worldState();
-  static nlohmann::json modelStateJson(const ModelState& state);
   nlohmann::json deferToWorker(const nlohmann::json& request, ipc::IpcConnection& connection,
                                std::function<nlohmann::json()> work);
   void workerLoop();
