@@ -15,10 +15,11 @@
 //   manager/empty                         no controller: the manager's own cost
 //   manager/joint_states_only/<rate>      the JointStateController alone
 //   manager/per_joint/<rate>/joints:N     JointStateController + N JointPositionControllers
-//   manager/per_joint_timed/jsc_50Hz/joints:N  the same with every controller's update timed in
-//                                         every cycle, as the node's paced and wall-clock loops
-//                                         run it (`servoloop control stats`); a bare manager,
-//                                         the other variants, times nothing
+//   manager/per_joint_timed/jsc_50Hz/joints:N  the same with the controllers' updates timed as the
+//                                         node's loops time them (`servoloop control stats`): one
+//                                         cycle in ControlLoop::kUpdateTimingStride (16) reads the
+//                                         cycle clock once per controller; a bare manager, the
+//                                         other variants, times nothing
 //   manager/group/<rate>/joints:N         JointStateController + one JointGroupPositionController
 //   manager/diff_drive/jsc_50Hz/joints:2  JointStateController + a DiffDriveController on two wheels
 //                                         (limits on, odom and tf at 50 Hz, a new cmd_vel each second)
@@ -40,6 +41,7 @@
 
 #include "bench_support.hpp"
 #include "median_reporter.hpp"
+#include "servoloop/controller_manager/control_loop.hpp"
 #include "servoloop/controller_manager/controller_manager.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/description/robot_model.hpp"
@@ -199,7 +201,6 @@ class ManagerUnderTest {
 void runManager(benchmark::State& state, PositionControllers layout, double joint_state_rate_hz, bool timed) {
   const auto joints = static_cast<std::size_t>(state.range(0));
   ManagerUnderTest manager(joints, layout, joint_state_rate_hz);
-  manager.setUpdateTiming(timed);
   std::uint64_t cycle = 0;
   for (auto _ : state) {
     if (++cycle % kCyclesPerCommand == 0) {
@@ -207,6 +208,7 @@ void runManager(benchmark::State& state, PositionControllers layout, double join
       manager.sendCommands((cycle / kCyclesPerCommand) % 2 == 0 ? 0.5 : -0.5);
       state.ResumeTiming();
     }
+    if (timed) manager.setUpdateTiming(cycle % cm::ControlLoop::kUpdateTimingStride == 1);
     manager.cycle();
   }
   benchmark::DoNotOptimize(manager.firstEffortCommand());

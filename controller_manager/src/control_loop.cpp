@@ -15,6 +15,7 @@ ControlLoop::ControlLoop(hardware_interface::RobotHW& robot_hw, ControllerManage
   // A loop times its cycles (and so the controllers' updates) unless it says
   // otherwise (setPhaseTiming); the bare manager does not time them.
   manager_.setUpdateTiming(time_phases_);
+  loop_clock::prepareCycleClock();  // the phases' clock, calibrated here, not on the real-time thread
 }
 
 bool ControlLoop::logHardwareErrorReport() {
@@ -65,18 +66,28 @@ void ControlLoop::requestStatisticsReset() noexcept {
   statistics_.requestReset();
 }
 
-void ControlLoop::applyRequestedStatisticsReset() noexcept { statistics_.applyRequestedReset(); }
+void ControlLoop::sampleUpdateTiming() noexcept {
+  const bool timed = time_phases_ && update_timing_countdown_ == 0;
+  update_timing_countdown_ = timed ? kUpdateTimingStride - 1 : update_timing_countdown_ - 1;
+  manager_.setUpdateTiming(timed);
+}
+
+void ControlLoop::applyRequestedStatisticsReset() noexcept {
+  // The first cycle after a reset times the controllers too, so a reset
+  // followed by one cycle has figures for every part of it.
+  if (statistics_.applyRequestedReset()) update_timing_countdown_ = 0;
+}
 
 ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t cycle) noexcept {
   ReturnType result = ReturnType::error;
-  const std::int64_t start_ns = time_phases_ ? loop_clock::nowNs() : 0;
+  const std::int64_t start_ns = time_phases_ ? loop_clock::cycleClockNs() : 0;
   try {
     result = robot_hw_.read(time, period);
   } catch (...) {
     // read() must not throw; containing it keeps the loop (and the robot's
     // other joints) under control. It is reported as an error of this call.
   }
-  if (time_phases_) statistics_.recordRead(loop_clock::nowNs() - start_ns);
+  if (time_phases_) statistics_.recordRead(loop_clock::cycleClockNs() - start_ns);
   recordHardwareResult(HardwareCall::read, result, time, cycle);
   if (options_.safety != nullptr) options_.safety->pollHardwareInput();
   return result;
@@ -86,13 +97,13 @@ ReturnType ControlLoop::writeHardware(Time time, Duration period, std::uint64_t 
   // Every write, also the physics steps between two control updates.
   if (options_.safety != nullptr) options_.safety->overrideCommands();
   ReturnType result = ReturnType::error;
-  const std::int64_t start_ns = time_phases_ ? loop_clock::nowNs() : 0;
+  const std::int64_t start_ns = time_phases_ ? loop_clock::cycleClockNs() : 0;
   try {
     result = robot_hw_.write(time, period);
   } catch (...) {
     // As in readHardware: counted and reported as an error of write().
   }
-  if (time_phases_) statistics_.recordWrite(loop_clock::nowNs() - start_ns);
+  if (time_phases_) statistics_.recordWrite(loop_clock::cycleClockNs() - start_ns);
   recordHardwareResult(HardwareCall::write, result, time, cycle);
   return result;
 }

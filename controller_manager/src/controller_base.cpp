@@ -60,13 +60,6 @@ void ControllerBase::abortRequest() noexcept {
   state_.store(ControllerState::failed, std::memory_order_release);
 }
 
-std::size_t ControllerBase::firstNonFiniteCommand() const noexcept {
-  for (std::size_t i = 0; i < claimed_commands_.size(); ++i) {
-    if (!std::isfinite(*claimed_commands_[i].command)) return i;
-  }
-  return kAllCommandsFinite;
-}
-
 void ControllerBase::writeSafeCommands() noexcept {
   for (const ClaimedCommand& claimed : claimed_commands_) {
     if (claimed.safe == SafeCommand::zero) {

@@ -134,7 +134,7 @@ void ControllerManager::update(const Time& time, const Duration& /*period*/) noe
   // manager's few checks after the update before it (the controllers that did
   // not run, the finite-command check). A fault's handling is read past, so it
   // is nobody's update time.
-  std::int64_t clock_ns = time_updates_ ? loop_clock::nowNs() : 0;
+  std::int64_t clock_ns = time_updates_ ? loop_clock::cycleClockNs() : 0;
   std::int64_t* const timing = time_updates_ ? &clock_ns : nullptr;
   for (detail::ControllerEntry* entry : realtime_lists_[list_index]) {
     if (reset_timing) entry->update_time.reset();
@@ -234,17 +234,17 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
   try {
     result = controller.updateRequest(time, period);
     if (clock_ns != nullptr) {
-      const std::int64_t now_ns = loop_clock::nowNs();
+      const std::int64_t now_ns = loop_clock::cycleClockNs();
       entry.update_time.record(now_ns - *clock_ns);
       *clock_ns = now_ns;
     }
   } catch (const std::exception& e) {
     containInUpdate(entry, FaultKind::update_threw, e.what(), time);
-    if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
+    if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
     return;
   } catch (...) {
     containInUpdate(entry, FaultKind::update_threw, "an exception not derived from std::exception", time);
-    if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
+    if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
     return;
   }
 
@@ -253,13 +253,13 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
       const std::size_t bad = controller.firstNonFiniteCommand();
       if (bad != ControllerBase::kAllCommandsFinite) {
         containInUpdate(entry, FaultKind::non_finite_command, "", time, bad, *controller.claimedCommands()[bad].command);
-        if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
+        if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
       }
       return;
     }
     case ReturnType::error:
       containInUpdate(entry, FaultKind::update_returned_error, "", time);
-      if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
+      if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
       return;
     case ReturnType::deactivate:
       try {
@@ -269,7 +269,7 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
       } catch (...) {
         contain(entry, FaultKind::stopping_threw, "an exception not derived from std::exception");
       }
-      if (clock_ns != nullptr) *clock_ns = loop_clock::nowNs();
+      if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
       return;
   }
 }

@@ -162,6 +162,7 @@ ReturnType SimulationLoop::cycleOnce() noexcept {
   mutableStatistics().beginUpdate();
   applyRequestedStatisticsReset();
   setPhaseTiming(true);
+  sampleUpdateTiming();
   const std::int64_t start_ns = loop_clock::nowNs();
   bool control_updated = false;
   const ReturnType result = runCycle(&control_updated);
@@ -271,6 +272,7 @@ void SimulationLoop::runPacedCycles(std::uint64_t max_cycles, const std::atomic<
     // pacing); the wall time the sleep adds is a group of its own.
     mutableStatistics().beginUpdate();
     applyRequestedStatisticsReset();
+    sampleUpdateTiming();
     runCycle(&control_updated);
     std::int64_t end_ns = loop_clock::nowNs();
     mutableStatistics().recordCycle(end_ns - cycle_start_ns, control_updated);

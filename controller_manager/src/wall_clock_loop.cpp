@@ -118,6 +118,7 @@ void WallClockLoop::runCycles(std::int64_t run_length_ns, const std::atomic<bool
     // The cycle's figures, from here to its elapsed times, are one group.
     mutableStatistics().beginUpdate();
     applyRequestedStatisticsReset();
+    sampleUpdateTiming();
     mutableStatistics().recordWakeupLatency(start_ns - deadline_ns);
     if (previous_start_ns >= 0) {
       // Against the grid: after skipped deadlines the period is a multiple.

@@ -73,6 +73,9 @@ struct LoopCommonOptions {
 
 class ControlLoop {
  public:
+  // Loops that time every cycle time the controllers' updates in one of these.
+  static constexpr std::uint32_t kUpdateTimingStride = 16;
+
   virtual ~ControlLoop() = default;
   ControlLoop(const ControlLoop&) = delete;
   ControlLoop& operator=(const ControlLoop&) = delete;
@@ -145,6 +148,15 @@ class ControlLoop {
   // timed: every cycle unless a loop times only some (a free-running
   // simulation, see LoopStatistics).
   void setPhaseTiming(bool timed) noexcept;
+  // A loop that times its phases in every cycle (the wall clock, a paced
+  // simulation) calls this at the start of each cycle, after
+  // applyRequestedStatisticsReset(): the controllers' updates are then timed
+  // in one cycle of kUpdateTimingStride only (the first after the loop's
+  // start or a statistics reset, and every stride-th after it). A timed
+  // update costs a clock read per controller, more than a small controller's
+  // update itself; one cycle in 16 gives the same percentiles for controllers
+  // whose cost does not jump from cycle to cycle.
+  void sampleUpdateTiming() noexcept;
   // At the start of a cycle: a statistics reset another thread asked for.
   void applyRequestedStatisticsReset() noexcept;
 
@@ -165,6 +177,7 @@ class ControlLoop {
   std::atomic<bool> hardware_stop_{false};
   bool deactivate_this_cycle_ = false;  // real-time thread only
   bool time_phases_ = true;             // real-time thread only
+  std::uint32_t update_timing_countdown_ = 0;  // cycles until the next timed update; real-time thread only
 };
 
 }  // namespace servoloop::controller_manager

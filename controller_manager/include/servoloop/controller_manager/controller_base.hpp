@@ -7,6 +7,7 @@
 // The manager drives these requests; controllers implement init (through
 // Controller<> or MultiInterfaceController<>), starting, update, stopping.
 #include <atomic>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -117,7 +118,13 @@ class ControllerBase {
   const std::vector<ClaimedCommand>& claimedCommands() const noexcept { return claimed_commands_; }
   // Index into claimedCommands() of the first command that is NaN or infinite,
   // or kAllCommandsFinite. Real-time safe.
-  std::size_t firstNonFiniteCommand() const noexcept;
+  // Inline: the manager checks every controller's commands after every update.
+  std::size_t firstNonFiniteCommand() const noexcept {
+    for (std::size_t i = 0; i < claimed_commands_.size(); ++i) {
+      if (!std::isfinite(*claimed_commands_[i].command)) return i;
+    }
+    return kAllCommandsFinite;
+  }
   // Writes each claimed command's safe value. Real-time safe.
   void writeSafeCommands() noexcept;
 

@@ -189,11 +189,11 @@ class ControllerManager {
 
   // Real-time. Whether the next update()s time each controller's update()
   // (updateTimes). Off by default: a bare manager (a hand-written main calling
-  // update()) reads no clock. A control loop switches it on when it is built,
-  // over a manager no thread updates yet, and for the cycles it times (every
-  // cycle, but 1 in kFreeRunningTimingStride of a free-running simulation,
-  // simulation_loop.hpp); a timed cycle reads the clock once per updated
-  // controller, plus once.
+  // update()) reads no clock. A control loop switches it on for the cycles it
+  // samples: one in 16 (ControlLoop::kUpdateTimingStride, and
+  // SimulationLoop::kFreeRunningTimingStride for a free-running simulation);
+  // a timed cycle reads the cycle clock (loop_clock::cycleClockNs) once per
+  // updated controller, plus once.
   void setUpdateTiming(bool timed) noexcept { time_updates_ = timed; }
 
  private:
