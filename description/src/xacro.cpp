@@ -1,5 +1,6 @@
 #include "servoloop/description/xacro.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include "servoloop/core/text_file.hpp"
 #include "servoloop/core/xml_error_text.hpp"
 #include "servoloop/description/package_path.hpp"
+#include "servoloop/params/parameter_store.hpp"
 #include "xacro_expression.hpp"
 
 namespace servoloop {
@@ -29,6 +31,9 @@ using tinyxml2::XMLDocument;
 using tinyxml2::XMLElement;
 using tinyxml2::XMLNode;
 using xacro::ExpressionError;
+using xacro::LimitError;
+using xacro::RecursionLevel;
+using xacro::shortened;
 using xacro::Value;
 
 // Macro calls and includes nest at most this deep (a macro calling itself
@@ -36,6 +41,13 @@ using xacro::Value;
 // few macros calling each other twice over would otherwise fill the memory).
 constexpr int kMaxNesting = 100;
 constexpr std::size_t kMaxOutputNodes = 2'000'000;
+// A property defined through another (p1 = ${p0 + 1}) evaluates that one
+// first, recursively: a chain of them is at most this long (Python's xacro
+// stops near here too, at its recursion limit). Properties evaluated where
+// they are defined (lazy_eval="false") make no chain.
+constexpr std::size_t kMaxPropertyChain = 100;
+// $(...) inside $(...) (as in $(find $(arg package))) nests at most this deep.
+constexpr int kMaxSubstitutionNesting = 20;
 
 // A block: a macro's *name / **name parameter (already expanded in the caller)
 // or a <xacro:property> with a body (expanded where it is inserted).
@@ -95,21 +107,41 @@ std::set<std::string> xacroPrefixes(const XMLElement* root) {
 
 Value literalized(Value v) { return v.kind == Value::Kind::String ? xacro::literal(v.text) : v; }
 
-Value fromYaml(const YAML::Node& node) {
+// A YAML document's values. Maps and sequences nest at most kMaxValueDepth
+// deep (checked before going down, so the recursion is never deeper).
+Value fromYaml(const YAML::Node& node, int depth = 0) {
+  const bool collection = node.Type() == YAML::NodeType::Map || node.Type() == YAML::NodeType::Sequence;
+  if (collection && depth >= xacro::kMaxValueDepth) {
+    throw ExpressionError("line " + std::to_string(node.Mark().line + 1) + ": maps and lists nest more than " +
+                          std::to_string(xacro::kMaxValueDepth) + " levels deep, deeper than xacro's values go (" +
+                          std::to_string(xacro::kMaxValueDepth) + " levels); no robot's YAML comes near that");
+  }
   switch (node.Type()) {
     case YAML::NodeType::Map: {
       Value::DictItems items;
-      for (const auto& kv : node) items.emplace_back(kv.first.Scalar(), fromYaml(kv.second));
+      for (const auto& kv : node) items.emplace_back(kv.first.Scalar(), fromYaml(kv.second, depth + 1));
       return Value::ofDict(std::move(items));
     }
     case YAML::NodeType::Sequence: {
       std::vector<Value> items;
-      for (const auto& item : node) items.push_back(fromYaml(item));
+      for (const auto& item : node) items.push_back(fromYaml(item, depth + 1));
       return Value::ofList(std::move(items));
     }
     case YAML::NodeType::Scalar: return node.Tag() == "!" ? Value::ofString(node.Scalar()) : xacro::literal(node.Scalar());
     default: return Value::none();
   }
+}
+
+// The offset of the first byte of `text` that cannot be in a YAML file (YAML is
+// UTF-8 text: no bytes outside UTF-8, no control characters but tab and line
+// breaks), or nullopt.
+std::optional<std::size_t> notYamlText(const std::string& text) {
+  std::optional<std::size_t> offset = invalidUtf8Offset(text);
+  for (std::size_t i = 0; i < offset.value_or(text.size()); ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if ((byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') || byte == 0x7F) return i;
+  }
+  return offset;
 }
 
 std::string trim(const std::string& s) {
@@ -159,15 +191,46 @@ class Expander : public xacro::Names {
   // xacro::Names
   std::optional<Value> lookup(const std::string& name) override { return lookupIn(*current_, name); }
 
+  // The file is refused, with one error naming it (the caller adds the xacro
+  // file and line), when it is not text, not YAML, holds more values than a
+  // parameter file may once its aliases are expanded (params::kMaxYamlNodes:
+  // a few lines of anchors and aliases can stand for billions), or nests
+  // deeper than xacro's values.
   Value loadYaml(const std::string& file) override {
     fs::path path = file;
     if (path.is_relative()) path = files_.back().dir / path;
+    const std::string call = "load_yaml('" + shortened(file) + "'): ";
+    const std::string yaml_file = path.string();
+    std::string text;
     try {
-      return fromYaml(YAML::Load(readFile(path, "YAML file")));
-    } catch (const YAML::Exception& e) {
-      throw ExpressionError("load_yaml('" + file + "'): " + path.string() + " is not valid YAML: " + e.what());
+      text = readFile(path, "YAML file");
     } catch (const ConfigError& e) {
-      throw ExpressionError(std::string("load_yaml('") + file + "'): " + e.what());
+      throw ExpressionError(call + e.what());
+    }
+    if (const auto offset = notYamlText(text)) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(text[*offset]));
+      throw ExpressionError(call + yaml_file + ": byte " + std::to_string(*offset) + " (" + hex +
+                            ") is not text, and a YAML file is UTF-8 text; is it the file you meant?");
+    }
+    YAML::Node document;
+    try {
+      document = YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+      const std::string at = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1) + ":" +
+                                                         std::to_string(e.mark.column + 1);
+      throw ExpressionError(call + yaml_file + at + ": not valid YAML: " + e.msg +
+                            "; fix the syntax there (indentation, a ':' after each key, closed brackets and quotes)");
+    }
+    try {
+      params::checkYamlSize(document, yaml_file);
+    } catch (const ConfigError& e) {
+      throw ExpressionError(call + e.what());
+    }
+    try {
+      return fromYaml(document);
+    } catch (const ExpressionError& e) {
+      throw ExpressionError(call + yaml_file + ": " + e.what());
     }
   }
 
@@ -212,19 +275,67 @@ class Expander : public xacro::Names {
 
   // ----- properties and names -----
 
+  // The scope of namespace `head` as seen from `scope`, or nullptr.
+  static Scope* namespaceIn(Scope& scope, const std::string& head) {
+    for (Scope* s = &scope; s != nullptr; s = s->parent) {
+      if (auto it = s->namespaces.find(head); it != s->namespaces.end()) return it->second;
+    }
+    return nullptr;
+  }
+
   // A property by name, or `ns.name` in the namespace of <xacro:include ns="ns">.
   // (A dict's keys after the name, cfg.joints.max, are the expression's to read.)
-  std::optional<Value> lookupIn(Scope& scope, const std::string& name) {
-    for (Scope* s = &scope; s != nullptr; s = s->parent) {
-      if (auto it = s->properties.find(name); it != s->properties.end()) return resolve(*s, name, it->second);
-    }
-    const auto dot = name.find('.');
-    if (dot == std::string::npos) return std::nullopt;
-    const std::string head = name.substr(0, dot);
-    for (Scope* s = &scope; s != nullptr; s = s->parent) {
-      if (auto it = s->namespaces.find(head); it != s->namespaces.end()) return lookupIn(*it->second, name.substr(dot + 1));
+  // A loop, not a recursion: a namespace may hold itself (a.a.a...). It goes
+  // through no more namespaces than includes nest (each step reads the rest
+  // of the name, so a long a.a.a... would otherwise cost its square).
+  std::optional<Value> lookupIn(Scope& start, const std::string& full_name) {
+    Scope* scope = &start;
+    std::string name = full_name;
+    for (int namespaces = 0; namespaces <= kMaxNesting; ++namespaces) {
+      for (Scope* s = scope; s != nullptr; s = s->parent) {
+        if (auto it = s->properties.find(name); it != s->properties.end()) return resolve(*s, name, it->second);
+      }
+      const auto dot = name.find('.');
+      if (dot == std::string::npos) return std::nullopt;
+      scope = namespaceIn(*scope, name.substr(0, dot));
+      if (scope == nullptr) return std::nullopt;
+      name.erase(0, dot + 1);
     }
     return std::nullopt;
+  }
+
+  // The properties being evaluated, each through the next (outermost first).
+  class Resolving {
+   public:
+    Resolving(Expander& expander, Property& property, const std::string& name)
+        : expander_(expander), property_(property) {
+      property_.evaluating = true;
+      expander_.resolving_.push_back(name);
+    }
+    ~Resolving() {
+      property_.evaluating = false;
+      expander_.resolving_.pop_back();
+    }
+    Resolving(const Resolving&) = delete;
+    Resolving& operator=(const Resolving&) = delete;
+
+   private:
+    Expander& expander_;
+    Property& property_;
+  };
+
+  // "property 'p200' is defined through a chain of more than 100 properties (p200 -> p199 -> ... -> p100)..."
+  std::string chainText(const std::string& next) const {
+    std::string chain;
+    const std::size_t shown_first = 3;
+    for (std::size_t i = 0; i < resolving_.size() && i < shown_first; ++i) chain += resolving_[i] + " -> ";
+    if (resolving_.size() > shown_first + 1) chain += "... -> ";
+    if (resolving_.size() > shown_first) chain += resolving_.back() + " -> ";
+    chain += next;
+    return "property '" + resolving_.front() + "' is defined through a chain of more than " +
+           std::to_string(kMaxPropertyChain) + " properties (" + chain + "); xacro-file property chains deeper than " +
+           std::to_string(kMaxPropertyChain) + " are refused: evaluate properties where they are defined "
+           "(lazy_eval=\"false\"), or give some of them a value of their own";
   }
 
   Value resolve(Scope& owner, const std::string& name, Property& property) {
@@ -234,28 +345,34 @@ class Expander : public xacro::Names {
     }
     if (!property.value) {
       if (property.evaluating) throw ExpressionError("property '" + name + "' is defined in terms of itself");
-      property.evaluating = true;
+      if (resolving_.size() >= kMaxPropertyChain) throw LimitError(chainText(name));
+      const RecursionLevel level(
+          [&] { throw LimitError("property '" + name + "': " + xacro::recursionLimitText("property '" + name + "'")); });
+      const Resolving resolving(*this, property, name);
       try {
         property.value = literalized(evalText(*property.text, owner));
+      } catch (const LimitError&) {
+        throw;  // whole already; the chain it passed through would make it long
       } catch (const ExpressionError& e) {
-        property.evaluating = false;
-        throw ExpressionError("property '" + name + "' (\"" + *property.text + "\"): " + e.what());
+        throw ExpressionError("property '" + name + "' (\"" + shortened(*property.text) + "\"): " + e.what());
       }
-      property.evaluating = false;
     }
     return *property.value;
   }
 
-  std::shared_ptr<const Macro> findMacro(Scope& scope, const std::string& name) {
-    for (Scope* s = &scope; s != nullptr; s = s->parent) {
-      if (auto it = s->macros.find(name); it != s->macros.end()) return it->second;
-    }
-    const auto dot = name.find('.');
-    if (dot == std::string::npos) return nullptr;
-    for (Scope* s = &scope; s != nullptr; s = s->parent) {
-      if (auto it = s->namespaces.find(name.substr(0, dot)); it != s->namespaces.end()) {
-        return findMacro(*it->second, name.substr(dot + 1));
+  // A loop, as lookupIn.
+  std::shared_ptr<const Macro> findMacro(Scope& start, const std::string& full_name) {
+    Scope* scope = &start;
+    std::string name = full_name;
+    for (int namespaces = 0; namespaces <= kMaxNesting; ++namespaces) {
+      for (Scope* s = scope; s != nullptr; s = s->parent) {
+        if (auto it = s->macros.find(name); it != s->macros.end()) return it->second;
       }
+      const auto dot = name.find('.');
+      if (dot == std::string::npos) return nullptr;
+      scope = namespaceIn(*scope, name.substr(0, dot));
+      if (scope == nullptr) return nullptr;
+      name.erase(0, dot + 1);
     }
     return nullptr;
   }
@@ -290,7 +407,9 @@ class Expander : public xacro::Names {
       }
       if (text[j] == '{') {
         const auto close = text.find('}', j);
-        if (close == std::string::npos) throw ExpressionError("'${' without a closing '}' in \"" + text + "\"");
+        if (close == std::string::npos) {
+          throw ExpressionError("'${' without a closing '}' in \"" + shortened(text) + "\"");
+        }
         std::string expression = text.substr(j + 1, close - j - 1);
         // As xacro does, $(...) inside ${...} is substituted first: ${$(arg mass) * 2}.
         if (expression.find("$(") != std::string::npos) expression = evalString(expression, scope);
@@ -299,9 +418,12 @@ class Expander : public xacro::Names {
         current_ = &scope;
         try {
           parts.push_back(xacro::evaluate(expression, *this));
+        } catch (const LimitError&) {
+          current_ = saved;
+          throw;
         } catch (const ExpressionError& e) {
           current_ = saved;
-          throw ExpressionError("${" + expression + "}: " + e.what());
+          throw ExpressionError("${" + shortened(expression) + "}: " + e.what());
         }
         current_ = saved;
         i = close + 1;
@@ -312,7 +434,9 @@ class Expander : public xacro::Names {
           if (text[close] == '(') ++depth;
           if (text[close] == ')' && --depth == 0) break;
         }
-        if (close >= text.size()) throw ExpressionError("'$(' without a closing ')' in \"" + text + "\"");
+        if (close >= text.size()) {
+          throw ExpressionError("'$(' without a closing ')' in \"" + shortened(text) + "\"");
+        }
         flush();
         parts.push_back(Value::ofString(substitute(text.substr(j + 1, close - j - 1), scope)));
         i = close + 1;
@@ -321,8 +445,18 @@ class Expander : public xacro::Names {
     flush();
     if (parts.empty()) return Value::ofString("");
     if (parts.size() == 1) return parts[0];
+    // A text is bounded as a value's is: "${p}${p}" doubles p, and thirty
+    // such properties would stand for gigabytes.
     std::string joined;
-    for (const auto& p : parts) joined += xacro::str(p);
+    for (const auto& p : parts) {
+      const std::string part = xacro::str(p);
+      if (joined.size() + part.size() > xacro::kMaxValueText) {
+        throw ExpressionError("\"" + shortened(text) + "\" would make a text over " +
+                              std::to_string(xacro::kMaxValueText >> 20) +
+                              " MiB; does a property double another again and again (p1 = \"${p0}${p0}\", ...)?");
+      }
+      joined += part;
+    }
     return Value::ofString(joined);
   }
 
@@ -330,6 +464,18 @@ class Expander : public xacro::Names {
 
   // $(arg x), $(find pkg), $(env V), $(optenv V default), $(dirname), $(eval expr)
   std::string substitute(const std::string& body, Scope& scope) {
+    if (substitutions_ >= kMaxSubstitutionNesting) {
+      throw LimitError("$(" + shortened(body) + "): $(...) substitutions nest more than " +
+                       std::to_string(kMaxSubstitutionNesting) + " deep inside one another; no robot description "
+                       "comes near that: simplify it");
+    }
+    const RecursionLevel level(
+        [&] { throw LimitError("$(" + shortened(body) + "): " + xacro::recursionLimitText("a $(...) substitution")); });
+    ++substitutions_;
+    struct Leave {
+      int& count;
+      ~Leave() { --count; }
+    } leave{substitutions_};
     const std::string inner = body.find("$(") != std::string::npos ? evalString(body, scope) : body;
     const std::string trimmed = trim(inner);
     const auto space = trimmed.find_first_of(" \t");
@@ -361,7 +507,7 @@ class Expander : public xacro::Names {
       ArgNames arg_names(args_, *this, known_args_);
       return xacro::str(xacro::evaluate(rest, arg_names));
     }
-    throw ExpressionError("unknown substitution $(" + trimmed +
+    throw ExpressionError("unknown substitution $(" + shortened(trimmed) +
                           "); xacro knows $(arg), $(find), $(env), $(optenv), $(dirname) and $(eval)");
   }
 
@@ -399,7 +545,10 @@ class Expander : public xacro::Names {
     }
   }
 
+  // Each call is a level of xacro's recursion: elements inside elements, and
+  // the bodies of macros, includes, conditions and blocks.
   void expandChildren(const XMLNode* in, XMLNode* out, Scope& scope) {
+    const RecursionLevel level([&] { fail(in, xacro::recursionLimitText(elementText(in))); });
     for (const XMLNode* node = in->FirstChild(); node != nullptr; node = node->NextSibling()) {
       countNode(node);
       if (const XMLElement* element = node->ToElement()) {
@@ -416,6 +565,14 @@ class Expander : public xacro::Names {
         out->InsertEndChild(output_.NewComment(node->Value()));
       }
     }
+  }
+
+  // <name> or <name name="..."> for messages.
+  static std::string elementText(const XMLNode* node) {
+    const XMLElement* element = node->ToElement();
+    if (element == nullptr) return "the document";
+    const char* name = element->Attribute("name");
+    return "<" + std::string(element->Name()) + (name != nullptr ? " name=\"" + shortened(name) + "\"" : "") + ">";
   }
 
   const char* xacroName(const XMLElement* element) const {
@@ -619,9 +776,10 @@ class Expander : public xacro::Names {
   void callMacro(const XMLElement* call, const std::string& name, XMLNode* out, Scope& scope, const std::string& via) {
     const std::shared_ptr<const Macro> macro = findMacro(scope, name);
     if (!macro) {
-      fail(call, "<" + std::string(call->Name()) + ">" + (via.empty() ? "" : " (macro=\"" + name + "\")") +
-                     ": no macro named '" + name +
-                     "' is defined here; define it with <xacro:macro name=\"" + name +
+      const std::string shown = shortened(name);
+      fail(call, "<" + shortened(call->Name()) + ">" + (via.empty() ? "" : " (macro=\"" + shown + "\")") +
+                     ": no macro named '" + shown +
+                     "' is defined here; define it with <xacro:macro name=\"" + shown +
                      "\" params=\"...\"> before this line, or include the file that does");
     }
     if (static_cast<int>(calls_.size()) >= kMaxNesting) {
@@ -708,15 +866,40 @@ class Expander : public xacro::Names {
         expandChildren(block.holder, out, scope);
       } else if (block.contents_only) {
         for (const XMLNode* n = block.holder->FirstChild(); n != nullptr; n = n->NextSibling()) {
-          out->InsertEndChild(n->DeepClone(&output_));
+          insertCopy(n, out, element, name);
         }
       } else {
-        out->InsertEndChild(block.holder->DeepClone(&output_));
+        insertCopy(block.holder, out, element, name);
       }
       return;
     }
     fail(element, "<xacro:insert_block name=\"" + name + "\">: no block named '" + name +
                       "' (a *" + name + " macro parameter or a <xacro:property name=\"" + name + "\"> with a body)");
+  }
+
+  // A copy of `node` (an expanded block) at the end of `out`. Its nodes count
+  // towards kMaxOutputNodes, and the output nests no deeper than kMaxRecursion
+  // elements for it: a block passed from macro to macro, wrapped each time,
+  // grows without any expansion of its own, and tinyxml2 copies, prints and
+  // frees a tree recursively. The walk here is a loop.
+  void insertCopy(const XMLNode* node, XMLNode* out, const XMLElement* where, const std::string& block) {
+    int out_depth = 0;
+    for (const XMLNode* n = out; n != nullptr; n = n->Parent()) ++out_depth;
+    std::vector<std::pair<const XMLNode*, int>> pending{{node, 1}};
+    while (!pending.empty()) {
+      const auto [n, depth] = pending.back();
+      pending.pop_back();
+      countNode(where);
+      if (out_depth + depth > xacro::kMaxRecursion) {
+        fail(where, "<xacro:insert_block name=\"" + shortened(block) + "\"> would nest the output more than " +
+                        std::to_string(xacro::kMaxRecursion) +
+                        " elements deep; does a macro pass its block on to itself, wrapped, again and again?");
+      }
+      for (const XMLNode* child = n->FirstChild(); child != nullptr; child = child->NextSibling()) {
+        pending.emplace_back(child, depth + 1);
+      }
+    }
+    out->InsertEndChild(node->DeepClone(&output_));
   }
 
   XacroArgs args_;
@@ -727,6 +910,8 @@ class Expander : public xacro::Names {
   std::vector<std::unique_ptr<Scope>> scopes_;
   std::vector<File> files_;
   std::vector<std::string> calls_;
+  std::vector<std::string> resolving_;  // see Resolving
+  int substitutions_ = 0;               // $(...) being substituted, one inside another
   Scope* current_ = nullptr;
   XMLDocument output_;
   std::size_t output_nodes_ = 0;

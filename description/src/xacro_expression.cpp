@@ -174,21 +174,41 @@ class Parser {
   }
 
  private:
-  // Brackets, parentheses and unary operators nest at most this deep: the
-  // parser recurses once per level, and a deeper text would exhaust the stack.
+  // Brackets, parentheses and operators nest at most this deep in one
+  // expression: the parser recurses once per level (every path by which it
+  // calls itself passes a Nesting: conditional, which every bracket,
+  // parenthesis, argument and `else` starts, unary - and +, not, the right
+  // side of **, and [subscripts]), and a deeper text would exhaust the stack.
+  // A level counts towards kMaxRecursion too, with the levels of the
+  // expressions and elements this one is evaluated inside.
   static constexpr int kMaxNesting = 100;
-  struct Nesting {
-    explicit Nesting(Parser& parser) : parser_(parser) {
-      if (++parser_.nesting_ > kMaxNesting) {
-        fail("the expression nests more than " + std::to_string(kMaxNesting) +
-             " levels of brackets, parentheses or unary operators");
-      }
+  class Nesting {
+   public:
+    explicit Nesting(Parser& parser)
+        : parser_(parser.checkedNesting()), level_([&parser] { parser.refuseRecursion(); }) {
+      ++parser_.nesting_;
     }
     ~Nesting() { --parser_.nesting_; }
     Nesting(const Nesting&) = delete;
     Nesting& operator=(const Nesting&) = delete;
+
+   private:
     Parser& parser_;
+    RecursionLevel level_;
   };
+
+  Parser& checkedNesting() {
+    if (nesting_ >= kMaxNesting) {
+      fail("the expression nests more than " + std::to_string(kMaxNesting) +
+           " levels of brackets, parentheses or operators (unary - + and not, the right side of **, "
+           "x if c else y); no robot's expression comes near that: simplify it");
+    }
+    return *this;
+  }
+
+  [[noreturn]] void refuseRecursion() const {
+    throw LimitError("${" + shortened(expression_) + "}: " + recursionLimitText("a level of this expression"));
+  }
 
   const Token& peek() const { return tokens_[pos_]; }
   const Token& after() const { return tokens_[std::min(pos_ + 1, tokens_.size() - 1)]; }
@@ -349,6 +369,9 @@ class Parser {
     Value base = postfix(live);
     if (isOp("**")) {
       ++pos_;
+      // ** is right-associative: 2**3**2 is 2**(3**2), so a chain of them
+      // nests (as the unary operators do), one level per operator.
+      const Nesting nesting(*this);
       Value exponent = unary(live);
       if (live) return binaryOp("**", base, exponent);
     }
@@ -575,7 +598,10 @@ class Parser {
     if (!live) return Value{};
     if (auto v = names_.lookup(name)) return *v;
     std::string path = name;
-    while (isOp(".") && after().kind == Token::Kind::Name) {
+    // Namespaces nest no deeper than includes do: past that many segments
+    // a.b.c... is not looked up as one name (each look-up reads the whole
+    // path, so a long chain would cost its square).
+    for (int segments = 0; segments < kMaxNesting && isOp(".") && after().kind == Token::Kind::Name; ++segments) {
       const std::string attribute = after().text;
       path += "." + attribute;
       pos_ += 2;
@@ -604,6 +630,23 @@ class Parser {
 };
 
 }  // namespace
+
+int& RecursionLevel::depth() {
+  thread_local int levels = 0;
+  return levels;
+}
+
+std::string recursionLimitText(const std::string& here) {
+  return "xacro nests more than " + std::to_string(kMaxRecursion) + " levels deep at " + here +
+         " (elements inside elements, macro calls, includes, $(...) inside $(...), properties defined through other "
+         "properties and brackets in expressions count together); no robot description comes near that: flatten "
+         "it, or look for something that refers to itself in a roundabout way";
+}
+
+std::string shortened(const std::string& text) {
+  if (text.size() <= 120) return text;
+  return text.substr(0, 57) + "..." + text.substr(text.size() - 60);
+}
 
 Value evaluate(const std::string& expression, Names& names) { return Parser(expression, names).parseAll(); }
 

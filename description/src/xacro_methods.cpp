@@ -23,10 +23,6 @@ constexpr std::array<std::string_view, 14> kStringMethods = {
 constexpr std::array<std::string_view, 2> kListMethods = {"index", "count"};
 constexpr std::array<std::string_view, 3> kDictMethods = {"keys", "values", "get"};
 
-// A method that multiplies text (replace, join, format with widths) stops at
-// the size a description could sensibly hold, as str * int does.
-constexpr std::size_t kMaxStringBytes = 1 << 20;
-
 [[noreturn]] void failTooLong(const std::string& call) {
   fail(call + " would make a string over " + std::to_string(kMaxStringBytes) + " bytes");
 }

@@ -14,19 +14,23 @@ bool isIntegral(const Value& v) { return v.kind == Value::Kind::Int || v.kind ==
 long long toInt(const Value& v) { return v.kind == Value::Kind::Bool ? (v.boolean ? 1 : 0) : v.integer; }
 
 Value binaryOp(const std::string& op, const Value& a, const Value& b) {
-  if (op == "+" && a.kind == Value::Kind::String && b.kind == Value::Kind::String) return Value::ofString(a.text + b.text);
+  if (op == "+" && a.kind == Value::Kind::String && b.kind == Value::Kind::String) {
+    if (a.text.size() + b.text.size() > kMaxStringBytes) {
+      fail("'" + a.text.substr(0, 20) + "...' + '" + b.text.substr(0, 20) + "...' would make a string over " +
+           std::to_string(kMaxStringBytes) + " bytes");
+    }
+    return Value::ofString(a.text + b.text);
+  }
   if (op == "+" && a.kind == Value::Kind::List && b.kind == Value::Kind::List) {
     std::vector<Value> items(*a.list);
     items.insert(items.end(), b.list->begin(), b.list->end());
     return Value::ofList(std::move(items));
   }
   if (op == "*" && a.kind == Value::Kind::String && isIntegral(b)) {
-    // A repeated string as long as a description could sensibly hold.
-    constexpr long long kMaxRepeatedBytes = 1 << 20;
     const long long times = std::max(toInt(b), 0LL);
-    if (times > 0 && static_cast<long long>(a.text.size()) > kMaxRepeatedBytes / times) {
+    if (times > 0 && static_cast<long long>(a.text.size()) > static_cast<long long>(kMaxStringBytes) / times) {
       fail("'" + a.text.substr(0, 20) + "' * " + std::to_string(times) + " would make a string over " +
-           std::to_string(kMaxRepeatedBytes) + " bytes");
+           std::to_string(kMaxStringBytes) + " bytes");
     }
     std::string out;
     for (long long k = 0; k < times; ++k) out += a.text;

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <unordered_map>
 
+#include "xacro_expression.hpp"
+
 namespace servoloop::xacro {
 
 Value Value::ofBool(bool b) {
@@ -29,16 +31,55 @@ Value Value::ofFloat(double f) {
   return v;
 }
 
+namespace {
+
+// The repr of a str is at most its quotes and every character escaped.
+std::size_t stringTextBound(const std::string& s) { return std::max(Value::kScalarTextBound, 2 + 2 * s.size()); }
+
+// Adds one item's text bound (and its ", " separator) to a container's; stops
+// adding once past the limit, so no sum can wrap around.
+void addTextBound(std::size_t& bound, std::size_t item) {
+  bound = item > kMaxValueText || bound > kMaxValueText ? kMaxValueText + 1 : bound + item + 2;
+}
+
+// The depth and text bound of a list or dict (raised to the least any value
+// counts), refused past the limits.
+void checkContainer(Value& v) {
+  v.text_bound = std::max(v.text_bound, Value::kScalarTextBound);
+  const char* what = v.kind == Value::Kind::List ? "a list" : "a dict";
+  if (v.depth > kMaxValueDepth) {
+    throw ExpressionError(std::string(what) + " nested more than " + std::to_string(kMaxValueDepth) +
+                          " levels deep (lists and dicts inside each other) is refused: xacro's values nest at most " +
+                          std::to_string(kMaxValueDepth) + " levels; does a property wrap another again and again "
+                          "(p1 = [p0], p2 = [p1], ...)?");
+  }
+  if (v.text_bound > kMaxValueText) {
+    throw ExpressionError(std::string(what) + " whose text would pass " + std::to_string(kMaxValueText >> 20) +
+                          " MiB (every list or dict in it counted each time it appears) is refused; does a property "
+                          "double another again and again (p1 = [p0, p0], p2 = p1 + p1, ...)?");
+  }
+}
+
+}  // namespace
+
 Value Value::ofString(std::string s) {
   Value v;
   v.kind = Kind::String;
   v.text = std::move(s);
+  v.text_bound = stringTextBound(v.text);
   return v;
 }
 
 Value Value::ofList(std::vector<Value> items) {
   Value v;
   v.kind = Kind::List;
+  v.depth = 1;
+  v.text_bound = 2;  // []
+  for (const Value& item : items) {
+    v.depth = std::max(v.depth, item.depth + 1);
+    addTextBound(v.text_bound, item.text_bound);
+  }
+  checkContainer(v);
   v.list = std::make_shared<const std::vector<Value>>(std::move(items));
   return v;
 }
@@ -57,6 +98,13 @@ Value Value::ofDict(DictItems items) {
   }
   Value v;
   v.kind = Kind::Dict;
+  v.depth = 1;
+  v.text_bound = 2;  // {}
+  for (const auto& [key, item] : unique) {
+    v.depth = std::max(v.depth, item.depth + 1);
+    addTextBound(v.text_bound, stringTextBound(key) + 2 + item.text_bound);  // 'key': item
+  }
+  checkContainer(v);
   v.dict = std::make_shared<const DictItems>(std::move(unique));
   return v;
 }

@@ -244,7 +244,11 @@ std::string resolveName(std::string_view ns, std::string_view name) {
   return result.empty() ? "/" : result;
 }
 
-void checkYamlDocument(const YAML::Node& document, std::string_view source_name) {
+namespace {
+
+// The walk of checkYamlDocument and checkYamlSize: the node count always, the
+// keys given twice when `duplicate_keys` is set.
+void checkYaml(const YAML::Node& document, std::string_view source_name, bool duplicate_keys) {
   std::size_t count = 0;
   std::vector<YAML::Node> pending{document};
   while (!pending.empty()) {
@@ -252,7 +256,7 @@ void checkYamlDocument(const YAML::Node& document, std::string_view source_name)
     pending.pop_back();
     if (++count > kMaxYamlNodes) {
       throw ConfigError(std::string(source_name) + ": the YAML holds more than " + std::to_string(kMaxYamlNodes) +
-                        " values once its aliases (*name) are expanded; no robot's parameters come near that, so "
+                        " values once its aliases (*name) are expanded; no robot's YAML comes near that, so "
                         "it is refused (an alias bomb?)");
     }
     if (node.IsSequence()) {
@@ -260,7 +264,7 @@ void checkYamlDocument(const YAML::Node& document, std::string_view source_name)
     } else if (node.IsMap()) {
       std::map<std::string, YAML::Mark> seen;
       for (const auto& item : node) {
-        if (item.first.IsScalar()) {
+        if (duplicate_keys && item.first.IsScalar()) {
           const auto [first, inserted] = seen.emplace(item.first.Scalar(), item.first.Mark());
           if (!inserted) {
             throw ConfigError(markText(std::string(source_name), item.first.Mark()) + ": key '" +
@@ -274,6 +278,16 @@ void checkYamlDocument(const YAML::Node& document, std::string_view source_name)
       }
     }
   }
+}
+
+}  // namespace
+
+void checkYamlDocument(const YAML::Node& document, std::string_view source_name) {
+  checkYaml(document, source_name, true);
+}
+
+void checkYamlSize(const YAML::Node& document, std::string_view source_name) {
+  checkYaml(document, source_name, false);
 }
 
 ParameterStore::ParameterStore() : root_(YAML::NodeType::Map) {}

@@ -311,7 +311,7 @@ TEST(Xacro, ErrorsNameTheFileLineAndWhatIsWrong) {
   EXPECT_CONTAINS(errorOf("<l>"), "xacro: not well-formed XML");
   // Found by fuzzing: 600 nested brackets overflowed the parser's stack.
   EXPECT_CONTAINS(errorOf("<l x=\"${" + std::string(600, '[') + "}\"/>"),
-                  "the expression nests more than 100 levels of brackets, parentheses or unary operators");
+                  "the expression nests more than 100 levels of brackets, parentheses or operators");
   EXPECT_CONTAINS(errorOf("<l x=\"${" + std::string(600, '-') + "1}\"/>"), "nests more than 100 levels");
   EXPECT_EQ(value(std::string(50, '(') + "1" + std::string(50, ')')), "1");
   // Exponential expansion is cut off instead of filling the memory.
@@ -322,6 +322,172 @@ TEST(Xacro, ErrorsNameTheFileLineAndWhatIsWrong) {
             "/></xacro:macro>";
   }
   EXPECT_CONTAINS(errorOf(bomb + "<xacro:m24/>"), "the expansion passed 2000000 XML nodes");
+}
+
+// `unit` written `times` times over.
+std::string repeated(const std::string& unit, int times) {
+  std::string out;
+  out.reserve(unit.size() * static_cast<std::size_t>(times));
+  for (int i = 0; i < times; ++i) out += unit;
+  return out;
+}
+
+// Found by an issue: chains the parser recursed through without counting them
+// (100,000 right-associative ** operators; 20,000 properties each defined
+// through the one before) overflowed the stack. Every way the expander
+// recurses is bounded, and each refusal is one error naming the file, what
+// nests and the limit.
+TEST(Xacro, EveryKindOfNestingStopsAtItsLimitWithOneError) {
+  // In one expression: 100,000 ** (the issue), unary minus signs and
+  // parentheses, and 10,000 of each other kind of nesting.
+  const std::string power = errorOf("<l x=\"${1" + repeated("**1", 100000) + "}\"/>");
+  EXPECT_CONTAINS(power, "robot.urdf.xacro:1: xacro: ${1**1**1");
+  EXPECT_CONTAINS(power, "the expression nests more than 100 levels of brackets, parentheses or operators");
+  EXPECT_LT(power.size(), 1000u) << "the expression is shortened in the message";
+  const int k = 10000;
+  for (const std::string& deep :
+       {repeated("- ", 100000) + "1", repeated("(", 100000) + "1" + repeated(")", 100000), repeated("+", k) + "1",
+        repeated("not ", k) + "1", repeated("[", k) + repeated("]", k), repeated("{1: ", k) + "1" + repeated("}", k),
+        repeated("abs(", k) + "1" + repeated(")", k), repeated("1 if 1 else ", k) + "1",
+        repeated("0 if 0 else ", k) + "1", "[0]" + repeated("[0", k) + repeated("]", k), "2" + repeated("**-2", k)}) {
+    const std::string error = errorOf("<l x=\"${" + deep + "}\"/>");
+    EXPECT_CONTAINS(error, "robot.urdf.xacro:1: xacro: ${");
+    EXPECT_CONTAINS(error, "nests more than 100 levels");
+  }
+  // 100 levels still evaluate: the top of the expression and 99 operators.
+  EXPECT_EQ(value("2" + repeated("**1", 99)), "2");
+  EXPECT_CONTAINS(errorOf("<l x=\"${2" + repeated("**1", 100) + "}\"/>"), "nests more than 100 levels");
+  EXPECT_EQ(value(repeated("-", 99) + "1"), "-1");
+
+  // 20,000 properties, each defined through the one before.
+  std::string chain = R"~(<xacro:property name="p0" value="0"/>)~";
+  std::string eager = chain;
+  for (int i = 1; i <= 20000; ++i) {
+    const std::string link = "<xacro:property name=\"p" + std::to_string(i) + "\" value=\"${p" + std::to_string(i - 1) + " + 1}\"";
+    chain += link + "/>";
+    eager += link + " lazy_eval=\"false\"/>";
+  }
+  const std::string deep_chain = errorOf(chain + "\n<l x=\"${p20000}\"/>");
+  EXPECT_CONTAINS(deep_chain, "robot.urdf.xacro:2: xacro: property 'p20000' is defined through a chain of more than 100 "
+                              "properties (p20000 -> p19999 -> p19998 -> ... -> p19901 -> p19900); xacro-file property "
+                              "chains deeper than 100 are refused: evaluate properties where they are defined "
+                              "(lazy_eval=\"false\")");
+  EXPECT_LT(deep_chain.size(), 1000u) << "one error, not one per link";
+  EXPECT_EQ(value("p99", chain), "99");  // 100 properties: p99 through p0
+  EXPECT_CONTAINS(errorOf(chain + "<l x=\"${p100}\"/>"), "chain of more than 100 properties");
+  EXPECT_EQ(value("p20000", eager), "20000");  // evaluated where defined: no chain
+
+  // A value wrapped property by property nests no deeper than 100 levels;
+  // one doubled property by property stops at 16 MiB of text (the billion
+  // laughs of YAML, in properties).
+  std::string wrapped = R"~(<xacro:property name="w0" value="0"/>)~";
+  std::string doubled = wrapped;
+  std::string text = R"~(<xacro:property name="t0" value="x"/>)~";
+  for (int i = 1; i <= 200; ++i) {
+    const std::string n = std::to_string(i);
+    const std::string before = std::to_string(i - 1);
+    wrapped += "<xacro:property name=\"w" + n + "\" value=\"${[w" + before + "]}\" lazy_eval=\"false\"/>";
+    doubled += "<xacro:property name=\"w" + n + "\" value=\"${[w" + before + ", w" + before + "]}\" lazy_eval=\"false\"/>";
+    text += "<xacro:property name=\"t" + n + "\" value=\"${t" + before + "}${t" + before + "}\" lazy_eval=\"false\"/>";
+  }
+  EXPECT_CONTAINS(errorOf(wrapped), "${[w100]}: a list nested more than 100 levels deep");
+  EXPECT_CONTAINS(errorOf(doubled), "a list whose text would pass 16 MiB");
+  EXPECT_CONTAINS(errorOf(text), "would make a text over 16 MiB");
+  EXPECT_CONTAINS(errorOf("<xacro:property name=\"s\" value=\"${'x' * 1000000}\"/><l x=\"${s + s}\"/>"),
+                  "would make a string over 1048576 bytes");
+
+  // $(...) inside $(...), 100,000 deep.
+  EXPECT_CONTAINS(errorOf("<l x=\"" + repeated("$(arg ", 100000) + "x" + repeated(")", 100000) + "\"/>"),
+                  "$(...) substitutions nest more than 20 deep");
+
+  // Elements inside elements, across 100 nested macro calls: the limit of
+  // all nesting together (each call here is six levels).
+  const std::string macro = R"~(<xacro:macro name="w" params="n"><a><b><c><d><xacro:if value="${n > 0}">
+      <xacro:w n="${n - 1}"/></xacro:if></d></c></b></a></xacro:macro>)~";
+  const std::string elements = errorOf(macro + R"~(<xacro:w n="99"/>)~");
+  EXPECT_CONTAINS(elements, "robot.urdf.xacro:");
+  EXPECT_CONTAINS(elements, "xacro nests more than 400 levels deep");
+  EXPECT_EQ(canonicalXml(expand(macro + R"~(<xacro:w n="1"/>)~")),
+            urdf("<a><b><c><d><a><b><c><d></d></c></b></a></d></c></b></a>"));
+  // A block passed on by a macro to itself, wrapped in five elements each time.
+  const std::string wrap = R"~(<xacro:macro name="m" params="n *b"><xacro:if value="${n > 0}"><xacro:m n="${n - 1}">
+      <w><w><w><w><w><xacro:insert_block name="b"/></w></w></w></w></w></xacro:m></xacro:if>
+      <xacro:unless value="${n > 0}"><xacro:insert_block name="b"/></xacro:unless></xacro:macro>)~";
+  EXPECT_CONTAINS(errorOf(wrap + R"~(<xacro:m n="99"><x/></xacro:m>)~"),
+                  "<xacro:insert_block name=\"b\"> would nest the output more than 400 elements deep");
+  EXPECT_EQ(canonicalXml(expand(wrap + R"~(<xacro:m n="1"><x/></xacro:m>)~")), urdf("<w><w><w><w><w><x/></w></w></w></w></w>"));
+
+  // A namespace that holds itself, named 100,000 times over.
+  TempDir dir("servoloop-xacro");
+  writeFile(dir.path() / "ns.xacro", R"~(<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:property name="v" value="1"/></robot>)~");
+  writeFile(dir.path() / "r.xacro", std::string(kOpen) + R"~(<xacro:include filename="ns.xacro" ns="a"/><l x="${)~" +
+                                        repeated("a.", 100000) + R"~(v}"/></robot>)~");
+  std::string namespaced;
+  try {
+    expandXacroFile(dir.path() / "r.xacro");
+  } catch (const ConfigError& e) {
+    namespaced = e.what();
+  }
+  EXPECT_CONTAINS(namespaced, "r.xacro:1: xacro: ");
+  EXPECT_LT(namespaced.size(), 1000u);
+  writeFile(dir.path() / "m.xacro", std::string(kOpen) + R"~(<xacro:include filename="ns.xacro" ns="a"/><xacro:)~" +
+                                        repeated("a.", 100000) + "m/></robot>");
+  std::string macro_call;
+  try {
+    expandXacroFile(dir.path() / "m.xacro");
+  } catch (const ConfigError& e) {
+    macro_call = e.what();
+  }
+  EXPECT_CONTAINS(macro_call, "m.xacro:1: xacro: ");
+  EXPECT_CONTAINS(macro_call, "no macro named 'a.a.a.");
+  EXPECT_LT(macro_call.size(), 1000u);
+
+  // Nothing of the refused expansions stays counted.
+  EXPECT_EQ(value(std::string(99, '(') + "1" + std::string(99, ')')), "1");
+}
+
+// load_yaml refuses, with one error naming the YAML file and the xacro file,
+// what is not a YAML file a robot would have: an alias bomb (the cap of
+// parameter files), binary junk, invalid UTF-8, broken YAML, nesting deeper
+// than xacro's values.
+TEST(Xacro, LoadYamlRefusesBombsJunkAndBrokenFiles) {
+  TempDir dir("servoloop-xacro");
+  auto errorOfYaml = [&](const std::string& yaml) {
+    writeFile(dir.path() / "config.yaml", yaml);
+    writeFile(dir.path() / "r.xacro", std::string(kOpen) +
+                                          "\n<l x=\"${len(xacro.load_yaml('config.yaml'))}\"/></robot>");
+    try {
+      return expandXacroFile(dir.path() / "r.xacro");
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+  };
+  const std::string yaml_file = (dir.path() / "config.yaml").string();
+  // Nine lines whose aliases stand for 10^9 values.
+  std::string bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n";
+  for (char level = 'b'; level <= 'i'; ++level) {
+    bomb += std::string(1, level) + ": &" + level + " [";
+    for (int k = 0; k < 10; ++k) bomb += std::string(k ? ", *" : "*") + static_cast<char>(level - 1);
+    bomb += "]\n";
+  }
+  const std::string bombed = errorOfYaml(bomb);
+  EXPECT_CONTAINS(bombed, "r.xacro:2: xacro: ${len(xacro.load_yaml('config.yaml'))}: load_yaml('config.yaml'): " +
+                              yaml_file + ": the YAML holds more than 1000000 values once its aliases");
+  EXPECT_LT(bombed.size(), 1000u);
+  // Aliases that stay small are read.
+  EXPECT_CONTAINS(errorOfYaml("a: &a [1, 2]\nb: *a\n"), "<l x=\"2\"/>");
+  const std::string binary = errorOfYaml(std::string("\x7f" "ELF\x02\x01\x01\0\0\0\xff\xfe", 12));
+  EXPECT_CONTAINS(binary, "r.xacro:2: xacro: ");
+  EXPECT_CONTAINS(binary, yaml_file + ": byte 0 (0x7F) is not text, and a YAML file is UTF-8 text");
+  EXPECT_CONTAINS(errorOfYaml(std::string("name: arm\0", 10)), yaml_file + ": byte 9 (0x00) is not text");
+  EXPECT_CONTAINS(errorOfYaml("name: caf\xe9\n"), yaml_file + ": byte 9 (0xE9) is not text");
+  const std::string broken = errorOfYaml("joints: [1, 2\n");
+  EXPECT_CONTAINS(broken, "load_yaml('config.yaml'): " + yaml_file + ":");
+  EXPECT_CONTAINS(broken, "not valid YAML");
+  EXPECT_EQ(broken.find("yaml-cpp"), std::string::npos) << broken;
+  EXPECT_CONTAINS(errorOfYaml(repeated("[", 150) + repeated("]", 150)),
+                  yaml_file + ": line 1: maps and lists nest more than 100 levels deep");
+  EXPECT_CONTAINS(errorOfYaml(repeated("[", 99) + repeated("]", 99)), "<l x=\"1\"/>");
 }
 
 TEST(Xacro, ArgumentsOnTheCommandLineNeedNameColonEquals) {

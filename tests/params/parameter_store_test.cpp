@@ -194,6 +194,23 @@ TEST(ParameterStore, MalformedYamlNamesFileAndLine) {
   EXPECT_TRUE(params.list().empty());
 }
 
+// checkYamlSize is checkYamlDocument's node count alone (xacro's load_yaml
+// takes a key given twice as Python does).
+TEST(ParameterStore, CheckYamlSizeCountsNodesAndLetsAKeyRepeat) {
+  const YAML::Node twice = YAML::Load("pid: {p: 10, p: 20}");
+  EXPECT_NO_THROW(checkYamlSize(twice, "twice.yaml"));
+  EXPECT_THAT(thrownMessage<ConfigError>([&] { checkYamlDocument(twice, "twice.yaml"); }),
+              HasSubstr("key 'p' appears twice"));
+  std::string bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n";
+  for (char level = 'b'; level <= 'g'; ++level) {
+    bomb += std::string(1, level) + ": &" + level + " [";
+    for (int k = 0; k < 10; ++k) bomb += std::string(k ? ", *" : "*") + static_cast<char>(level - 1);
+    bomb += "]\n";
+  }
+  EXPECT_THAT(thrownMessage<ConfigError>([&] { checkYamlSize(YAML::Load(bomb), "bomb.yaml"); }),
+              HasSubstr("bomb.yaml: the YAML holds more than 1000000 values once its aliases"));
+}
+
 TEST(ParameterStore, ScalarsAreTypedLikeYaml) {
   ParameterStore params;
   params.loadString(

@@ -66,6 +66,11 @@ inline constexpr std::size_t kMaxYamlNodes = 1'000'000;
 // the first: either silently gives a value the user did not mean).
 void checkYamlDocument(const YAML::Node& document, std::string_view source_name);
 
+// The node count of checkYamlDocument alone, for readers that take a key
+// given twice as Python's YAML reader does (the last one wins): xacro's
+// load_yaml.
+void checkYamlSize(const YAML::Node& document, std::string_view source_name);
+
 class ParameterStore {
  public:
   ParameterStore();
