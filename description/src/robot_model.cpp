@@ -11,6 +11,8 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -301,6 +303,27 @@ void checkXml(const std::string& xml, const std::string& source_name) {
 // ---------------------------------------------------------------------------
 // urdfdom parsing with its console_bridge output captured.
 
+// urdfdom's links own their children (Link::child_links holds shared
+// pointers), so a model dies link by link down the tree: freeing the root
+// frees its child from inside the root's destructor, and so on, one nesting
+// of destructor calls per link: with urdfdom 3.0, a serial chain of 20,000
+// links overflows a 1 MB stack that way, one of 200,000 links an 8 MB one.
+// Every model servoloop hands out is owned through this holder, which first
+// cuts the links from their children, so that the model's map then frees
+// them one after another. (A link kept beyond its model has no children.)
+struct FlatTeardownModel {
+  FlatTeardownModel() = default;
+  FlatTeardownModel(const FlatTeardownModel&) = delete;  // a copy's teardown would cut the model it shares
+  FlatTeardownModel& operator=(const FlatTeardownModel&) = delete;
+  urdf::ModelInterfaceSharedPtr model;
+  ~FlatTeardownModel() {
+    if (!model) return;
+    for (auto& [name, link] : model->links_) {
+      if (link) link->child_links.clear();
+    }
+  }
+};
+
 class CapturingOutputHandler : public console_bridge::OutputHandler {
  public:
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
@@ -336,6 +359,11 @@ urdf::ModelInterfaceSharedPtr parseUrdfWithUrdfdom(const std::string& xml, const
     fail(source_name, "urdfdom could not parse the URDF: " +
                           (handler.errors.empty() ? std::string("no reason given") : handler.errors));
   }
+  // Owned by the holder from here on, so that a throw below (or any later
+  // owner) frees the model without recursion.
+  const auto holder = std::make_shared<FlatTeardownModel>();
+  holder->model = std::move(model);
+  model = urdf::ModelInterfaceSharedPtr(holder, holder->model.get());
   if (report_warnings) {
     for (const auto& w : handler.warnings) logger().warn("{}: urdfdom: {}", source_name, w);
     // Errors urdfdom recovers from (a <collision> it cannot read): ROS goes
@@ -356,25 +384,54 @@ namespace {
 // Relative slack of the principal-moment triangle inequality (of the largest moment).
 constexpr double kInertiaTriangleTolerance = 1e-9;
 
-// The mass of the links attached below `link` through fixed joints, which a
-// simulator lumps into one rigid body with it (as Gazebo does).
-double fixedChildrenMass(const urdf::Link& link) {
-  double mass = 0.0;
-  for (const auto& child : link.child_links) {
-    if (!child || !child->parent_joint || child->parent_joint->type != urdf::Joint::FIXED) continue;
-    mass += (child->inertial ? child->inertial->mass : 0.0) + fixedChildrenMass(*child);
-  }
-  return mass;
+bool attachedByFixedJoint(const urdf::LinkSharedPtr& child) {
+  return child && child->parent_joint && child->parent_joint->type == urdf::Joint::FIXED;
 }
 
-void checkInertial(const urdf::Link& link, const std::string& source_name) {
+// For every link, the mass of the links attached below it through fixed
+// joints, which a simulator lumps into one rigid body with it (as Gazebo
+// does): Σ over its fixed children, in order, of (child's mass + the child's
+// own such mass). Computed once for the whole tree, children before parents,
+// with an explicit stack: a recursion per link would overflow the call stack
+// on a chain of thousands of links, and summing each link's subtree anew
+// would take time quadratic in the chain's length.
+std::unordered_map<const urdf::Link*, double> fixedChildrenMasses(const urdf::ModelInterface& model) {
+  std::unordered_map<const urdf::Link*, double> masses;
+  // A link with whether its fixed children are on the stack above it already.
+  std::vector<std::pair<const urdf::Link*, bool>> stack;
+  for (const auto& [name, start] : model.links_) {
+    if (!start || masses.count(start.get()) != 0) continue;
+    stack.emplace_back(start.get(), false);
+    while (!stack.empty()) {
+      const auto [link, children_pushed] = stack.back();
+      if (!children_pushed) {
+        stack.back().second = true;
+        for (const auto& child : link->child_links) {
+          if (attachedByFixedJoint(child) && masses.count(child.get()) == 0) stack.emplace_back(child.get(), false);
+        }
+        continue;
+      }
+      stack.pop_back();
+      double mass = 0.0;
+      for (const auto& child : link->child_links) {
+        if (!attachedByFixedJoint(child)) continue;
+        mass += (child->inertial ? child->inertial->mass : 0.0) + masses.at(child.get());
+      }
+      masses[link] = mass;
+    }
+  }
+  return masses;
+}
+
+// `fixed_children_mass`: the link's entry of fixedChildrenMasses.
+void checkInertial(const urdf::Link& link, double fixed_children_mass, const std::string& source_name) {
   const urdf::JointConstSharedPtr& joint = link.parent_joint;
   const bool moving = joint && joint->type != urdf::Joint::FIXED;
   const std::string moved_by = moving ? " (moved by joint '" + joint->name + "')" : "";
   const std::string where = "link '" + link.name + "'" + moved_by;
   // A massless link carrying massive links on fixed joints is one rigid body
   // with their mass.
-  const bool lumped_mass = fixedChildrenMass(link) > 0.0;
+  const bool lumped_mass = fixed_children_mass > 0.0;
   if (!link.inertial) {
     if (moving && !lumped_mass) {
       fail(source_name, where +
@@ -494,8 +551,9 @@ std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& x
   urdf::ModelInterfaceSharedPtr model = parseUrdfWithUrdfdom(xml, source_name, true);
   const fs::path base_dir = fs::path(source_name).has_parent_path() ? fs::path(source_name).parent_path()
                                                                      : fs::current_path();
+  const auto fixed_children_masses = fixedChildrenMasses(*model);
   for (auto& [name, link] : model->links_) {
-    checkInertial(*link, source_name);
+    checkInertial(*link, fixed_children_masses.at(link.get()), source_name);
     resolveMeshes(*link, base_dir, source_name);
   }
   return model;

@@ -3,9 +3,11 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <set>
 #include <string_view>
+#include <vector>
 
 #include <tinyxml2.h>
 
@@ -94,8 +96,25 @@ class Pruner {
     return reached == link_order_.size();
   }
 
-  // Finds the massless moving bodies, top down, and what goes with them.
-  void decide() { visit(root_); }
+  // Finds the massless moving bodies, top down (depth first, children in
+  // document order), and what goes with them. With an explicit stack rather
+  // than a recursion per link, which would overflow the call stack on a
+  // chain of thousands of links.
+  void decide() {
+    std::vector<std::string> stack{root_};
+    while (!stack.empty()) {
+      const std::string link = std::move(stack.back());
+      stack.pop_back();
+      const auto joint = parent_joint_.find(link);
+      if (joint != parent_joint_.end() && !joint->second.fixed && !(bodyMass(link) > 0.0)) {
+        std::vector<std::string> below = drop(link);
+        below.erase(below.begin());  // the link itself
+        warn(link, joint->second.name, below);
+        continue;
+      }
+      pushChildren(link, stack);
+    }
+  }
 
   void apply(SimulatableUrdf& result) {
     std::vector<tinyxml2::XMLElement*> remove;
@@ -122,35 +141,61 @@ class Pruner {
   bool anyDropped() const { return !dropped_links_.empty(); }
 
  private:
-  // Mass of the rigid body a link heads: itself and the links fixed below it.
+  // The children of `link` onto a depth-first stack, the first on top, so
+  // that they come off in document order.
+  void pushChildren(const std::string& link, std::vector<std::string>& stack) const {
+    const auto range = children_.equal_range(link);
+    for (auto it = std::make_reverse_iterator(range.second); it != std::make_reverse_iterator(range.first); ++it) {
+      stack.push_back(it->second.child);
+    }
+  }
+
+  // Mass of the rigid body a link heads: its own plus, in document order, the
+  // body mass of each link fixed to it. Each link's partial sum waits on a
+  // stack of its own (not the call stack) while its fixed children are
+  // summed, so the additions are those of the recursive definition, in the
+  // same order.
   double bodyMass(const std::string& link) const {
-    double mass = mass_.at(link);
-    auto range = children_.equal_range(link);
-    for (auto it = range.first; it != range.second; ++it) {
-      if (it->second.fixed) mass += bodyMass(it->second.child);
+    struct Partial {
+      std::multimap<std::string, JointEdge>::const_iterator next_child, end;
+      double mass;
+    };
+    std::vector<Partial> stack;
+    const auto open = [&](const std::string& l) {
+      const auto range = children_.equal_range(l);
+      stack.push_back(Partial{range.first, range.second, mass_.at(l)});
+    };
+    open(link);
+    while (true) {
+      Partial& top = stack.back();
+      while (top.next_child != top.end && !top.next_child->second.fixed) ++top.next_child;
+      if (top.next_child != top.end) {
+        const std::string& child = top.next_child->second.child;
+        ++top.next_child;
+        open(child);  // (`top` is not used after this: the push may move it)
+        continue;
+      }
+      const double mass = top.mass;
+      stack.pop_back();
+      if (stack.empty()) return mass;
+      stack.back().mass += mass;
     }
-    return mass;
   }
 
-  void visit(const std::string& link) {
-    const auto joint = parent_joint_.find(link);
-    if (joint != parent_joint_.end() && !joint->second.fixed && !(bodyMass(link) > 0.0)) {
-      std::vector<std::string> below;
-      drop(link, below);
-      below.erase(below.begin());  // the link itself
-      warn(link, joint->second.name, below);
-      return;
+  // Leaves out `link`, its joint and everything below it; returns the links
+  // left out, depth first in document order, `link` first.
+  std::vector<std::string> drop(const std::string& link) {
+    std::vector<std::string> dropped;
+    std::vector<std::string> stack{link};
+    while (!stack.empty()) {
+      const std::string next = std::move(stack.back());
+      stack.pop_back();
+      dropped_links_.insert(next);
+      dropped_joints_.insert(parent_joint_.at(next).name);
+      pushChildren(next, stack);
+      dropped.push_back(next);
     }
-    auto range = children_.equal_range(link);
-    for (auto it = range.first; it != range.second; ++it) visit(it->second.child);
-  }
-
-  void drop(const std::string& link, std::vector<std::string>& dropped) {
-    dropped_links_.insert(link);
-    dropped.push_back(link);
-    dropped_joints_.insert(parent_joint_.at(link).name);
-    auto range = children_.equal_range(link);
-    for (auto it = range.first; it != range.second; ++it) drop(it->second.child, dropped);
+    return dropped;
   }
 
   bool namesDroppedJoint(const tinyxml2::XMLElement* transmission) const {

@@ -1,5 +1,7 @@
 #include "body_tree.hpp"
 
+#include <vector>
+
 #include <Eigen/Eigenvalues>
 
 #include "servoloop/core/errors.hpp"
@@ -33,13 +35,70 @@ class TreeBuilder {
     tree_.bodies.emplace_back();
     tree_.bodies.back().link_name = root->name;
     masses_.emplace_back();
-    visit(*root, 0, Eigen::Isometry3d::Identity());
+    walk(*root);
     for (std::size_t k = 0; k < tree_.bodies.size(); ++k) finalizeMass(tree_.bodies[k], masses_[k]);
     return std::move(tree_);
   }
 
  private:
-  void visit(const urdf::Link& link, int body, const Eigen::Isometry3d& link_in_body) {
+  // A link being walked: its body, its frame in that body's link frame, and
+  // the next of its child joints to follow.
+  struct Visit {
+    const urdf::Link* link;
+    int body;
+    Eigen::Isometry3d link_in_body;
+    std::size_t next_joint;
+  };
+
+  // Depth first from `root`, as a recursion over the links would go (each
+  // link's shapes and mass first, then each child joint in order, a child's
+  // whole subtree before the next child: bodies are numbered in that order),
+  // but with the links being walked on an explicit stack: a recursion per
+  // link would overflow the call stack on a chain of thousands of links.
+  void walk(const urdf::Link& root) {
+    std::vector<Visit> stack;
+    enter(root, 0, Eigen::Isometry3d::Identity(), stack);
+    while (!stack.empty()) {
+      Visit& top = stack.back();
+      if (top.next_joint == top.link->child_joints.size()) {
+        stack.pop_back();
+        continue;
+      }
+      const urdf::Link& link = *top.link;
+      const int body = top.body;
+      const Eigen::Isometry3d link_in_body = top.link_in_body;
+      const urdf::JointSharedPtr& joint = link.child_joints[top.next_joint++];
+      // (`top` is not used below: entering a child may move the stack.)
+      urdf::LinkConstSharedPtr child = model_.getLink(joint->child_link_name);
+      const Eigen::Isometry3d joint_in_body = link_in_body * toIsometry(joint->parent_to_joint_origin_transform);
+      switch (joint->type) {
+        case urdf::Joint::FIXED:
+          enter(*child, body, joint_in_body, stack);
+          break;
+        case urdf::Joint::REVOLUTE:
+        case urdf::Joint::CONTINUOUS:
+        case urdf::Joint::PRISMATIC: {
+          Body child_body;
+          child_body.link_name = child->name;
+          child_body.parent_body = body;
+          child_body.joint = joint.get();
+          child_body.joint_in_parent_link = joint_in_body;
+          tree_.bodies.push_back(std::move(child_body));
+          masses_.emplace_back();
+          enter(*child, static_cast<int>(tree_.bodies.size()) - 1, Eigen::Isometry3d::Identity(), stack);
+          break;
+        }
+        default:
+          throw ConfigError("robot '" + model_.getName() + "': joint '" + joint->name +
+                            "' is a floating or planar joint, which the Bullet simulation does not support; "
+                            "use revolute, continuous, prismatic or fixed joints");
+      }
+    }
+  }
+
+  // Places `link` in `body` and adds its mass and shapes to the body; its
+  // child joints are followed from the stack.
+  void enter(const urdf::Link& link, int body, const Eigen::Isometry3d& link_in_body, std::vector<Visit>& stack) {
     tree_.links[link.name] = LinkPlacement{body, link_in_body};
     if (link.inertial) {
       const Eigen::Isometry3d inertial_in_body = link_in_body * toIsometry(link.inertial->origin);
@@ -54,32 +113,7 @@ class TreeBuilder {
       tree_.bodies[body].shapes.push_back(
           CollisionShapeSpec{collision->geometry.get(), link_in_body * toIsometry(collision->origin), link.name});
     }
-    for (const auto& joint : link.child_joints) {
-      urdf::LinkConstSharedPtr child = model_.getLink(joint->child_link_name);
-      const Eigen::Isometry3d joint_in_body = link_in_body * toIsometry(joint->parent_to_joint_origin_transform);
-      switch (joint->type) {
-        case urdf::Joint::FIXED:
-          visit(*child, body, joint_in_body);
-          break;
-        case urdf::Joint::REVOLUTE:
-        case urdf::Joint::CONTINUOUS:
-        case urdf::Joint::PRISMATIC: {
-          Body child_body;
-          child_body.link_name = child->name;
-          child_body.parent_body = body;
-          child_body.joint = joint.get();
-          child_body.joint_in_parent_link = joint_in_body;
-          tree_.bodies.push_back(std::move(child_body));
-          masses_.emplace_back();
-          visit(*child, static_cast<int>(tree_.bodies.size()) - 1, Eigen::Isometry3d::Identity());
-          break;
-        }
-        default:
-          throw ConfigError("robot '" + model_.getName() + "': joint '" + joint->name +
-                            "' is a floating or planar joint, which the Bullet simulation does not support; "
-                            "use revolute, continuous, prismatic or fixed joints");
-      }
-    }
+    stack.push_back(Visit{&link, body, link_in_body, 0});
   }
 
   // Combined mass, centre of mass and inertia (parallel-axis theorem), then

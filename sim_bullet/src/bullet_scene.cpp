@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -17,6 +18,9 @@ namespace detail {
 namespace {
 
 constexpr int kSolverIterations = 50;
+// The most Jacobian entries (doubles, in each of the solver's two
+// row-by-coordinate arrays) reserveForMember makes room for: 128 MiB each.
+constexpr std::int64_t kMaxReservedJacobianEntries = std::int64_t{1} << 24;
 // The ground plane's friction: above any body's, so that the smaller of the
 // two coefficients of a contact with the ground is the body's own.
 constexpr double kGroundFriction = 1e9;
@@ -93,12 +97,20 @@ void SceneCore::reserveForMember(int bodies, int degrees_of_freedom) {
   // Per body, room for contacts with a few neighbours (four points each, a
   // normal row and two friction rows per point) and its joint's motor,
   // limit and friction rows.
-  constexpr int kRowsPerBody = 4 * 4 * 3 + 3;
+  constexpr std::int64_t kRowsPerBody = 4 * 4 * 3 + 3;
   reserved_bodies += bodies;
   largest_dofs = std::max(largest_dofs, degrees_of_freedom);
   total_dofs += 6 + degrees_of_freedom;
-  // A row's Jacobian spans both multibodies it couples: 6 + dofs each.
-  solver->reserveRows(reserved_bodies * kRowsPerBody, 2 * (6 + largest_dofs), total_dofs);
+  // A row's Jacobian spans both multibodies it couples: 6 + dofs each. Rows
+  // times width grows with the square of the scene's size (past int's range
+  // from some 4,600 bodies), so it is worked out in 64 bits and the rows held
+  // to kMaxReservedJacobianEntries: a scene that large grows the arrays on
+  // the steps that need more (the rare step that allocates) rather than
+  // reserving gigabytes up front.
+  const std::int64_t width = 2 * (6 + std::int64_t{largest_dofs});
+  const std::int64_t rows =
+      std::min(std::int64_t{reserved_bodies} * kRowsPerBody, kMaxReservedJacobianEntries / width);
+  solver->reserveRows(static_cast<int>(rows), static_cast<int>(width), total_dofs);
 }
 
 void SceneCore::rebuildBroadphase() {

@@ -171,16 +171,20 @@ void SimRobotHW::configureActuators(const std::string& ns, const YAML::Node& par
 // joint's motors can deliver at most Σ_a |T[a][j]|·max_effort_a, and the rotor
 // inertias appear at the joint as Tᵀ·diag(J)·T, whose diagonal Σ_a J_a·T[a][j]²
 // is what we add (the off-diagonal couplings of two-joint transmissions are
-// left out). T is measured by pushing unit joint velocities through the maps.
+// left out). T is measured by pushing unit joint velocities through the maps:
+// every joint at rest, then each in turn at unit velocity, back at rest once
+// its column is read (the maps only read the joints), so that a column costs
+// one pass of the maps and not also a reset of every joint.
 void SimRobotHW::configureEngineJoints() {
   transmissions::RobotTransmissions& tr = *transmissions_;
   const std::size_t joint_count = tr.numJoints();
   const std::size_t actuator_count = tr.numActuators();
   engine_joints_.assign(joint_count, EngineJointConfig{});
+  for (std::size_t k = 0; k < joint_count; ++k) tr.joint(JointIndex(k)) = transmissions::JointValues{};
   for (std::size_t j = 0; j < joint_count; ++j) {
-    for (std::size_t k = 0; k < joint_count; ++k) tr.joint(JointIndex(k)) = transmissions::JointValues{};
     tr.joint(JointIndex(j)).velocity = 1.0;
     tr.jointStateToActuatorState();
+    tr.joint(JointIndex(j)) = transmissions::JointValues{};
 
     double motor_bound = 0.0;
     double reflected_inertia = 0.0;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string_view>
+#include <vector>
 
 #include <tinyxml2.h>
 
@@ -156,12 +157,37 @@ bool isFixedBase(const urdf::ModelInterface& model, BaseMode mode) {
   return !(rigidBodyMass(*root) > 0.0);
 }
 
+// The link's own mass plus, in child order, the rigid-body mass of each link
+// fixed to it. Each link's partial sum waits on a stack of its own (not the
+// call stack, which a chain of thousands of fixed links would overflow)
+// while its fixed children are summed: the additions of the recursive
+// definition, in the same order, so the same sum to the last bit.
 double rigidBodyMass(const urdf::Link& link) {
-  double mass = link.inertial ? link.inertial->mass : 0.0;
-  for (const auto& child : link.child_links) {
-    if (child && child->parent_joint && child->parent_joint->type == urdf::Joint::FIXED) mass += rigidBodyMass(*child);
+  struct Partial {
+    const urdf::Link* link;
+    std::size_t next_child;
+    double mass;
+  };
+  const auto own_mass = [](const urdf::Link& l) { return l.inertial ? l.inertial->mass : 0.0; };
+  std::vector<Partial> stack{Partial{&link, 0, own_mass(link)}};
+  while (true) {
+    Partial& top = stack.back();
+    const std::vector<urdf::LinkSharedPtr>& children = top.link->child_links;
+    while (top.next_child < children.size()) {
+      const urdf::LinkSharedPtr& child = children[top.next_child];
+      if (child && child->parent_joint && child->parent_joint->type == urdf::Joint::FIXED) break;
+      ++top.next_child;
+    }
+    if (top.next_child < children.size()) {
+      const urdf::Link& child = *children[top.next_child++];
+      stack.push_back(Partial{&child, 0, own_mass(child)});  // (`top` may move: not used after)
+      continue;
+    }
+    const double mass = top.mass;
+    stack.pop_back();
+    if (stack.empty()) return mass;
+    stack.back().mass += mass;
   }
-  return mass;
 }
 
 SimSettings parseSimSettings(const YAML::Node& robot_ns, const urdf::ModelInterface& model,

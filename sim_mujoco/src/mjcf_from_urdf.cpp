@@ -4,10 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <tinyxml2.h>
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
@@ -64,6 +67,16 @@ std::string poseAttributes(const urdf::Pose& pose) {
 // The static body that carries a "world" root link to its spawn pose.
 constexpr const char* kSpawnFrameBody = "servoloop_spawn_frame";
 
+// How many bodies MuJoCo reads nested under <worldbody>. MuJoCo 2.2 has no
+// limit of its own (its headers name none), but it reads MJCF with tinyxml2,
+// which refuses (XML_ELEMENT_DEPTH_EXCEEDED) to parse the content of an
+// element once that content would lie TINYXML2_MAX_ELEMENT_DEPTH levels deep.
+// <mujoco> and <worldbody> take two levels and a body's content (its joint,
+// inertial, geoms and child bodies) one level below the body, so at most
+// TINYXML2_MAX_ELEMENT_DEPTH - 4 bodies nest: 96 with Debian's tinyxml2 9
+// (limit 100), as MuJoCo 2.2.2 shows (96 nested bodies load, 97 do not).
+constexpr std::size_t kMaxNestedBodies = static_cast<std::size_t>(TINYXML2_MAX_ELEMENT_DEPTH - 4);
+
 bool isMovable(const urdf::Joint& joint) {
   return joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS ||
          joint.type == urdf::Joint::PRISMATIC;
@@ -79,6 +92,12 @@ class MjcfWriter {
     const urdf::LinkConstSharedPtr root = model_.getRoot();
     if (!root) throw ConfigError(source_name_ + ": the robot has no root link");
     const bool root_is_world = root->name == "world";
+    // The "world" link stands at the spawn pose (Gazebo's): a static body
+    // there when the pose moves it, the world body itself otherwise.
+    const bool placed =
+        root_is_world && (!settings_.base_position.isZero() ||
+                          !settings_.base_orientation.normalized().isApprox(Eigen::Quaterniond::Identity()));
+    checkNestingDepth(*root, placed);
     floating_base_ = !sim_common::isFixedBase(model_, settings_.base);
 
     std::ostringstream world;
@@ -92,10 +111,6 @@ class MjcfWriter {
             << (settings_.self_collide ? "" : " contype=\"2\" conaffinity=\"1\"") << "/>\n";
     }
     if (root_is_world) {
-      // The "world" link stands at the spawn pose (Gazebo's): a static body
-      // there when the pose moves it, the world body itself otherwise.
-      const bool placed = !settings_.base_position.isZero() ||
-                          !settings_.base_orientation.normalized().isApprox(Eigen::Quaterniond::Identity());
       int depth = 2;
       if (placed) {
         world << "    <body name=\"" << kSpawnFrameBody << "\" " << basePoseAttributes() << ">\n";
@@ -140,8 +155,75 @@ class MjcfWriter {
   }
 
  private:
-  // `welded_to_world`: the link's parent body is the world or welded to it.
+  // Refuses, before anything is written, a tree deeper than MuJoCo reads
+  // (kMaxNestedBodies), naming the chain, its depth and the limit, rather
+  // than leaving MuJoCo to stop at it with tinyxml2's words. `spawn_frame`:
+  // a "world" root's children hang from the spawn-frame body.
+  void checkNestingDepth(const urdf::Link& root, bool spawn_frame) const {
+    // The link deepest below the root (the first such, depth first), and how
+    // many joints lead there: from an explicit stack, as a chain can be far
+    // too long for a recursion.
+    const urdf::Link* deepest = &root;
+    std::size_t deepest_joints = 0;
+    std::vector<std::pair<const urdf::Link*, std::size_t>> stack{{&root, 0}};
+    while (!stack.empty()) {
+      const auto [link, joints] = stack.back();
+      stack.pop_back();
+      if (joints > deepest_joints) {
+        deepest = link;
+        deepest_joints = joints;
+      }
+      for (auto child = link->child_links.rbegin(); child != link->child_links.rend(); ++child) {
+        stack.emplace_back(child->get(), joints + 1);
+      }
+    }
+    // A "world" root is <worldbody> itself; any other root is the outermost body.
+    const std::size_t nested_bodies = deepest_joints + (root.name == "world" ? (spawn_frame ? 1 : 0) : 1);
+    if (nested_bodies <= kMaxNestedBodies) return;
+    throw ConfigError(source_name_ + ": the kinematic chain from '" + root.name + "' to '" + deepest->name +
+                      "' is " + std::to_string(deepest_joints) + " joints deep, which MuJoCo would read as " +
+                      std::to_string(nested_bodies) + " nested bodies; MuJoCo's model compiler accepts at most " +
+                      std::to_string(kMaxNestedBodies) + " nested bodies (its XML reader, tinyxml2, refuses "
+                      "elements nested more than " + std::to_string(TINYXML2_MAX_ELEMENT_DEPTH) +
+                      " deep); use the bullet or mock backend, or a shallower tree");
+  }
+
+  // A body whose tag is open: its link, its depth (indentation), whether its
+  // child bodies hang from the world or a body welded to it, and the next of
+  // its children to write.
+  struct OpenBody {
+    const urdf::Link* link;
+    int depth;
+    bool children_welded_to_world;
+    std::size_t next_child;
+  };
+
+  // The body of `link` and every body below it, children in order, each
+  // closed after its last child: what a recursion over the links would write,
+  // with the open bodies on an explicit stack instead (a chain can be
+  // thousands of links long). `welded_to_world`: the link's parent body is
+  // the world or welded to it.
   void writeBody(const urdf::Link& link, std::ostringstream& out, int depth, bool welded_to_world) {
+    std::vector<OpenBody> open;
+    openBody(link, out, depth, welded_to_world, open);
+    while (!open.empty()) {
+      OpenBody& body = open.back();
+      if (body.next_child < body.link->child_links.size()) {
+        const urdf::Link& child = *body.link->child_links[body.next_child++];
+        const int child_depth = body.depth + 1;
+        const bool child_welded_to_world = body.children_welded_to_world;
+        openBody(child, out, child_depth, child_welded_to_world, open);  // (may move `body`)
+        continue;
+      }
+      out << std::string(2 * body.depth, ' ') << "</body>\n";
+      open.pop_back();
+    }
+  }
+
+  // Opens the body of `link` and writes what it holds besides child bodies;
+  // pushes it onto `open`, whose caller writes the children and closes it.
+  void openBody(const urdf::Link& link, std::ostringstream& out, int depth, bool welded_to_world,
+                std::vector<OpenBody>& open) {
     const std::string indent(2 * depth, ' ');
     const urdf::JointSharedPtr& joint = link.parent_joint;
     ++body_count_;
@@ -178,9 +260,7 @@ class MjcfWriter {
     writeInertial(link, out, indent + "  ");
     writeGeoms(link, out, indent + "  ");
 
-    const bool children_welded_to_world = welded_to_world && !moves;
-    for (const auto& child : link.child_links) writeBody(*child, out, depth + 1, children_welded_to_world);
-    out << indent << "</body>\n";
+    open.push_back(OpenBody{&link, depth, welded_to_world && !moves, 0});
   }
 
   // <mimic>: q_m = offset + multiplier·q_l, as a joint equality (MuJoCo's
@@ -211,11 +291,20 @@ class MjcfWriter {
            "\"";
   }
 
-  // The links attached to the world link through fixed joints only.
+  // `link` and the links below it attached through fixed joints only, when
+  // `link` is attached by one: depth first, children in order, from an
+  // explicit stack (a chain can be far too long for a recursion).
   void collectWorldWelded(const urdf::Link& link) {
-    if (!link.parent_joint || link.parent_joint->type != urdf::Joint::FIXED) return;
-    world_welded_links_.push_back(link.name);
-    for (const auto& child : link.child_links) collectWorldWelded(*child);
+    std::vector<const urdf::Link*> stack{&link};
+    while (!stack.empty()) {
+      const urdf::Link& next = *stack.back();
+      stack.pop_back();
+      if (!next.parent_joint || next.parent_joint->type != urdf::Joint::FIXED) continue;
+      world_welded_links_.push_back(next.name);
+      for (auto child = next.child_links.rbegin(); child != next.child_links.rend(); ++child) {
+        stack.push_back(child->get());
+      }
+    }
   }
 
   void writeJoint(const urdf::Joint& joint, std::ostringstream& out, const std::string& indent) {

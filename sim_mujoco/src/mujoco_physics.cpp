@@ -38,8 +38,16 @@ mjModel* compileMjcf(const std::string& mjcf, const std::string& source_name) {
   mjModel* model = mj_loadXML(kModelFileName, vfs.get(), error, sizeof(error));
   mj_deleteVFS(vfs.get());
   if (model == nullptr) {
-    // A hint only where MuJoCo's own words point at the inertia.
     const std::string text = error;
+    // mjcfFromUrdf refuses a tree deeper than tinyxml2's limit up front; a
+    // MuJoCo built on another tinyxml2 may stop sooner, with words that say
+    // nothing of the robot.
+    if (text.find("XML_ELEMENT_DEPTH_EXCEEDED") != std::string::npos) {
+      throw ConfigError(source_name + ": a kinematic chain of the robot is too deep for MuJoCo: its model nests one "
+                                      "body inside another for each joint of a chain, and MuJoCo's XML reader "
+                                      "refused that many levels; use the bullet or mock backend, or a shallower tree");
+    }
+    // A hint only where MuJoCo's own words point at the inertia.
     const bool inertia = text.find("inertia") != std::string::npos || text.find("mass") != std::string::npos;
     throw ConfigError(source_name + ": MuJoCo refused the model generated from the URDF: " + text +
                       (inertia ? " (check the link's <inertial>: MuJoCo needs principal moments with A + B >= C)" : ""));
