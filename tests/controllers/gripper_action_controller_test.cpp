@@ -154,6 +154,33 @@ TEST(GripperActionController, CancelHoldsAndANewGoalPreempts) {
   EXPECT_EQ(finger.send(0.01, 1.0)->state(), State::rejected);  // not running
 }
 
+TEST(GripperActionController, AGoalToAStoppedGripperIsRejectedWithTheReason) {
+  Finger<EffortGripperActionController> finger(kEffortParams);
+  finger.controller.stopRequest(Time(finger.now));
+  auto goal = finger.send(0.01, 1.0);
+  EXPECT_EQ(goal->state(), State::rejected);
+  EXPECT_EQ(goal->statusText(), "controller 'gripper' is not running; start it with servoloop control start gripper");
+}
+
+TEST(GripperActionController, StoppingBySwitchOrFaultAbortsTheGoalWithAReason) {
+  Finger<EffortGripperActionController> finger(kEffortParams);
+  auto goal = finger.send(0.04, 20.0);
+  finger.runFor(0.02);
+  ASSERT_EQ(goal->state(), State::active);
+  finger.controller.stopRequest(Time(finger.now));
+  EXPECT_EQ(goal->state(), State::aborted);
+  EXPECT_THAT(goal->statusText(), ::testing::HasSubstr("stopped"));
+
+  finger.controller.startRequest(Time(finger.now));
+  goal = finger.send(0.04, 20.0);
+  finger.runFor(0.02);
+  ASSERT_EQ(goal->state(), State::active);
+  finger.controller.abortRequest();  // fault containment
+  EXPECT_EQ(goal->state(), State::aborted);
+  EXPECT_THAT(goal->statusText(), ::testing::HasSubstr("fault"));
+  EXPECT_EQ(finger.send(0.01, 1.0)->state(), State::rejected);
+}
+
 TEST(GripperActionController, ParametersAsRosControllersNamesThem) {
   servoloop::realtime::TopicBus bus;
   TestJointsHW hw({"slide"});

@@ -13,6 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "../common/log_capture.hpp"
 #include "controller_test_support.hpp"
 #include "servoloop/controllers/joint_trajectory_controller/joint_trajectory_controller.hpp"
 #include "servoloop/core/errors.hpp"
@@ -525,6 +526,134 @@ TEST_F(ActionTest, GoalsTopicTrajectoriesAndCancelsRaceTheControlThread) {
   int running = 0;
   for (const auto& goal : goals) running += goal->state() == servoloop::realtime::GoalState::active;
   EXPECT_LE(running, 1);
+}
+
+
+// --- goals that must never be left without a result ------------------------------------
+
+servoloop::control_msgs::FollowJointTrajectoryResult resultOf(const servoloop::realtime::ActionGoal& goal) {
+  servoloop::control_msgs::FollowJointTrajectoryResult result;
+  goal.result(&result);
+  return result;
+}
+
+TEST_F(ActionTest, NonFiniteAndOverflowingGoalsAreRejectedNamingTheJointAndPoint) {
+  // 1e308 with velocities: the cubic's coefficients overflow (3e308).
+  servoloop::control_msgs::FollowJointTrajectoryGoal huge;
+  huge.trajectory = trajectoryMsg({"cont", "rev"}, {pointMsg({0.0, 0.5}, 0.5, {0.0, 0.0}),
+                                                    pointMsg({0.0, 1e308}, 1.0, {0.0, 0.0})});
+  auto goal = send(huge);
+  EXPECT_EQ(goal->state(), servoloop::realtime::GoalState::rejected);
+  auto result = resultOf(*goal);
+  EXPECT_EQ(result.error_code, -1);
+  EXPECT_THAT(result.error_string, ::testing::HasSubstr("joint 'rev'"));
+  EXPECT_THAT(result.error_string, ::testing::HasSubstr("points[1]"));
+  EXPECT_THAT(goal->statusText(), ::testing::HasSubstr("overflows"));
+
+  servoloop::control_msgs::FollowJointTrajectoryGoal nan;
+  nan.trajectory = trajectoryMsg({"rev", "cont"}, {pointMsg({0.1, std::nan("")}, 1.0)});
+  goal = send(nan);
+  EXPECT_EQ(goal->state(), servoloop::realtime::GoalState::rejected);
+  result = resultOf(*goal);
+  EXPECT_THAT(result.error_string, ::testing::HasSubstr("points[0].positions[1] (joint 'cont'"));
+  EXPECT_THAT(result.error_string, ::testing::HasSubstr("not a finite number"));
+
+  // Nothing was taken over: the controller holds finite commands.
+  step();
+  EXPECT_TRUE(std::isfinite(hw.position_command[0]));
+}
+
+TEST_F(ActionTest, ADesiredStateThatOverflowsAbortsTheGoalWithAReasonAndHolds) {
+  servoloop::test::LogCapture log;
+  while (now < 1.0 - 0.5 * kDt) step();
+  hw.position[0] = 0.3;
+  // Fine from rest over its 1 s, but led in over the 9 ms left of it (its
+  // stamp is in the past) the cubic overflows.
+  servoloop::control_msgs::FollowJointTrajectoryGoal message;
+  message.trajectory = trajectoryMsg({"rev", "cont"}, {pointMsg({1e306, 0.0}, 1.0, {0.0, 0.0})}, now - 0.99);
+  auto goal = send(message);
+  ASSERT_EQ(goal->state(), servoloop::realtime::GoalState::pending);
+  step();
+  EXPECT_EQ(goal->state(), servoloop::realtime::GoalState::aborted);
+  const auto result = resultOf(*goal);
+  EXPECT_EQ(result.error_code, -1);
+  EXPECT_THAT(result.error_string, ::testing::HasSubstr("non-finite"));
+  EXPECT_TRUE(std::isfinite(hw.position_command[0]));
+  EXPECT_TRUE(std::isfinite(hw.position_command[1]));
+  EXPECT_NEAR(hw.position_command[0], 0.3, 1e-9);  // holds where the joint is
+  EXPECT_EQ(controller->follower().nonFiniteDesiredStates(), 1u);
+  bus.flush();  // the warning is logged on the delivery thread
+  EXPECT_EQ(log.count("became non-finite"), 1u);
+  step();
+  EXPECT_TRUE(std::isfinite(hw.position_command[0]));
+}
+
+TEST_F(ActionTest, AFaultAbortsTheRunningGoalWithAResultAndLaterGoalsAreRejected) {
+  auto goal = send(goalTo(1.0, 1.0));
+  step();
+  ASSERT_EQ(goal->state(), servoloop::realtime::GoalState::active);
+  controller->abortRequest();  // what fault containment does (non-finite command, hardware failure)
+  EXPECT_TRUE(controller->isFailed());
+  EXPECT_EQ(goal->state(), servoloop::realtime::GoalState::aborted);
+  EXPECT_THAT(resultOf(*goal).error_string, ::testing::HasSubstr("fault"));
+  auto later = send(goalTo(1.0, 1.0));
+  EXPECT_EQ(later->state(), servoloop::realtime::GoalState::rejected);
+  EXPECT_THAT(resultOf(*later).error_string, ::testing::HasSubstr("is not running"));
+}
+
+// As ros_controllers' stopping(): the running goal is preempted (with the
+// reason); one not taken over yet is aborted.
+TEST_F(ActionTest, ASwitchThatStopsTheControllerPreemptsTheRunningGoalAndAbortsAWaitingOne) {
+  auto running = send(goalTo(1.0, 1.0));
+  step();
+  ASSERT_EQ(running->state(), servoloop::realtime::GoalState::active);
+  auto waiting = send(goalTo(0.5, 1.0));  // not taken over yet
+  controller->stopRequest(Time(now));
+  EXPECT_EQ(running->state(), servoloop::realtime::GoalState::preempted);
+  EXPECT_THAT(resultOf(*running).error_string, ::testing::HasSubstr("stopped"));
+  EXPECT_EQ(waiting->state(), servoloop::realtime::GoalState::aborted);
+  EXPECT_THAT(resultOf(*waiting).error_string, ::testing::HasSubstr("stopped"));
+
+  controller->startRequest(Time(now));
+  auto again = send(goalTo(1.0, 1.0));
+  step();
+  ASSERT_EQ(again->state(), servoloop::realtime::GoalState::active);
+  controller->stopRequest(Time(now));
+  EXPECT_EQ(again->state(), servoloop::realtime::GoalState::preempted);
+  EXPECT_THAT(resultOf(*again).error_string, ::testing::HasSubstr("stopped"));
+}
+
+TEST_F(ActionTest, UnloadingAbortsTheRunningGoal) {
+  auto goal = send(goalTo(1.0, 1.0));
+  step();
+  ASSERT_EQ(goal->state(), servoloop::realtime::GoalState::active);
+  controller.reset();
+  EXPECT_EQ(goal->state(), servoloop::realtime::GoalState::aborted);
+  EXPECT_THAT(resultOf(*goal).error_string, ::testing::HasSubstr("unloaded"));
+}
+
+TEST(JointTrajectoryController, TrajectoriesWhollyInThePastAreRefusedWithAWarningNamingBothTimes) {
+  servoloop::test::LogCapture log;
+  Fixture<PositionJointTrajectoryController> f(kPositionParams);
+  f.start();
+  f.runUntil(1.0);
+  // Stamped in the past, and (stamp 0: on arrival) with no point after 0.
+  f.send(trajectoryMsg({"rev", "cont"}, {pointMsg({0.5, 0.0}, 0.2)}, 0.5));
+  EXPECT_EQ(log.count("every point is in the past: the trajectory ends at 0.700000 s and the control time is 1.000000 s"),
+            1u);
+  f.send(trajectoryMsg({"rev", "cont"}, {pointMsg({0.5, 0.0}, -0.2), pointMsg({0.6, 0.0}, 0.0)}));
+  EXPECT_EQ(log.count("every point is in the past"), 2u);
+  EXPECT_EQ(f.controller.follower().trajectoriesRefused(), 2u);
+
+  // Checked while its last point was ahead, but it went by before the
+  // control thread took it: dropped with the same warning (logged on the
+  // bus's delivery thread).
+  f.send(trajectoryMsg({"rev", "cont"}, {pointMsg({0.5, 0.0}, 0.5)}, f.now + 0.0005 - 0.5));
+  f.step();
+  EXPECT_EQ(f.controller.follower().trajectoriesInThePast(), 1u);
+  EXPECT_FALSE(f.controller.follower().following());
+  f.bus.flush();
+  EXPECT_EQ(log.count("every point is in the past"), 3u);
 }
 
 }  // namespace

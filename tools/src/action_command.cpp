@@ -2,10 +2,16 @@
 // actions a running node's controllers serve (a joint trajectory
 // controller's follow_joint_trajectory). `send` prints the goal's feedback as
 // it comes and its result at the end; Ctrl-C cancels the goal (and waits for
-// it to end); the exit status says how it ended: 0 succeeded, 1 aborted or
-// rejected, 2 canceled or preempted.
+// it to end, at most kCancelGrace); the exit status says how it ended: 0
+// succeeded, 1 aborted or rejected, 2 canceled or preempted.
+//
+// SIGINT/SIGTERM set a flag (installStopSignalHandlers); once it is set,
+// sleepUnlessStopped() returns at once, so the wait after a cancel sleeps
+// plainly (it used to loop on sleepUnlessStopped and spin a core, forever
+// when the goal never ended).
 #include <chrono>
 #include <iostream>
+#include <thread>
 #include <memory>
 #include <string>
 
@@ -21,6 +27,10 @@ namespace servoloop::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// How long a canceled goal may take to end before `action send` gives up on
+// it (a controller stops its joints within stop_trajectory_duration).
+constexpr std::chrono::seconds kCancelGrace{5};
 
 struct ActionOptions {
   std::string ns;
@@ -75,12 +85,18 @@ void runSend(const ActionOptions& options) {
   const std::uint64_t id = sent.at("goal_id").get<std::uint64_t>();
   installStopSignalHandlers();
   bool cancel_sent = false;
+  Clock::time_point cancel_deadline{};
   std::string last_feedback;
   nlohmann::json status;
   while (true) {
     if (stopRequested() && !cancel_sent) {
-      client.call("action.cancel", {{"goal_id", id}});
       cancel_sent = true;
+      cancel_deadline = Clock::now() + kCancelGrace;
+      try {
+        client.call("action.cancel", {{"goal_id", id}});
+      } catch (const Error&) {
+        // The goal ended (and was read) meanwhile: its status below says how.
+      }
       if (!options.json) std::cerr << "canceling the goal\n";
     }
     status = client.call("action.status", {{"goal_id", id}});
@@ -96,24 +112,40 @@ void runSend(const ActionOptions& options) {
       }
     }
     if (status.contains("result")) break;
-    // A cancel waits for the goal to end; sleeping is not interrupted then.
-    const auto until = Clock::now() + std::chrono::duration<double>(options.poll_s);
     if (cancel_sent) {
-      while (Clock::now() < until) sleepUnlessStopped(0.01);
+      if (Clock::now() >= cancel_deadline) {
+        const std::string state = status.value("state", "");
+        if (options.json) {
+          std::cout << nlohmann::json{{"state", state}, {"error", "the goal did not end after its cancel"}}.dump()
+                    << std::endl;
+        } else {
+          std::cerr << "the goal is still " << state << " " << kCancelGrace.count()
+                    << " s after its cancel; not waiting for it any longer (the controller may be stopped or "
+                       "stuck: see `servoloop control list` and the node's log)\n";
+        }
+        throw CliExit{2};
+      }
+      // The stop flag stays set, so sleepUnlessStopped() would return at
+      // once: sleep plainly while the cancel takes effect.
+      std::this_thread::sleep_for(std::chrono::duration<double>(options.poll_s));
     } else {
       sleepUnlessStopped(options.poll_s);
     }
   }
   const std::string state = status.value("state", "");
   const nlohmann::json& result = status["result"];
+  const std::string text = status.value("text", "");
   if (options.json) {
-    std::cout << nlohmann::json{{"state", state}, {"result", result}}.dump() << std::endl;
+    nlohmann::json out{{"state", state}, {"result", result}};
+    if (!text.empty()) out["text"] = text;
+    std::cout << out.dump() << std::endl;
   } else {
     std::cout << "result:\n";
     for (const auto& [key, value] : result.items()) {
       std::cout << "  " << key << ": " << value.dump() << "\n";
     }
     std::cout << "state: " << state << std::endl;
+    if (!text.empty()) std::cout << "text: " << text << std::endl;
   }
   if (const int code = exitStatusOf(state); code != 0) throw CliExit{code};
 }

@@ -1,5 +1,8 @@
 #include "servoloop/controllers/common/spline_segment.hpp"
 
+#include <cmath>
+#include <initializer_list>
+
 namespace servoloop::controllers {
 
 SplineSegment::SplineSegment(double start_time, const JointSample& start, double end_time, const JointSample& end,
@@ -55,6 +58,17 @@ JointSample SplineSegment::sample(double time) const noexcept {
   if (t < 0.0) return {evaluate(0.0).position, 0.0, 0.0};
   if (t > duration_) return {evaluate(duration_).position, 0.0, 0.0};
   return evaluate(t);
+}
+
+bool SplineSegment::finite() const noexcept {
+  for (const double c : coefficients_) {
+    if (!std::isfinite(c)) return false;
+  }
+  for (const double t : {0.5 * duration_, duration_}) {
+    const JointSample s = evaluate(t);
+    if (!std::isfinite(s.position) || !std::isfinite(s.velocity) || !std::isfinite(s.acceleration)) return false;
+  }
+  return true;
 }
 
 }  // namespace servoloop::controllers

@@ -7,6 +7,7 @@
 #include "servoloop/controllers/common/controller_params.hpp"
 #include "servoloop/controllers/common/joint_handles.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/plugin/plugin_register.hpp"
 
 namespace servoloop::controllers::gripper_action_controller {
@@ -19,6 +20,14 @@ namespace {
 
 template <class Interface>
 constexpr bool kEffort = std::is_same_v<Interface, hi::EffortJointInterface>;
+
+constexpr const char* kStoppedReason =
+    "the controller was stopped while the goal ran (a controller switch, or the controller deactivated)";
+constexpr const char* kFaultReason =
+    "the controller was stopped for a fault (an exception, a non-finite command or a hardware failure: see the "
+    "node's log)";
+constexpr const char* kUnloadedReason = "the controller was unloaded while the goal ran";
+constexpr const char* kNotRunningReason = "the controller stopped before the goal was taken over";
 
 // A goal as its sender sees it; holds what it reads, so it may outlive the controller.
 class GripperActionGoal : public servoloop::realtime::ActionGoal {
@@ -34,6 +43,7 @@ class GripperActionGoal : public servoloop::realtime::ActionGoal {
     return true;
   }
   void result(void* out) const override { *static_cast<cm::GripperCommandResult*>(out) = goal_->result(); }
+  std::string statusText() const override { return goal_->reason(); }
 
  private:
   std::shared_ptr<GripperGoal> goal_;
@@ -58,7 +68,20 @@ class GripperCommandAction : public servoloop::realtime::ActionServer {
 template <class Interface>
 GripperActionController<Interface>::~GripperActionController() {
   action_registration_.reset();  // no goal arrives from here on
-  if (active_ != nullptr) delete active_;
+  running_.store(false, std::memory_order_release);
+  // No goal is left without a result.
+  if (Item* pending = handoff_.take()) {
+    if (!servoloop::realtime::goalDone(pending->goal->state())) {
+      pending->goal->finish(GoalState::aborted, {}, kUnloadedReason);
+    }
+    delete pending;
+  }
+  if (active_ != nullptr) {
+    if (!servoloop::realtime::goalDone(active_->goal->state())) {
+      active_->goal->finish(GoalState::aborted, active_->goal->result(), kUnloadedReason);
+    }
+    delete active_;
+  }
 }
 
 template <class Interface>
@@ -95,7 +118,9 @@ std::shared_ptr<GripperGoal> GripperActionController<Interface>::sendGoal(const 
   if (!running_.load(std::memory_order_acquire)) {
     cm::GripperCommandResult result;
     result.position = joint_.getPosition();
-    goal->finish(GoalState::rejected, result);
+    std::string why = "controller '" + name_ + "' is not running; start it with servoloop control start " + name_;
+    logger().warn("gripper goal rejected: {}", why);
+    goal->reject(result, std::move(why));
     return goal;
   }
   std::lock_guard lock(send_mutex_);
@@ -103,6 +128,15 @@ std::shared_ptr<GripperGoal> GripperActionController<Interface>::sendGoal(const 
   item->goal = goal;
   if (std::unique_ptr<Item> replaced = handoff_.push(std::move(item))) {
     replaced->goal->finish(GoalState::preempted, {});
+  }
+  // Stopped since the check above: stopping() took what was there before
+  // this push; this goal is taken back (only senders, under the lock, and
+  // the control thread take) and ends now instead of at the next start.
+  if (!running_.load(std::memory_order_acquire)) {
+    std::unique_ptr<Item> stale(handoff_.take());
+    if (stale && !servoloop::realtime::goalDone(stale->goal->state())) {
+      stale->goal->finish(GoalState::aborted, {}, kNotRunningReason);
+    }
   }
   return goal;
 }
@@ -116,7 +150,7 @@ void GripperActionController<Interface>::starting(const Time& time) {
   if (pid_) pid_->reset();
   // A goal that crossed over before a stop is not followed.
   if (Item* stale = handoff_.take()) {
-    stale->goal->finish(GoalState::aborted, {});
+    stale->goal->finish(GoalState::aborted, {}, kNotRunningReason);
     handoff_.retire(stale);
   }
   feedback_gate_.reset();
@@ -135,9 +169,34 @@ void GripperActionController<Interface>::finishActive(GoalState state, bool stal
 }
 
 template <class Interface>
-void GripperActionController<Interface>::stopping(const Time& /*time*/) {
+void GripperActionController<Interface>::stopFollowing(const char* reason) noexcept {
   running_.store(false, std::memory_order_release);
-  finishActive(GoalState::preempted, false, false, joint_.getPosition());
+  const double position = joint_.getPosition();
+  if (active_ != nullptr) {
+    if (!servoloop::realtime::goalDone(active_->goal->state())) {
+      active_->goal->finish(GoalState::aborted, cm::GripperCommandResult{position, computed_effort_, false, false},
+                            reason);
+    }
+    handoff_.retire(active_);
+    active_ = nullptr;
+  }
+  if (Item* pending = handoff_.take()) {
+    if (!servoloop::realtime::goalDone(pending->goal->state())) {
+      pending->goal->finish(GoalState::aborted, cm::GripperCommandResult{position, 0.0, false, false}, reason);
+    }
+    handoff_.retire(pending);
+  }
+}
+
+template <class Interface>
+void GripperActionController<Interface>::setSafeOutput() {
+  stopFollowing(kFaultReason);
+  computed_effort_ = 0.0;
+}
+
+template <class Interface>
+void GripperActionController<Interface>::stopping(const Time& /*time*/) {
+  stopFollowing(kStoppedReason);
   if constexpr (kEffort<Interface>) {
     computed_effort_ = 0.0;
     joint_.setCommand(0.0);

@@ -35,6 +35,7 @@ class TrajectoryActionGoal : public servoloop::realtime::ActionGoal {
     result.error_code = static_cast<int>(goal_->errorCode());
     result.error_string = goal_->errorString();
   }
+  std::string statusText() const override { return goal_->errorString(); }
 
  private:
   std::shared_ptr<TrajectoryGoal> goal_;

@@ -76,6 +76,11 @@ void JointTrajectoryController<Interface>::stopping(const Time& /*time*/) {
 }
 
 template <class Interface>
+void JointTrajectoryController<Interface>::setSafeOutput() {
+  follower_.stop(TrajectoryFollower::kFaultReason);
+}
+
+template <class Interface>
 ReturnType JointTrajectoryController<Interface>::update(const Time& time, const Duration& period) {
   readState();
   follower_.update(time, period, positions_, velocities_);

@@ -26,8 +26,22 @@ void resizePoint(servoloop::trajectory_msgs::JointTrajectoryPoint& point, std::s
 TrajectoryFollower::~TrajectoryFollower() {
   action_registration_.reset();  // no goal arrives from here on
   command_subscription_ = {};
-  delete active_;  // the controller is not running any more
+  dropped_reporter_ = {};
+  // The controller is not running any more: no goal is left without a result.
+  running_.store(false, std::memory_order_release);
+  if (Command* pending = handoff_.take()) {
+    abortPending(pending, kUnloadedReason);
+    delete pending;
+  }
+  finishActive(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal, -1, kUnloadedReason);
+  delete active_;
   active_ = nullptr;
+}
+
+void TrajectoryFollower::abortPending(Command* command, const char* reason) noexcept {
+  if (command != nullptr && command->goal && !command->goal->done()) {
+    command->goal->finish(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal, -1, reason);
+  }
 }
 
 void TrajectoryFollower::init(const controller_manager::ControllerContext& context,
@@ -70,6 +84,27 @@ void TrajectoryFollower::init(const controller_manager::ControllerContext& conte
     state_publisher_ = context.topics->advertise<StateMessage>(controllerTopic(context, "state"), prototype);
     command_subscription_ = context.topics->subscribe<TrajectoryMessage>(
         command_topic_, [this](const TrajectoryMessage& msg) { onTopicMessage(msg); });
+    // What the control thread drops is warned about here, on the delivery thread.
+    const std::string dropped_topic = controllerTopic(context, "trajectory_dropped");
+    servoloop::std_msgs::Float64MultiArray dropped_prototype;
+    dropped_prototype.data.assign(3, 0.0);
+    dropped_publisher_ =
+        context.topics->advertise<servoloop::std_msgs::Float64MultiArray>(dropped_topic, dropped_prototype);
+    dropped_reporter_ = context.topics->subscribe<servoloop::std_msgs::Float64MultiArray>(
+        dropped_topic, [name = context.name, joints = joint_names](const servoloop::std_msgs::Float64MultiArray& msg) {
+          if (msg.data.size() < 3) return;
+          if (msg.data[0] == 1.0) {
+            logger().warn("controller '{}': trajectory refused: every point is in the past: the trajectory ends at "
+                          "{} s and the control time is {} s (stamp 0 starts it on arrival)",
+                          name, msg.data[1], msg.data[2]);
+          } else if (msg.data[0] == 2.0) {
+            const auto j = static_cast<std::size_t>(msg.data[1]);
+            logger().warn("controller '{}': the desired state of joint '{}' became non-finite at t = {} s (the "
+                          "trajectory's values are too large for its spline arithmetic): the trajectory (and its "
+                          "goal) was aborted and the joints hold",
+                          name, j < joints.size() ? joints[j] : std::string("?"), msg.data[2]);
+          }
+        });
   }
   {
     auto& feedback = goal_feedback_->feedback;
@@ -140,17 +175,56 @@ std::unique_ptr<TrajectoryFollower::Command> TrajectoryFollower::makeCommand(con
       for (std::size_t k = 0; k < values.size(); ++k) out[index_of[k]] = values[k];
     };
     if (given.positions.empty()) throw Error(where + ".positions is empty; give one position per joint");
+    const auto finite = [&](const std::vector<double>& values, const char* field) {
+      for (std::size_t k = 0; k < values.size() && k < msg.joint_names.size(); ++k) {
+        if (!std::isfinite(values[k])) {
+          throw Error(where + "." + field + "[" + std::to_string(k) + "] (joint '" + msg.joint_names[k] +
+                      "', point index " + std::to_string(i) + ") is " + std::to_string(values[k]) +
+                      ", not a finite number");
+        }
+      }
+    };
+    finite(given.positions, "positions");
+    finite(given.velocities, "velocities");
+    finite(given.accelerations, "accelerations");
     reorder(given.positions, "positions", points[i].positions);
     reorder(given.velocities, "velocities", points[i].velocities);
     reorder(given.accelerations, "accelerations", points[i].accelerations);
     points[i].time_from_start = given.time_from_start;
   }
+  // Values finite but so large that interpolating them overflows (1e308):
+  // each segment between points, and the first point reached from rest at 0.
+  for (std::size_t j = 0; j < n; ++j) {
+    if (held[j]) continue;
+    JointSample previous{};
+    double previous_time = std::min(0.0, points.front().time_from_start - 1.0);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const TrajectoryPoint& point = points[i];
+      const JointSample state{point.positions[j], point.velocities.empty() ? 0.0 : point.velocities[j],
+                              point.accelerations.empty() ? 0.0 : point.accelerations[j]};
+      const SplineKind kind = !point.accelerations.empty()  ? SplineKind::quintic
+                              : !point.velocities.empty()   ? SplineKind::cubic
+                                                            : SplineKind::linear;
+      if (!SplineSegment(previous_time, previous, point.time_from_start, state, kind).finite()) {
+        throw Error("points[" + std::to_string(i) + "] (point index " + std::to_string(i) + ", joint '" +
+                    joint_names_[j] + "'): interpolating to it overflows (position " +
+                    std::to_string(state.position) + ", velocity " + std::to_string(state.velocity) +
+                    ", acceleration " + std::to_string(state.acceleration) +
+                    "); give values the joint can reach");
+      }
+      previous = state;
+      previous_time = point.time_from_start;
+    }
+  }
   command->trajectory = JointTrajectory::fromPoints(msg.stamp, points, n, continuous_, held);
 
   const double now = last_time_.load(std::memory_order_acquire);
-  if (msg.stamp > 0.0 && !(command->trajectory.endTime() > now)) {
+  // stamp 0 (or less) starts the trajectory on arrival: it lies in the past
+  // when no point has a time_from_start after 0.
+  const double end = msg.stamp > 0.0 ? command->trajectory.endTime() : now + points.back().time_from_start;
+  if (!(end > now)) {
     code = TrajectoryErrorCode::old_header_timestamp;
-    throw Error("every point is in the past: the trajectory ends at " + std::to_string(command->trajectory.endTime()) +
+    throw Error("every point is in the past: the trajectory ends at " + std::to_string(end) +
                 " s and the control time is " + std::to_string(now) + " s (stamp 0 starts it on arrival)");
   }
   code = TrajectoryErrorCode::successful;
@@ -161,6 +235,15 @@ void TrajectoryFollower::push(std::unique_ptr<Command> command) {
   const std::lock_guard lock(push_mutex_);  // the topic's thread and a goal's sender
   std::unique_ptr<Command> replaced = handoff_.push(std::move(command));
   if (replaced && replaced->goal) replaced->goal->finish(GoalStatus::preempted, TrajectoryErrorCode::successful);
+  // The controller stopped after the caller checked it ran: stop() took
+  // what was there before this push, so this one would wait for the next
+  // start. Taken back here instead (only pushers, under this lock, and the
+  // control thread take; each item goes to exactly one of them), its goal
+  // ends now.
+  if (!running_.load(std::memory_order_acquire)) {
+    std::unique_ptr<Command> stale(handoff_.take());
+    if (stale) abortPending(stale.get(), kNotRunningReason);
+  }
 }
 
 void TrajectoryFollower::onTopicMessage(const TrajectoryMessage& msg) {
@@ -202,6 +285,9 @@ std::shared_ptr<TrajectoryGoal> TrajectoryFollower::submitGoal(const TrajectoryM
     push(std::move(command));
   } catch (const Error& e) {
     goal->reject(code, e.what());
+    if (code == TrajectoryErrorCode::old_header_timestamp) {
+      logger().warn("controller '{}': trajectory goal refused: {}", controller_name_, e.what());
+    }
   }
   return goal;
 }
@@ -217,7 +303,7 @@ void TrajectoryFollower::start(const Time& time, const std::vector<double>& actu
   // A trajectory sent while stopped was refused, but one may have crossed
   // over just before the stop: it is not followed.
   if (Command* stale = handoff_.take()) {
-    if (stale->goal) stale->goal->finish(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal);
+    if (stale->goal) stale->goal->finish(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal, -1, kNotRunningReason);
     handoff_.retire(stale);
   }
   hold(time.seconds);
@@ -227,15 +313,50 @@ void TrajectoryFollower::start(const Time& time, const std::vector<double>& actu
   running_.store(true, std::memory_order_release);
 }
 
-void TrajectoryFollower::stop() noexcept {
+void TrajectoryFollower::stop(const char* reason) noexcept {
   running_.store(false, std::memory_order_release);
-  finishActive(GoalStatus::preempted, TrajectoryErrorCode::successful);
+  // A plain stop (a switch) preempts the running goal, as ros_controllers'
+  // stopping() does; any other reason (a fault) aborts it.
+  if (reason == kStoppedReason) {
+    finishActive(GoalStatus::preempted, TrajectoryErrorCode::successful, -1, reason);
+  } else {
+    finishActive(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal, -1, reason);
+  }
   handoff_.retire(active_);
   active_ = nullptr;
+  // A goal on its way is not followed either (a push after this sees
+  // running_ false and ends its own).
+  if (Command* pending = handoff_.take()) {
+    abortPending(pending, reason);
+    handoff_.retire(pending);
+  }
 }
 
-void TrajectoryFollower::finishActive(GoalStatus status, TrajectoryErrorCode code, int joint) noexcept {
-  if (active_ != nullptr && active_->goal && !active_->goal->done()) active_->goal->finish(status, code, joint);
+void TrajectoryFollower::finishActive(GoalStatus status, TrajectoryErrorCode code, int joint,
+                                      const char* reason) noexcept {
+  if (active_ != nullptr && active_->goal && !active_->goal->done()) {
+    active_->goal->finish(status, code, joint, reason);
+  }
+}
+
+bool TrajectoryFollower::desiredFinite(std::size_t& joint) const noexcept {
+  for (std::size_t j = 0; j < desired_.size(); ++j) {
+    if (!std::isfinite(desired_[j].position) || !std::isfinite(desired_[j].velocity) ||
+        !std::isfinite(desired_[j].acceleration)) {
+      joint = j;
+      return false;
+    }
+  }
+  return true;
+}
+
+void TrajectoryFollower::reportDropped(double kind, double a, double b) noexcept {
+  if (!dropped_publisher_.valid() || !dropped_publisher_.trylock()) return;
+  auto& data = dropped_publisher_.msg().data;
+  data[0] = kind;
+  data[1] = a;
+  data[2] = b;
+  dropped_publisher_.unlockAndPublish();
 }
 
 void TrajectoryFollower::hold(double now) noexcept {
@@ -280,6 +401,8 @@ void TrajectoryFollower::applyCommand(Command* command, double now) noexcept {
     // Every point went by between its check and now: keep what runs.
     if (command->goal) command->goal->finish(GoalStatus::aborted, TrajectoryErrorCode::old_header_timestamp);
     refused_.fetch_add(1, std::memory_order_relaxed);
+    in_the_past_.fetch_add(1, std::memory_order_relaxed);
+    reportDropped(1.0, command->trajectory.startTime() > 0.0 ? command->trajectory.endTime() : now, now);
     handoff_.retire(command);
     return;
   }
@@ -306,6 +429,20 @@ void TrajectoryFollower::update(const Time& time, const Duration& period, const 
     finishActive(GoalStatus::canceled, TrajectoryErrorCode::successful);
     hold(now);
     sampleDesired(now);
+  }
+  if (std::size_t bad = 0; !desiredFinite(bad)) [[unlikely]] {
+    // The trajectory's arithmetic overflowed: its goal ends, the joints hold
+    // where they are rather than being handed a NaN.
+    finishActive(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal, static_cast<int>(bad), kNonFiniteReason);
+    for (std::size_t j = 0; j < desired_.size(); ++j) {
+      const bool finite_position = std::isfinite(actual_positions[j]);
+      desired_[j] = {finite_position ? actual_positions[j] : 0.0,
+                     finite_position && std::isfinite(actual_velocities[j]) ? actual_velocities[j] : 0.0, 0.0};
+    }
+    hold(now);
+    sampleDesired(now);
+    non_finite_.fetch_add(1, std::memory_order_relaxed);
+    reportDropped(2.0, static_cast<double>(bad), now);
   }
 
   for (std::size_t j = 0; j < desired_.size(); ++j) {

@@ -5,6 +5,7 @@ namespace servoloop::controllers::joint_trajectory_controller {
 std::string TrajectoryGoal::errorString() const {
   if (status() == GoalStatus::rejected) return rejection_;
   const std::string joint = violatingJoint() >= 0 ? " (joint " + std::to_string(violatingJoint()) + ")" : "";
+  if (const char* reason = reason_.load(std::memory_order_relaxed)) return reason + joint;
   switch (errorCode()) {
     case TrajectoryErrorCode::successful: return "";
     case TrajectoryErrorCode::invalid_goal: return "invalid goal";

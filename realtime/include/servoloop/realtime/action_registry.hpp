@@ -45,6 +45,9 @@ class ActionGoal {
   virtual bool feedback(void* out) const = 0;
   // The result, into the action type's Result struct (meaningful once done).
   virtual void result(void* out) const = 0;
+  // Why the goal ended as it did (actionlib's GoalStatus text): the reason a
+  // goal was rejected or aborted, "" when there is nothing to say.
+  virtual std::string statusText() const { return {}; }
 };
 
 // What a controller implements to serve an action.

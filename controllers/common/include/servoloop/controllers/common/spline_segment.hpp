@@ -31,6 +31,10 @@ class SplineSegment {
                 SplineKind kind) noexcept;
 
   JointSample sample(double time) const noexcept;
+  // Whether its coefficients, and its state half way and at the end, are
+  // finite: false when the points' values are so large (1e308) that
+  // interpolating them overflows.
+  bool finite() const noexcept;
 
   double startTime() const noexcept { return start_time_; }
   double endTime() const noexcept { return start_time_ + duration_; }

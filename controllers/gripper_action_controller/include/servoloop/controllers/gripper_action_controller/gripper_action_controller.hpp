@@ -23,7 +23,9 @@
 // stall_timeout short of it (closing on an object) — the command stays, so the
 // gripper keeps squeezing with max_effort. A new goal preempts the running
 // one; a cancel holds the position the gripper has; stopping the controller
-// preempts its goal (and zeroes an effort command).
+// (a switch, a fault, unloading it) aborts its goal with the reason (and
+// zeroes an effort command); a goal sent while it is not running is rejected
+// with the reason.
 // Starting: hold the current position.
 #include <atomic>
 #include <memory>
@@ -55,14 +57,30 @@ class GripperGoal {
 
   // The controller's side (real-time safe): result first, then the state.
   void setActive() noexcept { state_.store(State::active, std::memory_order_release); }
-  void finish(State state, const servoloop::control_msgs::GripperCommandResult& result) noexcept {
+  // reason: why it ended (a string literal, or null), read by reason().
+  void finish(State state, const servoloop::control_msgs::GripperCommandResult& result,
+              const char* reason = nullptr) noexcept {
     result_ = result;
+    reason_.store(reason, std::memory_order_relaxed);
     state_.store(state, std::memory_order_release);
+  }
+  // Non-real-time, before the goal is handed over: refused, with why.
+  void reject(const servoloop::control_msgs::GripperCommandResult& result, std::string why) {
+    rejection_ = std::move(why);
+    finish(State::rejected, result);
+  }
+  // Why it ended ("" when it succeeded, or its result says it: stalled).
+  std::string reason() const {
+    if (state() == State::rejected) return rejection_;
+    const char* reason = reason_.load(std::memory_order_relaxed);
+    return reason != nullptr ? reason : "";
   }
 
  private:
   servoloop::control_msgs::GripperCommand command_;
   servoloop::control_msgs::GripperCommandResult result_;
+  std::string rejection_;
+  std::atomic<const char*> reason_{nullptr};
   std::atomic<State> state_{State::pending};
   std::atomic<bool> cancel_requested_{false};
 };
@@ -85,6 +103,8 @@ class GripperActionController : public controller_manager::Controller<Interface>
   // Real-time.
   void starting(const Time& time) override;
   void stopping(const Time& time) override;
+  // Real-time: stopped for a fault; the running goal is aborted with why.
+  void setSafeOutput() override;
   ReturnType update(const Time& time, const Duration& period) override;
 
   // Non-real-time (what the gripper_cmd action calls). Never null; while the
@@ -102,6 +122,7 @@ class GripperActionController : public controller_manager::Controller<Interface>
   };
   void finishActive(GripperGoal::State state, bool stalled, bool reached, double position) noexcept;
   void holdCurrentPosition() noexcept;
+  void stopFollowing(const char* reason) noexcept;
 
   typename Interface::Handle joint_;
   std::unique_ptr<Pid> pid_;  // effort interface

@@ -23,7 +23,8 @@
 //   position: the desired position;
 //   velocity: velocity_ff · desired velocity + PID(position error, velocity error);
 //   effort:   PID(position error, velocity error).
-// Stopping the controller sets velocity and effort commands to 0.
+// Stopping the controller sets velocity and effort commands to 0. Stopping it
+// in any way (a switch, a fault, unloading) aborts its goal with the reason.
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,6 +44,9 @@ class JointTrajectoryController : public controller_manager::Controller<Interfac
   // Real-time.
   void starting(const Time& time) override;
   void stopping(const Time& time) override;
+  // Real-time: stopped for a fault (the manager wrote the safe commands):
+  // the follower stops and its goal is aborted with the reason.
+  void setSafeOutput() override;
   ReturnType update(const Time& time, const Duration& period) override;
 
   TrajectoryFollower& follower() noexcept { return follower_; }

@@ -22,7 +22,15 @@
 //     stop_trajectory_duration;
 //   - trajectories from the topic are followed without tolerance checks;
 //   - while the controller is stopped, trajectories are refused; stopping
-//     it preempts its goal.
+//     it (a switch, a fault, unloading it) aborts its goal, and one still on
+//     its way, with the reason in the result's error_string;
+//   - a desired state that is not finite (values so large that the spline's
+//     arithmetic overflows) aborts the goal and holds, instead of handing
+//     the joints a NaN;
+//   - a trajectory that lies wholly in the past is refused with a warning
+//     naming both times; one whose points all went by between its check and
+//     the control thread taking it is dropped with the same warning, logged
+//     on the bus's delivery thread (<controller>/trajectory_dropped).
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -76,7 +84,24 @@ class TrajectoryFollower {
   // Real-time. actual_positions/velocities: one per joint.
   void start(const Time& time, const std::vector<double>& actual_positions,
              const std::vector<double>& actual_velocities) noexcept;
-  void stop() noexcept;
+  // Real-time: stops following. The running goal ends with `reason` (a
+  // string literal) as its error_string: preempted for kStoppedReason (a
+  // switch, as ros_controllers' stopping() preempts it), aborted for any
+  // other; a goal not taken yet is aborted.
+  void stop(const char* reason = kStoppedReason) noexcept;
+
+  // Why goals end when their controller stops (error_string of the result).
+  static constexpr const char* kStoppedReason =
+      "the controller was stopped while the goal ran (a controller switch, or the controller deactivated); "
+      "start it again and resend the goal";
+  static constexpr const char* kFaultReason =
+      "the controller was stopped for a fault (an exception, a non-finite command or a hardware failure: see "
+      "the node's log); start it again and resend the goal";
+  static constexpr const char* kUnloadedReason = "the controller was unloaded while the goal ran";
+  static constexpr const char* kNonFiniteReason =
+      "the desired state became non-finite (the trajectory's values are too large for its spline "
+      "arithmetic); the joints hold";
+  static constexpr const char* kNotRunningReason = "the controller stopped before the goal was taken over";
   // Real-time: takes a new trajectory if one came, samples the desired state
   // at time, computes the error against the actual state and checks the
   // goal's tolerances. Read the results with desired() and error().
@@ -106,6 +131,12 @@ class TrajectoryFollower {
   // Any thread: trajectories taken over, and those refused on the topic.
   std::uint64_t trajectoriesTaken() const noexcept { return taken_.load(std::memory_order_relaxed); }
   std::uint64_t trajectoriesRefused() const noexcept { return refused_.load(std::memory_order_relaxed); }
+  // Any thread: trajectories (topic or goal) dropped by the control thread
+  // because every point had gone by when it took them, and trajectories
+  // stopped because their desired state was not finite. Each is also
+  // warned about in the log.
+  std::uint64_t trajectoriesInThePast() const noexcept { return in_the_past_.load(std::memory_order_relaxed); }
+  std::uint64_t nonFiniteDesiredStates() const noexcept { return non_finite_.load(std::memory_order_relaxed); }
 
  private:
   // A trajectory on its way to or in use by the real-time thread.
@@ -125,9 +156,15 @@ class TrajectoryFollower {
   void sampleDesired(double now) noexcept;
   void applyCommand(Command* command, double now) noexcept;
   void hold(double now) noexcept;
-  void finishActive(GoalStatus status, TrajectoryErrorCode code, int joint = -1) noexcept;
+  void finishActive(GoalStatus status, TrajectoryErrorCode code, int joint = -1,
+                    const char* reason = nullptr) noexcept;
   void checkTolerances(double now) noexcept;
   void writeFeedback(double now) noexcept;
+  bool desiredFinite(std::size_t& joint) const noexcept;
+  void reportDropped(double kind, double a, double b) noexcept;
+  // Non-real-time: goals of the command not taken yet when the controller is
+  // stopped or gone.
+  static void abortPending(Command* command, const char* reason) noexcept;
 
   std::string controller_name_;
   std::string command_topic_;
@@ -143,6 +180,11 @@ class TrajectoryFollower {
   std::mutex push_mutex_;  // one pusher at a time (never taken on the real-time thread)
   servoloop::realtime::Subscription command_subscription_;
   servoloop::realtime::RealtimePublisher<StateMessage> state_publisher_;
+  // Real-time drops, logged on the bus's delivery thread: data = {kind, a, b}
+  // (1: in the past, a = end time, b = control time; 2: non-finite desired
+  // state, a = joint index, b = control time).
+  servoloop::realtime::RealtimePublisher<servoloop::std_msgs::Float64MultiArray> dropped_publisher_;
+  servoloop::realtime::Subscription dropped_reporter_;
   PeriodicGate state_gate_;
   PeriodicGate feedback_gate_;
   std::shared_ptr<GoalFeedback> goal_feedback_ = std::make_shared<GoalFeedback>();
@@ -154,6 +196,8 @@ class TrajectoryFollower {
   std::atomic<double> last_time_{0.0};  // control time of the last update
   std::atomic<std::uint64_t> taken_{0};
   std::atomic<std::uint64_t> refused_{0};
+  std::atomic<std::uint64_t> in_the_past_{0};
+  std::atomic<std::uint64_t> non_finite_{0};
 
   // Controller-thread state.
   Command* active_ = nullptr;  // null: holding

@@ -48,7 +48,12 @@ class TrajectoryGoal {
 
   // The controller's side (real-time safe).
   void setActive() noexcept { status_.store(GoalStatus::active, std::memory_order_release); }
-  void finish(GoalStatus status, TrajectoryErrorCode code, int violating_joint = -1) noexcept {
+  // reason: why it ended when the code alone does not say (a string
+  // literal, or anything else that outlives the goal; null: the code's
+  // meaning).
+  void finish(GoalStatus status, TrajectoryErrorCode code, int violating_joint = -1,
+              const char* reason = nullptr) noexcept {
+    reason_.store(reason, std::memory_order_relaxed);
     error_code_.store(code, std::memory_order_relaxed);
     violating_joint_.store(violating_joint, std::memory_order_relaxed);
     status_.store(status, std::memory_order_release);
@@ -62,6 +67,7 @@ class TrajectoryGoal {
  private:
   TrajectoryTolerances tolerances_;
   std::string rejection_;
+  std::atomic<const char*> reason_{nullptr};
   std::atomic<GoalStatus> status_{GoalStatus::pending};
   std::atomic<TrajectoryErrorCode> error_code_{TrajectoryErrorCode::successful};
   std::atomic<int> violating_joint_{-1};
