@@ -11,6 +11,7 @@
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/node_operations.hpp"
 #include "servoloop/node/realtime_settings.hpp"
+#include "servoloop/node/robot_namespace.hpp"
 #include "servoloop/plugin/plugin_path.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
@@ -277,10 +278,25 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
   world.simulated_world = world_;
   world.world_loop = world_loop_.get();
   std::unique_ptr<RobotInstance> robot;
+  bool running = false;
+  {
+    std::lock_guard lock(robots_mutex_);
+    running = started_;
+  }
   // The namespace is taken while the world stands, so that a robot refused
   // for it never moves in the world.
   changeWorld([&] {
     robot = std::make_unique<RobotInstance>(spec, world);
+    // A robot spawned into a running node gets a socket of its own: its
+    // namespace must be one that socket can have (a launch file's robots
+    // share the node's, as they start with it).
+    if (running) {
+      if (const std::string problem = spawnNamespaceProblem(robot->robotNamespace()); !problem.empty()) {
+        const std::string ns = robot->robotNamespace();
+        robot.reset();
+        throw ConfigError(fmt::format("robot namespace '{}' {}", ns, problem));
+      }
+    }
     std::lock_guard names(namespaces_mutex_);
     if (!namespaces_.insert(robot->robotNamespace()).second) {
       const std::string ns = robot->robotNamespace();
@@ -315,7 +331,22 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
   logger().info("spawned robot '{}' ({}) from {} on the {} backend", robot->robotName(), ns, spec.urdf.string(),
                 robot->backendName());
   RobotInstance& added = *robots_.emplace_back(std::move(robot));
-  if (started_) startRobotLocked(added);
+  if (started_) {
+    try {
+      startRobotLocked(added);
+    } catch (...) {
+      // A robot whose loop or socket did not start is taken down whole: out of
+      // the list, its loop stopped (it leaves the world loop), its namespace
+      // free again and its bodies out of the world, so that nothing is left
+      // running that no one can reach.
+      robot = std::move(robots_.back());
+      robots_.pop_back();
+      lock.unlock();
+      robot->stop();
+      discard();
+      throw;
+    }
+  }
   return ns;
 }
 

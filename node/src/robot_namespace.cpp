@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include "servoloop/ipc/ipc_socket_path.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/core/errors.hpp"
@@ -72,6 +73,24 @@ std::string resolveRobotNamespace(const std::string& urdf_xml, const std::string
                       "spawn-model: -N /my_robot)");
   }
   return resolved;
+}
+
+std::string spawnNamespaceProblem(const std::string& ns) {
+  if (ns == "/" || ns == "/default") {
+    return "is reserved: '/' and '/default' name the node's own socket (default.sock); give the robot a namespace "
+           "of its own, e.g. -N /my_robot";
+  }
+  if (ns.size() > kMaxSpawnNamespaceLength) {
+    return "is " + std::to_string(ns.size()) + " characters long; a robot namespace may have at most " +
+           std::to_string(kMaxSpawnNamespaceLength) + " (it names the robot's socket); give a shorter one";
+  }
+  const std::string socket = ipc::socketPathFor(ns).string();
+  if (socket.size() > 107) {
+    return "gives the socket path '" + socket + "' of " + std::to_string(socket.size()) +
+           " characters, more than a Unix socket takes (107); give a shorter namespace or set SERVOLOOP_RUN_DIR to "
+           "a shorter folder";
+  }
+  return "";
 }
 
 std::string ignoredLaunchNamespace(const std::string& urdf_xml, const std::string& source_name,

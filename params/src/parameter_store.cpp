@@ -244,6 +244,40 @@ std::string resolveName(std::string_view ns, std::string_view name) {
   return result.empty() ? "/" : result;
 }
 
+void checkParameterName(std::string_view name) {
+  const std::string quoted = "'" + std::string(name) + "'";
+  if (name.empty()) {
+    throw Error("parameter name '' is empty: an empty name stands for the whole namespace, so setting it would "
+                "replace every parameter there; give the full name of one parameter, e.g. "
+                "/one_DOF_robot/joint1_position_controller/pid/p");
+  }
+  if (name.front() == '~') {
+    throw Error("parameter name " + quoted + " is a private '~' name: private names belong to a ROS node's own "
+                "namespace, which a client of the servoloop node does not have; give the full name, e.g. "
+                "/one_DOF_robot/" + std::string(name.substr(1)));
+  }
+  const auto isAlpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+  const auto isDigit = [](char c) { return c >= '0' && c <= '9'; };
+  const bool first_ok = isAlpha(name.front()) || name.front() == '/';
+  const bool rest_ok = std::all_of(name.begin(), name.end(),
+                                   [&](char c) { return isAlpha(c) || isDigit(c) || c == '_' || c == '/'; });
+  if (!first_ok || !rest_ok || name.size() > kMaxParameterNameLength) {
+    throw Error("parameter name " + quoted.substr(0, 200) + (quoted.size() > 200 ? "...'" : "") +
+                " is not a ROS graph resource name: it must start with a letter or '/', hold only letters, digits, "
+                "'_' and '/', and be at most " + std::to_string(kMaxParameterNameLength) + " characters long");
+  }
+}
+
+namespace {
+
+// The absolute name a setter writes to, once the name passes checkParameterName.
+std::string settableName(std::string_view name) {
+  checkParameterName(name);
+  return resolveName("/", name);
+}
+
+}  // namespace
+
 namespace {
 
 // The walk of checkYamlDocument and checkYamlSize: the node count always, the
@@ -313,6 +347,8 @@ void ParameterStore::loadString(std::string_view yaml, std::string_view source_n
     throw ConfigError(source + ": the top level is a " + std::string(paramTypeName(paramTypeOf(document))) +
                       ", expected a map of names to values (e.g. 'my_robot:' followed by indented keys)");
   }
+  // The namespace names where the values go, so it follows the setters' rules.
+  if (!ns.empty() && ns != "/") checkParameterName(ns);
   const std::string base = resolveName("/", ns);
 
   // Depth-first merge: maps merge key by key, anything else replaces.
@@ -568,6 +604,7 @@ void ParameterStore::insertLocked(const std::string& absolute_name, const YAML::
 }
 
 void ParameterStore::set(std::string_view name, std::string_view yaml_value) {
+  checkParameterName(name);
   YAML::Node value;
   try {
     value = YAML::Load(std::string(yaml_value));
@@ -581,26 +618,26 @@ void ParameterStore::set(std::string_view name, std::string_view yaml_value) {
 
 void ParameterStore::set(std::string_view name, double value) {
   std::lock_guard lock(mutex_);
-  insertLocked(resolveName("/", name), YAML::Node(formatDouble(value)), std::string(kSetSource));
+  insertLocked(settableName(name), YAML::Node(formatDouble(value)), std::string(kSetSource));
 }
 
 void ParameterStore::set(std::string_view name, int value) { set(name, static_cast<std::int64_t>(value)); }
 
 void ParameterStore::set(std::string_view name, std::int64_t value) {
   std::lock_guard lock(mutex_);
-  insertLocked(resolveName("/", name), YAML::Node(std::to_string(value)), std::string(kSetSource));
+  insertLocked(settableName(name), YAML::Node(std::to_string(value)), std::string(kSetSource));
 }
 
 void ParameterStore::set(std::string_view name, bool value) {
   std::lock_guard lock(mutex_);
-  insertLocked(resolveName("/", name), YAML::Node(value ? "true" : "false"), std::string(kSetSource));
+  insertLocked(settableName(name), YAML::Node(value ? "true" : "false"), std::string(kSetSource));
 }
 
 void ParameterStore::set(std::string_view name, const std::vector<double>& value) {
   YAML::Node list(YAML::NodeType::Sequence);
   for (double item : value) list.push_back(YAML::Node(formatDouble(item)));
   std::lock_guard lock(mutex_);
-  insertLocked(resolveName("/", name), list, std::string(kSetSource));
+  insertLocked(settableName(name), list, std::string(kSetSource));
 }
 
 void ParameterStore::set(std::string_view name, const std::vector<std::string>& value) {
@@ -611,21 +648,40 @@ void ParameterStore::set(std::string_view name, const std::vector<std::string>& 
     list.push_back(text);
   }
   std::lock_guard lock(mutex_);
-  insertLocked(resolveName("/", name), list, std::string(kSetSource));
+  insertLocked(settableName(name), list, std::string(kSetSource));
 }
 
 void ParameterStore::setString(std::string_view name, std::string_view value) {
   YAML::Node text{std::string(value)};
   text.SetTag("!");
   std::lock_guard lock(mutex_);
-  insertLocked(resolveName("/", name), text, std::string(kSetSource));
+  insertLocked(settableName(name), text, std::string(kSetSource));
 }
 
 void ParameterStore::setNode(std::string_view name, const YAML::Node& value) {
-  const std::string absolute_name = resolveName("/", name);
+  const std::string absolute_name = settableName(name);
   if (absolute_name == "/" && !value.IsMap()) {
     throw Error("cannot replace the root namespace '/' with a " +
                 std::string(paramTypeName(paramTypeOf(value))) + "; set a name under it");
+  }
+  // Every key is checked before anything changes: a refused value leaves
+  // the store as it was (set replaces, so a late refusal would have removed
+  // the old value already).
+  std::vector<std::pair<std::string, YAML::Node>> pending{{absolute_name, value}};
+  while (!pending.empty()) {
+    const auto [target, node] = pending.back();
+    pending.pop_back();
+    if (!node.IsMap()) continue;
+    for (const auto& entry : node) {
+      if (!entry.first.IsScalar() || entry.first.Scalar().empty()) {
+        throw Error("parameter '" + target + "': a key must be a plain name, not a list, a map or empty");
+      }
+      if (entry.first.Scalar().front() == '~') {
+        throw Error("parameter '" + target + "': key '" + entry.first.Scalar() +
+                    "' is a private '~' name, which has no meaning in the parameter store; give the plain key");
+      }
+      pending.emplace_back(joinName(target, entry.first.Scalar()), entry.second);
+    }
   }
   // Going through the loader normalises nested keys ("a/b") and records sources.
   YAML::Node wrapper(YAML::NodeType::Map);
@@ -645,9 +701,6 @@ void ParameterStore::setNode(std::string_view name, const YAML::Node& value) {
       }
       if (target != "/") store.insertLocked(target, YAML::Node(YAML::NodeType::Map), std::string(kSetSource));
       for (const auto& entry : node) {
-        if (!entry.first.IsScalar() || entry.first.Scalar().empty()) {
-          throw Error("parameter '" + target + "': a key must be a plain name, not a list, a map or empty");
-        }
         copy(joinName(target, entry.first.Scalar()), entry.second);
       }
     }

@@ -232,5 +232,36 @@ TEST(DiffDriveParameters, ErrorsNameTheParameter) {
               ::testing::HasSubstr("min_velocity"));
 }
 
+// A window sizes what the controller allocates at load: a huge one is one
+// error naming the parameter, the value and the limit, before any allocation.
+TEST(DiffDriveParameters, VelocityRollingWindowSizeIsBounded) {
+  servoloop::realtime::TopicBus bus;
+  TestJointsHW hw({"left_wheel_joint", "right_wheel_joint"});
+  std::vector<testing::hi::InterfaceResources> claimed;
+  const auto error = [&](const std::string& window) {
+    DiffDriveController controller;
+    try {
+      controller.initRequest(&hw,
+                             makeContext("base",
+                                         "{left_wheel: left_wheel_joint, right_wheel: right_wheel_joint, "
+                                         "velocity_rolling_window_size: " + window + "}",
+                                         &bus, diffBotModel()),
+                             claimed);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string huge = error("1000000000");
+  EXPECT_THAT(huge, ::testing::HasSubstr("base/velocity_rolling_window_size' is '1000000000'"));
+  EXPECT_THAT(huge, ::testing::HasSubstr("from 1 to " + std::to_string(DiffDriveController::kMaxVelocityWindow)));
+  EXPECT_THAT(huge, ::testing::HasSubstr("velocity_rolling_window_size: 10"));
+  EXPECT_THAT(error("0"), ::testing::HasSubstr("is '0'"));
+  EXPECT_THAT(error("-5"), ::testing::HasSubstr("is '-5'"));
+  EXPECT_THAT(error("2.5"), ::testing::HasSubstr("whole number"));
+  EXPECT_EQ(error("10"), "");
+  EXPECT_EQ(error(std::to_string(DiffDriveController::kMaxVelocityWindow)), "");
+}
+
 }  // namespace
 }  // namespace servoloop::controllers::diff_drive_controller

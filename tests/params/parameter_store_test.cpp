@@ -299,6 +299,33 @@ TEST(ParameterStore, SetTypesStringValuesLikeRosparam) {
   EXPECT_FALSE(params.has("/robot/pid/i"));
 }
 
+// `param set -N /robot "" 1` must not replace the whole namespace, and no
+// name a reader cannot read back (a private '~' name, other characters) is stored.
+TEST(ParameterStore, SettersRefuseNamesThatAreNotRosNames) {
+  ParameterStore params;
+  params.loadString("robot: {controller: {pid: {p: 1.0}}}", "robot.yaml");
+  EXPECT_THAT(thrownMessage<Error>([&] { params.set("", "1"); }), HasSubstr("parameter name '' is empty"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.setNode("", YAML::Load("{a: 1}")); }), HasSubstr("is empty"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.set("~private", "1"); }),
+              HasSubstr("'~private' is a private '~' name"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.set("~private", 1); }), HasSubstr("give the full name"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.setString("/robot/~x", "v"); }),
+              HasSubstr("'/robot/~x' is not a ROS graph resource name"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.set("/robot/a b", 1.0); }), HasSubstr("'/robot/a b'"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.set("1abc", true); }), HasSubstr("must start with a letter or '/'"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.set(std::string(2000, 'a'), 1); }), HasSubstr("at most 1024"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.set("/robot", "{~p: 1}"); }), HasSubstr("private '~' name"));
+  EXPECT_THAT(thrownMessage<Error>([&] { params.loadString("a: 1", "a.yaml", "~ns"); }), HasSubstr("'~ns'"));
+  // Nothing was stored, and the namespace is whole.
+  EXPECT_EQ(params.list("/"), (std::vector<std::string>{"/robot/controller/pid/p"}));
+  EXPECT_EQ(params.get<double>("/robot/controller/pid/p"), 1.0);
+  // Names that are ROS names still work.
+  params.set("robot/controller/pid/i", "0.5");
+  params.set("/robot/controller/pid/d_2/", 0.1);
+  EXPECT_EQ(params.get<double>("/robot/controller/pid/i"), 0.5);
+  EXPECT_EQ(params.get<double>("/robot/controller/pid/d_2"), 0.1);
+}
+
 TEST(ParameterStore, DumpReadsBackToTheSameValuesAndTypes) {
   ParameterStore original;
   original.loadFile(kSeedParams);

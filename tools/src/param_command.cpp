@@ -15,6 +15,7 @@
 #include "command_registry.hpp"
 #include "node_connection.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/params/parameter_store.hpp"
 
 namespace servoloop::cli {
 namespace {
@@ -84,6 +85,14 @@ void runGet(const ParamOptions& options) {
 }
 
 void runSet(const ParamOptions& options) {
+  // Checked as given, before it is resolved under --namespace: "" would
+  // become the namespace itself (and replace all of it), "~x" would become a
+  // name no one can read back.
+  try {
+    params::checkParameterName(options.name);
+  } catch (const Error& e) {
+    throw ConfigError(std::string("param set: ") + e.what());
+  }
   const std::string name = resolveName(options.ns, options.name);
   servoloop::ipc::IpcClient client = connectForName(name, options.ns);
   // Sent as text: the node types it as YAML would (1 → int, 1.0 → double,

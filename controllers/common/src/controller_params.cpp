@@ -136,6 +136,19 @@ double optionalPositive(const ControllerContext& context, const std::string& key
   return value;
 }
 
+std::size_t optionalCount(const ControllerContext& context, const std::string& key, std::size_t fallback,
+                          std::size_t min, std::size_t max, const std::string& fix) {
+  const params::Parameters node = child(context, key);
+  if (node.empty()) return fallback;
+  const double value = optionalNumber(context, key, static_cast<double>(fallback));
+  if (value != std::floor(value) || value < static_cast<double>(min) || value > static_cast<double>(max)) {
+    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, key) + "' is " +
+                      node.describe() + "; it must be a whole number from " + std::to_string(min) + " to " +
+                      std::to_string(max) + " (the limit; it sizes what the controller allocates at load): " + fix);
+  }
+  return static_cast<std::size_t>(value);
+}
+
 bool optionalBool(const ControllerContext& context, const std::string& key, bool fallback) {
   const params::Parameters value = context.params.child(key);
   if (value.empty()) return fallback;

@@ -81,8 +81,12 @@ bool DiffDriveController::init(hardware_interface::VelocityJointInterface* hw, c
   open_loop_ = optionalBool(context, "open_loop", false);
   publish_tf_ = optionalBool(context, "enable_odom_tf", true);
   publish_gate_.setRate(optionalPositive(context, "publish_rate", 50.0));
-  const double window = optionalPositive(context, "velocity_rolling_window_size", 10.0);
-  odometry_.resize(static_cast<std::size_t>(window));
+  // The samples are allocated here and summed every cycle: bounded.
+  odometry_.resize(optionalCount(context, "velocity_rolling_window_size", kDefaultVelocityWindow, 1,
+                                 kMaxVelocityWindow,
+                                 "give e.g. velocity_rolling_window_size: 10 (ros_controllers' default; " +
+                                     std::to_string(kMaxVelocityWindow) +
+                                     " samples already average over 1 s at 1 kHz)"));
   linear_limiter_ = SpeedLimiter::fromParams(context, "linear/x");
   angular_limiter_ = SpeedLimiter::fromParams(context, "angular/z");
   const std::array<double, 6> pose_diagonal = diagonal(context, "pose_covariance_diagonal");

@@ -1,6 +1,7 @@
 #pragma once
 // Which namespace a robot's controllers, parameters, topics and IPC socket
 // live under. Non-real-time.
+#include <cstddef>
 #include <string>
 
 namespace servoloop::node {
@@ -24,5 +25,16 @@ std::string resolveRobotNamespace(const std::string& urdf_xml, const std::string
 // namespace of "/" (a ROS launch file without <group ns>) asks for nothing.
 std::string ignoredLaunchNamespace(const std::string& urdf_xml, const std::string& source_name,
                                    const std::string& launch_namespace);
+
+// The longest robot namespace a spawn into a running node takes: it names
+// the robot's socket (<run dir>/<stem>.sock, a Unix socket path of at most
+// 107 bytes) and prefixes every one of its topics and parameters.
+inline constexpr std::size_t kMaxSpawnNamespaceLength = 64;
+
+// Why a robot spawned into a running node cannot have the resolved namespace
+// ns ("/a/b"), or "" when it can: "/" and "/default" are reserved (they name
+// the node's own socket, default.sock), longer than kMaxSpawnNamespaceLength,
+// or a socket path that does not fit. The text follows "robot namespace '<ns>' ".
+std::string spawnNamespaceProblem(const std::string& ns);
 
 }  // namespace servoloop::node

@@ -55,6 +55,16 @@ double paramDoubleValue(const YAML::Node& scalar);
 // supported and throw servoloop::Error.
 std::string resolveName(std::string_view ns, std::string_view name);
 
+// The longest parameter name a setter takes (names are paths of a few keys).
+inline constexpr std::size_t kMaxParameterNameLength = 1024;
+
+// Throws servoloop::Error naming `name` and the rule unless it is a name every
+// setter (set, setString, setNode) and a load's namespace take: a ROS graph
+// resource name (first character a letter or '/', then letters, digits, '_'
+// and '/'), not empty (that would be the whole namespace) and not a private
+// '~' name (which has no meaning outside a ROS node). Reads are not checked.
+void checkParameterName(std::string_view name);
+
 // The most nodes a YAML document may hold with its aliases expanded: anchors
 // and aliases let a few lines stand for billions of nodes, and every reader
 // that walks the document (dump, JSON, a controller's list) would expand them.

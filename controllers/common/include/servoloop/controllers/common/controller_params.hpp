@@ -3,6 +3,7 @@
 // view) with errors in the controller's own words, and naming its topics.
 // Non-real-time. Every error names the controller, the full parameter path
 // and the fix.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,14 @@ std::string joinNames(const std::vector<std::string>& names);
 // (optionalPositive); the error names the parameter, its value and the rule.
 double optionalNonNegative(const ControllerContext& context, const std::string& key, double fallback);
 double optionalPositive(const ControllerContext& context, const std::string& key, double fallback);
+
+// An optional whole number from min to max that sizes what the controller
+// allocates at load (a rolling window, a history): every such parameter has an
+// upper bound, so a typo cannot make the node allocate gigabytes. The error
+// names the parameter, its value, the range and `fix` (e.g. "ros_controllers'
+// default is 10").
+std::size_t optionalCount(const ControllerContext& context, const std::string& key, std::size_t fallback,
+                          std::size_t min, std::size_t max, const std::string& fix);
 
 // An optional true/false with a default.
 bool optionalBool(const ControllerContext& context, const std::string& key, bool fallback);

@@ -15,7 +15,8 @@
 //                                     <robot ns>/<controller>/command_timed_out
 //   linear/x/..., angular/z/...       velocity, acceleration and jerk limits (speed_limiter.hpp)
 //   publish_rate                      50 Hz of odom and tf
-//   velocity_rolling_window_size      10 updates averaged for the odometry's velocities
+//   velocity_rolling_window_size      10 updates averaged for the odometry's velocities;
+//                                     a whole number from 1 to kMaxVelocityWindow (1000)
 //   open_loop                         false: odometry from the wheels; true: from the commands
 //   pose_covariance_diagonal,         6 values each (x, y, z, roll, pitch, yaw), default 0
 //   twist_covariance_diagonal
@@ -31,6 +32,7 @@
 // Non-finite commands are ignored (the previous one stays) and counted.
 // Starting: the base is braked and the odometry starts at the origin.
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -51,6 +53,11 @@ namespace servoloop::controllers::diff_drive_controller {
 
 class DiffDriveController : public controller_manager::Controller<hardware_interface::VelocityJointInterface> {
  public:
+  // velocity_rolling_window_size: ros_controllers' default, and the largest
+  // taken (the samples are allocated at load and summed every update).
+  static constexpr std::size_t kDefaultVelocityWindow = 10;
+  static constexpr std::size_t kMaxVelocityWindow = 1000;
+
   // Non-real-time. Throws servoloop::ConfigError naming the parameter.
   bool init(hardware_interface::VelocityJointInterface* hw,
             const controller_manager::ControllerContext& context) override;
