@@ -81,6 +81,12 @@ std::vector<fs::path> foldersAbove(const fs::path& near) {
 
 fs::path findPackage(const std::string& name, const fs::path& near, const std::string& source_name) {
   if (name.empty()) throw ConfigError(source_name + ": an empty ROS package name; write package://<package>/<path>");
+  // ".." or "a/../b" would be a folder above or beside the file, not a package
+  // (and package://../../etc/passwd a file anywhere on the disk).
+  if (name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos) {
+    throw ConfigError(source_name + ": '" + name + "' is not a ROS package name (a package is named by letters, " +
+                      "digits, '_' and '-', without '/' or '..'); write package://<package>/<path inside it>");
+  }
   fs::path found;
   const std::vector<fs::path> roots = rosPackagePath();
   for (const auto& root : roots) {
@@ -122,20 +128,44 @@ fs::path findPackage(const std::string& name, const fs::path& near, const std::s
                     name + "' without one)");
 }
 
+fs::path resolveInsidePackage(const fs::path& package_folder, const fs::path& relative, const std::string& uri,
+                              const std::string& source_name) {
+  const auto refuse = [&](const std::string& why) -> void {
+    throw ConfigError(source_name + ": '" + uri + "' " + why + " the package folder " + package_folder.string() +
+                      "; a package path names a file inside its package: remove the '..' (or the link out of the "
+                      "package), or copy the file into the package");
+  };
+  const fs::path inside = relative.lexically_normal();
+  if (inside.is_absolute() || inside.has_root_name() || (!inside.empty() && *inside.begin() == "..")) {
+    refuse("leads out of");
+  }
+  const fs::path joined = (package_folder / inside).lexically_normal();
+  // Lexically inside, but a symbolic link on the way may still lead out.
+  std::error_code ec;
+  const fs::path real_folder = fs::weakly_canonical(package_folder, ec);
+  std::error_code ec_joined;
+  const fs::path real_joined = fs::weakly_canonical(joined, ec_joined);
+  if (!ec && !ec_joined) {
+    const fs::path rest = real_joined.lexically_relative(real_folder);
+    if (rest.empty() || *rest.begin() == "..") refuse("resolves (through a symbolic link) to " + real_joined.string() + ", outside");
+  }
+  return joined;
+}
+
 fs::path resolvePackageUri(const std::string& uri, const fs::path& near, const std::string& source_name) {
   const std::string prefix = "package://";
   if (uri.rfind(prefix, 0) != 0) return uri;
   const std::string rest = uri.substr(prefix.size());
   const auto slash = rest.find('/');
   const std::string package = rest.substr(0, slash);
+  if (package == "." || package == "..") {
+    throw ConfigError(source_name + ": '" + uri + "' names no package ('" + package +
+                      "' is a folder step, not a ROS package name) and would lead out of any package folder; "
+                      "write package://<package>/<path inside it>");
+  }
   const fs::path folder = findPackage(package, near, source_name);
   if (slash == std::string::npos) return folder;
-  const fs::path inside = fs::path(rest.substr(slash + 1)).lexically_normal();
-  if (inside.is_absolute() || (!inside.empty() && *inside.begin() == "..")) {
-    throw ConfigError(source_name + ": '" + uri + "' leads out of package '" + package + "' (" + folder.string() +
-                      "); a package:// path names a file inside its package");
-  }
-  return folder / inside;
+  return resolveInsidePackage(folder, fs::path(rest.substr(slash + 1)), uri, source_name);
 }
 
 }  // namespace servoloop

@@ -1,7 +1,10 @@
 #include "servoloop/ipc/ipc_protocol.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+
+#include "servoloop/core/errors.hpp"
 
 namespace servoloop::ipc {
 
@@ -91,6 +94,96 @@ std::string describeJsonType(const nlohmann::json& value) {
     case nlohmann::json::value_t::discarded: return "a discarded value";
   }
   return "an unknown JSON type";
+}
+
+std::string requestOpName(const nlohmann::json& request) {
+  if (request.is_object()) {
+    const auto op = request.find(kIpcOpKey);
+    if (op != request.end() && op->is_string()) return op->get<std::string>();
+  }
+  return "?";
+}
+
+std::string describeJsonValue(const nlohmann::json& value) {
+  constexpr std::size_t kShown = 80;
+  std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (text.size() > kShown) text = text.substr(0, kShown) + "... (" + describeJsonType(value) + ")";
+  return text;
+}
+
+void throwBadRequestField(const nlohmann::json& request, std::string_view field, std::string_view expected,
+                          const nlohmann::json& given) {
+  throw Error(requestOpName(request) + ": '" + std::string(field) + "' must be " + std::string(expected) + ", got " +
+              describeJsonValue(given));
+}
+
+const nlohmann::json* findRequestField(const nlohmann::json& request, std::string_view field) {
+  if (!request.is_object()) return nullptr;
+  const auto it = request.find(field);
+  if (it == request.end() || it->is_null()) return nullptr;
+  return &*it;
+}
+
+bool requestBool(const nlohmann::json& request, std::string_view field, bool fallback) {
+  const nlohmann::json* value = findRequestField(request, field);
+  if (value == nullptr) return fallback;
+  if (!value->is_boolean()) throwBadRequestField(request, field, "true or false", *value);
+  return value->get<bool>();
+}
+
+double requestNumber(const nlohmann::json& request, std::string_view field, double fallback,
+                     std::string_view expected) {
+  const nlohmann::json* value = findRequestField(request, field);
+  if (value == nullptr) return fallback;
+  if (!value->is_number()) throwBadRequestField(request, field, expected, *value);
+  const double number = value->get<double>();
+  if (!std::isfinite(number)) throwBadRequestField(request, field, std::string(expected) + " (finite)", *value);
+  return number;
+}
+
+std::string requestString(const nlohmann::json& request, std::string_view field, const std::string& fallback) {
+  const nlohmann::json* value = findRequestField(request, field);
+  if (value == nullptr) return fallback;
+  if (!value->is_string()) throwBadRequestField(request, field, "a string", *value);
+  return value->get<std::string>();
+}
+
+std::string requireRequestString(const nlohmann::json& request, std::string_view field) {
+  const nlohmann::json* value = findRequestField(request, field);
+  if (value == nullptr) {
+    throw Error(requestOpName(request) + ": '" + std::string(field) + "' is required (a non-empty string)");
+  }
+  if (!value->is_string() || value->get_ref<const std::string&>().empty()) {
+    throwBadRequestField(request, field, "a non-empty string", *value);
+  }
+  return value->get<std::string>();
+}
+
+std::uint64_t requireRequestUnsigned(const nlohmann::json& request, std::string_view field,
+                                     std::string_view expected) {
+  const nlohmann::json* value = findRequestField(request, field);
+  if (value == nullptr) {
+    throw Error(requestOpName(request) + ": '" + std::string(field) + "' is required (" + std::string(expected) + ")");
+  }
+  if (!value->is_number_unsigned()) throwBadRequestField(request, field, expected, *value);
+  return value->get<std::uint64_t>();
+}
+
+std::string describeJsonException(const nlohmann::json& request, const nlohmann::json::exception& error) {
+  std::string text = jsonErrorText(error);
+  // type_error.302 reads "type must be boolean, but is string".
+  const std::string must = "type must be ";
+  const std::string but = ", but is ";
+  const auto at_must = text.find(must);
+  const auto at_but = text.find(but);
+  if (at_must != std::string::npos && at_but != std::string::npos && at_but > at_must) {
+    const std::string wanted = text.substr(at_must + must.size(), at_but - at_must - must.size());
+    const std::string given = text.substr(at_but + but.size());
+    text = "a field must be " + wanted + " but is " + given;
+  }
+  const std::string op = requestOpName(request);
+  return op + ": the request has a field of the wrong type or value (" + text +
+         "); see docs/ipc_protocol.md for the fields '" + op + "' takes";
 }
 
 IpcRequestCheck parseIpcRequest(std::string_view line) {

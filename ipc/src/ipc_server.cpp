@@ -357,6 +357,10 @@ nlohmann::json IpcServer::replyFor(const nlohmann::json& request, IpcConnection&
   nlohmann::json result;
   try {
     result = handler_(request, connection);
+  } catch (const nlohmann::json::exception& error) {
+    // Handlers read fields with the checked helpers of ipc_protocol.hpp; one
+    // that slipped through still answers in their style, not nlohmann's.
+    return makeIpcErrorReply(id, describeJsonException(request, error));
   } catch (const std::exception& error) {
     return makeIpcErrorReply(id, error.what());
   } catch (...) {

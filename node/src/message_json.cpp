@@ -170,6 +170,51 @@ json yamlToJson(const YAML::Node& node) {
   return nullptr;
 }
 
+namespace {
+
+// What is wrong with a YAML number that no JSON (and so no IPC request) can
+// carry: JSON has no NaN or infinity, and nlohmann writes them as null, which
+// the node would report as "expected a number, got null". "" when finite.
+std::string nonFiniteNumberProblem(const YAML::Node& scalar) {
+  if (params::paramTypeOf(scalar) != params::ParamType::floating) return "";
+  const double value = params::paramDoubleValue(scalar);
+  if (std::isfinite(value)) return "";
+  const std::string& text = scalar.Scalar();
+  std::string body = text;
+  if (!body.empty() && (body.front() == '-' || body.front() == '+')) body.erase(0, 1);
+  std::string lower = body;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (lower == ".nan" || std::isnan(value)) return text + " is not a number";
+  if (lower == ".inf") return text + " is infinite";
+  return text + " is out of range of a double (the largest is 1.8e308)";
+}
+
+// Refuses NaN, .inf and numbers past a double's range anywhere in a message
+// typed by a user, naming the field, before they become null in JSON.
+void requireRepresentableNumbers(const YAML::Node& document, std::string_view source_name) {
+  std::vector<std::pair<YAML::Node, std::string>> pending{{document, ""}};
+  while (!pending.empty()) {
+    const auto [node, path] = pending.back();
+    pending.pop_back();
+    if (node.IsMap()) {
+      for (const auto& entry : node) {
+        const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+        pending.emplace_back(entry.second, path.empty() ? key : path + "." + key);
+      }
+    } else if (node.IsSequence()) {
+      for (std::size_t i = 0; i < node.size(); ++i) pending.emplace_back(node[i], path + "[" + std::to_string(i) + "]");
+    } else if (node.IsScalar()) {
+      const std::string problem = nonFiniteNumberProblem(node);
+      if (problem.empty()) continue;
+      throw Error(std::string(source_name) + ": " + (path.empty() ? std::string("the value") : "field '" + path + "'") +
+                  ": " + problem + "; a message holds finite numbers only (JSON, which carries it to the node, has "
+                  "no NaN or infinity)");
+    }
+  }
+}
+
+}  // namespace
+
 json parseMessageText(std::string_view text, std::string_view source_name) {
   YAML::Node node;
   try {
@@ -182,6 +227,7 @@ json parseMessageText(std::string_view text, std::string_view source_name) {
   }
   params::checkYamlDocument(node, source_name);
   if (!node.IsDefined() || node.IsNull()) return json::object();  // all fields default
+  requireRepresentableNumbers(node, source_name);
   return yamlToJson(node);
 }
 

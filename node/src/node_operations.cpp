@@ -1,7 +1,9 @@
 // The operations a node serves over IPC (docs/node_operations.md).
 #include "servoloop/node/node_operations.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 
 #include <filesystem>
@@ -15,8 +17,10 @@
 #include "servoloop/node/action_json.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/node.hpp"
+#include "servoloop/node/robot_namespace.hpp"
 #include "servoloop/node/run_summary.hpp"
 #include "servoloop/params/parameter_store.hpp"
+#include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 
@@ -36,34 +40,22 @@ constexpr double kMaxSwitchWait_s = 10.0;
 // One `world.step` runs at most this many physics steps (over 11 days at 1 ms).
 constexpr std::uint64_t kMaxWorldSteps = 1'000'000'000;
 
-std::string requireString(const json& request, const char* field) {
-  const auto it = request.find(field);
-  if (it == request.end() || !it->is_string() || it->get<std::string>().empty()) {
-    throw Error(fmt::format("'{}' needs a non-empty string field '{}'", request.value("op", ""), field));
-  }
-  return it->get<std::string>();
-}
+std::string requireString(const json& request, const char* field) { return ipc::requireRequestString(request, field); }
 
 std::string optionalString(const json& request, const char* field, const std::string& fallback) {
-  const auto it = request.find(field);
-  if (it == request.end() || it->is_null()) return fallback;
-  if (!it->is_string()) {
-    throw Error(fmt::format("'{}': field '{}' must be a string, got {}", request.value("op", ""), field,
-                            ipc::describeJsonType(*it)));
-  }
-  return it->get<std::string>();
+  return ipc::requestString(request, field, fallback);
 }
 
 std::vector<std::string> stringList(const json& request, const char* field) {
   std::vector<std::string> values;
   const auto it = request.find(field);
   if (it == request.end() || it->is_null()) return values;
-  if (!it->is_array()) {
-    throw Error(fmt::format("'{}': field '{}' must be a list of names, got {}", request.value("op", ""), field,
-                            ipc::describeJsonType(*it)));
-  }
-  for (const json& value : *it) {
-    if (!value.is_string()) throw Error(fmt::format("'{}': field '{}' must hold names only", request.value("op", ""), field));
+  if (!it->is_array()) ipc::throwBadRequestField(request, field, "a list of names", *it);
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const json& value = (*it)[i];
+    if (!value.is_string()) {
+      ipc::throwBadRequestField(request, std::string(field) + "[" + std::to_string(i) + "]", "a name (a string)", value);
+    }
     values.push_back(value.get<std::string>());
   }
   return values;
@@ -114,10 +106,13 @@ json NodeOperations::deferToWorker(const json& request, ipc::IpcConnection& conn
   std::weak_ptr<ipc::IpcConnection> weak = connection.shared();
   {
     std::lock_guard lock(jobs_mutex_);
-    jobs_.push_back([id, weak, work = std::move(work)] {
+    const json request_op = {{"op", ipc::requestOpName(request)}};
+    jobs_.push_back([id, weak, request_op, work = std::move(work)] {
       json reply;
       try {
         reply = ipc::makeIpcOkReply(id, work());
+      } catch (const nlohmann::json::exception& e) {
+        reply = ipc::makeIpcErrorReply(id, ipc::describeJsonException(request_op, e));
       } catch (const std::exception& e) {
         reply = ipc::makeIpcErrorReply(id, e.what());
       }
@@ -144,7 +139,7 @@ RobotInstance& NodeOperations::robotFor(const std::string& op) {
 }
 
 json NodeOperations::handle(const json& request, ipc::IpcConnection& connection) {
-  const std::string op = request.at("op").get<std::string>();
+  const std::string op = ipc::requestOpName(request);
   if (op == "ping") return ping();
   if (op == "world.shutdown") {
     logger().info("shutdown requested over IPC");
@@ -163,10 +158,17 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     std::vector<double> positions;
     const auto given = request.find("joint_positions");
     if (given == request.end() || !given->is_array()) {
-      throw Error("'model.set_configuration' needs 'joint_positions': a list of numbers, one per joint name");
+      if (given == request.end() || given->is_null()) {
+        throw Error("model.set_configuration: 'joint_positions' is required (a list of numbers, one per joint name)");
+      }
+      ipc::throwBadRequestField(request, "joint_positions", "a list of numbers, one per joint name", *given);
     }
-    for (const json& position : *given) {
-      if (!position.is_number()) throw Error("'model.set_configuration': joint position " + position.dump() + " is not a number");
+    for (std::size_t i = 0; i < given->size(); ++i) {
+      const json& position = (*given)[i];
+      if (!position.is_number() || !std::isfinite(position.get<double>())) {
+        ipc::throwBadRequestField(request, "joint_positions[" + std::to_string(i) + "]", "a finite number",
+                                  position);
+      }
       positions.push_back(position.get<double>());
     }
     node_.setModelConfiguration(model, stringList(request, "joint_names"), positions);
@@ -204,8 +206,8 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     } else {
       throw Error("'control.switch': strictness '" + strictness + "' must be \"strict\" or \"best_effort\"");
     }
-    switch_request.start_asap = request.value("start_asap", false);
-    const double timeout_s = request.value("timeout", 0.0);
+    switch_request.start_asap = ipc::requestBool(request, "start_asap", false);
+    const double timeout_s = ipc::requestNumber(request, "timeout", 0.0, "a number of seconds");
     switch_request.timeout_s = timeout_s > 0.0 ? timeout_s : kMaxSwitchWait_s;
     return deferToWorker(request, connection, [&robot, switch_request] {
       if (robot.finished()) {
@@ -222,20 +224,20 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     });
   }
   if (op == "control.reload_libraries") {
-    const bool force_kill = request.value("force_kill", false);
+    const bool force_kill = ipc::requestBool(request, "force_kill", false);
     return deferToWorker(request, connection, [&robot, force_kill] {
       throwIfFailed(robot.manager().reloadControllerLibraries(force_kill));
       return json(nullptr);
     });
   }
   if (op == "control.safety") return controlSafety(robot);
-  if (op == "control.stats") return controlStats(robot, request.value("reset", false));
+  if (op == "control.stats") return controlStats(robot, ipc::requestBool(request, "reset", false));
   if (op == "control.estop") {
-    const auto engage = request.find("engage");
-    if (engage == request.end() || !engage->is_boolean()) {
-      throw Error("'control.estop' needs a field 'engage': true (engage the emergency stop) or false (release it)");
+    if (ipc::findRequestField(request, "engage") == nullptr) {
+      throw Error("control.estop: 'engage' is required: true (engage the emergency stop) or false (release it)");
     }
-    throwIfFailed(robot.setEmergencyStop(engage->get<bool>(), controller_manager::EmergencyStopSource::command));
+    const bool engage = ipc::requestBool(request, "engage", false);
+    throwIfFailed(robot.setEmergencyStop(engage, controller_manager::EmergencyStopSource::command));
     return controlSafety(robot);
   }
   if (op == "control.recover") {
@@ -289,10 +291,9 @@ json NodeOperations::worldOp(const std::string& op, const json& request, ipc::Ip
   }
   if (op == "world.step") {
     std::uint64_t steps = 1;
-    if (const auto given = request.find("steps"); given != request.end()) {
+    if (const json* given = ipc::findRequestField(request, "steps"); given != nullptr) {
       if (!given->is_number_unsigned() || given->get<std::uint64_t>() < 1 || given->get<std::uint64_t>() > kMaxWorldSteps) {
-        throw Error(fmt::format("'world.step': steps {} must be a whole number from 1 to {}", given->dump(),
-                                kMaxWorldSteps));
+        ipc::throwBadRequestField(request, "steps", fmt::format("a whole number from 1 to {}", kMaxWorldSteps), *given);
       }
       steps = given->get<std::uint64_t>();
     }
@@ -500,11 +501,7 @@ json NodeOperations::actionList(RobotInstance& robot) {
 
 namespace {
 std::uint64_t requireGoalId(const json& request) {
-  const auto it = request.find("goal_id");
-  if (it == request.end() || !it->is_number_unsigned()) {
-    throw Error(fmt::format("'{}' needs the field 'goal_id' that action.send replied", request.value("op", "")));
-  }
-  return it->get<std::uint64_t>();
+  return ipc::requireRequestUnsigned(request, "goal_id", "the goal_id that action.send replied (a whole number)");
 }
 }  // namespace
 
@@ -562,6 +559,8 @@ json NodeOperations::actionStatus(const json& request, ipc::IpcConnection& conne
   }
   const realtime::GoalState state = tracked.goal->state();
   json reply = {{"state", realtime::goalStateName(state)}, {"feedback", feedbackJson(tracked.type, *tracked.goal)}};
+  // Why it ended, as actionlib's GoalStatus text (a rejection's reason too).
+  if (std::string text = tracked.goal->statusText(); !text.empty()) reply["text"] = std::move(text);
   if (realtime::goalDone(state)) {
     reply["result"] = resultJson(tracked.type, *tracked.goal);
     std::lock_guard lock(goals_mutex_);
@@ -594,6 +593,37 @@ json NodeOperations::modelSpawn(const json& request) {
   }
   spec.model = optionalString(request, "model", "");
   spec.robot_namespace = optionalString(request, "namespace", "");
+  // The names are checked before anything is built: a robot refused after
+  // it runs would be one nobody can reach.
+  if (request.contains("model")) {
+    const bool plain = !spec.model.empty() && std::isalpha(static_cast<unsigned char>(spec.model.front())) &&
+                       std::all_of(spec.model.begin(), spec.model.end(), [](char c) {
+                         return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                       });
+    if (!plain) {
+      throw ConfigError("'model.spawn': model name '" + spec.model +
+                        "' is not a ROS base name: it must start with a letter and hold only letters, digits and "
+                        "'_' (it is the robot's default namespace /<model>)");
+    }
+  }
+  {
+    const std::string chosen = spec.robot_namespace.empty() && !spec.model.empty() ? "/" + spec.model
+                                                                                   : spec.robot_namespace;
+    if (!chosen.empty()) {
+      std::string resolved;
+      try {
+        resolved = params::resolveName("/", chosen);
+        if (resolved != "/") realtime::TopicBus::normalizeTopicName(resolved);
+      } catch (const Error& e) {
+        throw ConfigError("'model.spawn': robot namespace '" + chosen + "' is not a ROS graph name (" + e.what() +
+                          "); give e.g. -N /my_robot");
+      }
+      if (const std::string problem = spawnNamespaceProblem(resolved); !problem.empty()) {
+        throw ConfigError("'model.spawn': robot namespace '" +
+                          (chosen.size() > 80 ? chosen.substr(0, 80) + "..." : chosen) + "' " + problem);
+      }
+    }
+  }
   for (const std::string& file : stringList(request, "params")) {
     if (!std::filesystem::path(file).is_absolute()) {
       throw Error("'model.spawn': params file '" + file + "' must be an absolute path");

@@ -72,6 +72,7 @@ struct FileScope {
   std::map<std::string, std::string> passed;  // from the includer or the command line
   std::set<std::string> used;                 // passed arguments that were declared
   std::map<std::string, std::string> args;    // declared and set
+  std::map<std::string, int> arg_lines;       // where each <arg> was declared
   std::string ns = "/";
 };
 
@@ -145,6 +146,7 @@ class Reader {
       throw ConfigError(fmt::format("{}:{}: not well-formed roslaunch XML: {}", scope.file.string(),
                                     document->ErrorLineNum(), xmlErrorWords(document->ErrorName(), document->ErrorStr())));
     }
+    refuseDocumentTypes(*document, scope);
     const XMLElement* root = document->RootElement();
     if (root == nullptr || std::string(root->Name()) != "launch") {
       throw ConfigError(scope.file.string() + ": a roslaunch file has <launch> as its root element" +
@@ -166,6 +168,37 @@ class Reader {
       throw ConfigError(fmt::format("{}: argument(s) {} are not declared by this launch file (its <arg>s: {}); "
                                     "remove them or fix their names",
                                     scope.file.string(), fmt::join(unused, ", "), declared.empty() ? "none" : declared));
+    }
+  }
+
+  // A <!DOCTYPE> (and the <!ENTITY>s it declares) anywhere in the file.
+  // roslaunch files have no DTD, and entity declarations are the stuff of XML
+  // bombs; tinyxml2 would not expand them either (an &name; would stay as
+  // written), so the file is refused rather than read differently.
+  static void refuseDocumentTypes(const tinyxml2::XMLDocument& document, const FileScope& scope) {
+    std::vector<const tinyxml2::XMLNode*> pending{&document};
+    while (!pending.empty()) {
+      const tinyxml2::XMLNode* node = pending.back();
+      pending.pop_back();
+      if (const tinyxml2::XMLUnknown* unknown = node->ToUnknown()) {
+        const std::string text = unknown->Value() ? unknown->Value() : "";
+        std::string keyword;
+        for (char c : text) {
+          if (!std::isalpha(static_cast<unsigned char>(c))) break;
+          keyword += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        }
+        const bool entity = text.find("ENTITY") != std::string::npos;
+        throw ConfigError(fmt::format(
+            "{}:{}: <!{}...> is refused: a roslaunch file has no document type{}, and entity declarations are a "
+            "classic XML bomb (servoloop's XML reader would not expand them either, so &name; would stay as "
+            "written); remove the <!{}...> and write the values out, or declare them with <arg name=\"...\" "
+            "default=\"...\"/> and use $(arg name)",
+            scope.file.string(), node->GetLineNum(), keyword.empty() ? "?" : keyword,
+            entity ? " (DTD) and no <!ENTITY>" : " (DTD)", keyword.empty() ? "?" : keyword));
+      }
+      for (const tinyxml2::XMLNode* child = node->FirstChild(); child != nullptr; child = child->NextSibling()) {
+        pending.push_back(child);
+      }
     }
   }
 
@@ -217,10 +250,11 @@ class Reader {
     const char* value = e->Attribute("value");
     const char* fallback = e->Attribute("default");
     if (value != nullptr && fallback != nullptr) fail(e, scope, "arg '" + name + "' has both value= and default=");
-    if (scope.args.count(name) != 0) {
-      fail(e, scope, "arg '" + name + "' is declared twice in this file (roslaunch refuses that too); keep one <arg name=\"" +
-                         name + "\">");
+    if (const auto earlier = scope.arg_lines.find(name); earlier != scope.arg_lines.end()) {
+      fail(e, scope, "arg '" + name + "' has already been declared (at line " + std::to_string(earlier->second) +
+                         "), as roslaunch says too; keep one <arg name=\"" + name + "\">");
     }
+    scope.arg_lines[name] = e->GetLineNum();
     const auto passed = scope.passed.find(name);
     if (value != nullptr) {
       if (passed != scope.passed.end()) {
@@ -240,11 +274,19 @@ class Reader {
   void include(const XMLElement* e, FileScope& scope, int depth) {
     const std::string raw = required(e, "file", scope);
     std::map<std::string, std::string> passed;
+    std::map<std::string, int> passed_lines;
     for (const XMLElement* a = e->FirstChildElement("arg"); a != nullptr; a = a->NextSiblingElement("arg")) {
       if (!enabled(a, scope)) continue;
       const std::string name = required(a, "name", scope);
       const char* value = a->Attribute("value");
       if (value == nullptr) fail(a, scope, "<arg name=\"" + name + "\"> in an <include> needs value=");
+      // roslaunch declares an <include>'s <arg>s in the included file's
+      // context: the same name twice is its "arg 'x' has already been declared".
+      if (const auto earlier = passed_lines.find(name); earlier != passed_lines.end()) {
+        fail(a, scope, "arg '" + name + "' has already been declared in this <include> (at line " +
+                           std::to_string(earlier->second) + "), as roslaunch says too; pass it once");
+      }
+      passed_lines[name] = a->GetLineNum();
       passed[name] = subst(value, a, scope);
     }
     // Gazebo's own world launch files (empty_world.launch and those built on
@@ -339,10 +381,16 @@ class Reader {
     YAML::Emitter out;
     out << YAML::BeginMap << YAML::Key << fs::path(name).filename().string() << YAML::Value;
     const std::string kind = type != nullptr ? type : "";
-    std::string lower = text;
+    // roslaunch strips a value before it converts it: value="  1.0  " is the
+    // double 1.0, not a string (which a double parameter would not read).
+    const auto first = text.find_first_not_of(" \t\r\n");
+    const std::string trimmed =
+        first == std::string::npos ? std::string() : text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
+    std::string lower = trimmed;
     std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
     char* end = nullptr;
-    const bool number = !text.empty() && (std::strtod(text.c_str(), &end), end == text.c_str() + text.size());
+    const bool number =
+        !trimmed.empty() && (std::strtod(trimmed.c_str(), &end), end == trimmed.c_str() + trimmed.size());
     bool truth = false;
     if (kind == "str" || kind == "string") {
       out << YAML::DoubleQuoted << text;
@@ -353,12 +401,12 @@ class Reader {
         fail(e, scope, "param '" + name + "': type=\"yaml\" but the value is not YAML: " + error.msg);
       }
     } else if (kind == "bool" || kind == "boolean") {
-      if (!truthValue(text, truth)) fail(e, scope, "param '" + name + "': '" + text + "' is not true or false");
+      if (!truthValue(trimmed, truth)) fail(e, scope, "param '" + name + "': '" + text + "' is not true or false");
       out << truth;
     } else if (kind.empty() && (lower == "true" || lower == "false")) {
       out << (lower == "true");  // roslaunch reads these as booleans
     } else if ((kind.empty() || kind == "int" || kind == "double") && number) {
-      out << text;  // an integer or a double, as its text says
+      out << trimmed;  // an integer or a double, as its text says
     } else if (kind.empty()) {
       out << YAML::DoubleQuoted << text;
     } else {

@@ -497,8 +497,10 @@ TEST(SafetySupervisor, OnTheWallClockAReadErrorStopsTheControllerAndTheLoopKeeps
   EXPECT_EQ(f.hw.applied_effort, 0.0);
   EXPECT_EQ(stats.hardware_errors, 10u);
   // It kept cycling after the stop, on its grid: every one of the 100
-  // deadlines ran a cycle or was skipped (a loaded machine makes it skip some).
-  EXPECT_EQ(stats.cycles + stats.skipped_deadlines, 100u);
+  // deadlines ran a cycle or was skipped (a loaded machine makes it skip some;
+  // an overrun of the last cycle also skips deadlines past the run's end).
+  EXPECT_GE(stats.cycles + stats.skipped_deadlines, 100u);
+  if (stats.overruns == 0) EXPECT_EQ(stats.cycles + stats.skipped_deadlines, 100u);
   EXPECT_GT(stats.cycles, 30u);
   EXPECT_FALSE(loop.hardwareAskedToStop());
 }

@@ -69,10 +69,63 @@ TEST(PackagePath, RosPackagePathIsSearchedByPackageXmlName) {
       resolvePackageUri(escape, elsewhere, "r.urdf");
       ADD_FAILURE() << escape << " was resolved";
     } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find("leads out of package 'arm_description'"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("'" + std::string(escape) + "' leads out of the package folder " +
+                                           (dir.path() / "ws1/src/group/arm_folder").string()),
+                std::string::npos)
+          << e.what();
       EXPECT_NE(std::string(e.what()).find("r.urdf"), std::string::npos) << e.what();
     }
   }
+}
+
+// What a package:// URI names stays inside its package: no ".." package, no
+// ".." out of it, no symbolic link out of it; one error naming the URI, the
+// package folder and the fix.
+TEST(PackagePath, NoPathLeadsOutOfItsPackage) {
+  TempDir dir("servoloop-pkg");
+  writePackage(dir.path() / "src/arm", "arm");
+  writeFile(dir.path() / "secret.txt", "not a mesh");
+  writeFile(dir.path() / "src/arm/meshes/a.stl", "solid a\nendsolid a\n");
+  const fs::path urdf_dir = dir.path() / "src/arm/urdf";
+  fs::create_directories(urdf_dir);
+  PackagePathEnv env(std::nullopt);
+  const auto errorOf = [&](const std::string& uri) -> std::string {
+    try {
+      resolvePackageUri(uri, urdf_dir, "arm.urdf");
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "(resolved)";
+  };
+  // A package named ".." is a folder step, not a package.
+  const std::string dotdot = errorOf("package://../../../../etc/passwd");
+  EXPECT_NE(dotdot.find("arm.urdf: 'package://../../../../etc/passwd' names no package"), std::string::npos) << dotdot;
+  EXPECT_NE(errorOf("package://./meshes/a.stl").find("names no package"), std::string::npos);
+  // $(find ..) and $(find a/b) are no package names either.
+  EXPECT_THROW(findPackage("..", urdf_dir, "arm.launch"), ConfigError);
+  EXPECT_THROW(findPackage("arm/../..", urdf_dir, "arm.launch"), ConfigError);
+  // ".." past the package folder.
+  const std::string up = errorOf("package://arm/../../secret.txt");
+  EXPECT_NE(up.find("'package://arm/../../secret.txt' leads out of the package folder " + (dir.path() / "src/arm").string()),
+            std::string::npos)
+      << up;
+  EXPECT_NE(up.find("remove the '..'"), std::string::npos) << up;
+  // A symbolic link inside the package that points out of it.
+  std::error_code ec;
+  fs::create_directory_symlink(dir.path(), dir.path() / "src/arm/outside", ec);
+  ASSERT_FALSE(ec) << ec.message();
+  const std::string link = errorOf("package://arm/outside/secret.txt");
+  EXPECT_NE(link.find("'package://arm/outside/secret.txt' resolves (through a symbolic link) to " +
+                      fs::weakly_canonical(dir.path() / "secret.txt").string()),
+            std::string::npos)
+      << link;
+  EXPECT_NE(link.find(", outside the package folder " + (dir.path() / "src/arm").string()), std::string::npos) << link;
+  // What stays inside resolves as before.
+  EXPECT_EQ(resolvePackageUri("package://arm/meshes/a.stl", urdf_dir, "arm.urdf"), dir.path() / "src/arm/meshes/a.stl");
+  EXPECT_EQ(resolveInsidePackage(dir.path() / "src/arm", "meshes/../meshes/a.stl", "model://arm/meshes/a.stl", "w.sdf"),
+            dir.path() / "src/arm/meshes/a.stl");
+  EXPECT_THROW(resolveInsidePackage(dir.path() / "src/arm", "/etc/passwd", "model://arm//etc/passwd", "w.sdf"),
+               ConfigError);
 }
 
 TEST(PackagePath, PackagesAreNotSearchedInsideOtherPackages) {

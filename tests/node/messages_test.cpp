@@ -329,3 +329,37 @@ TEST(Messages, FormatDoubleIsShortestRoundTrip) {
 
 }  // namespace
 }  // namespace servoloop::node
+
+namespace servoloop::node {
+namespace {
+
+// NaN, infinities and numbers past a double's range cannot travel as JSON (they
+// would arrive as null): the text a user typed is refused, naming the field
+// and saying what is wrong with the number.
+TEST(Messages, NumbersNoJsonCarriesAreNamedWithTheirField) {
+  const auto errorOf = [](const std::string& text, const std::string& source) -> std::string {
+    try {
+      parseMessageText(text, source);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(errorOf("1e309", "VALUE").rfind(
+                "VALUE: the value: 1e309 is out of range of a double (the largest is 1.8e308)", 0),
+            0u)
+      << errorOf("1e309", "VALUE");
+  EXPECT_NE(errorOf("{data: .inf}", "VALUE").find("VALUE: field 'data': .inf is infinite"), std::string::npos);
+  EXPECT_NE(errorOf("{data: [1, -.inf]}", "VALUE").find("VALUE: field 'data[1]': -.inf is infinite"),
+            std::string::npos);
+  EXPECT_NE(errorOf("{trajectory: {points: [{positions: [0, .nan]}]}}", "GOAL")
+                .find("GOAL: field 'trajectory.points[0].positions[1]': .nan is not a number"),
+            std::string::npos);
+  EXPECT_NE(errorOf("{data: -1e400}", "VALUE").find("-1e400 is out of range of a double"), std::string::npos);
+  // Finite numbers, and the words as strings, pass.
+  EXPECT_EQ(parseMessageText("{data: 1.7e308}")["data"].get<double>(), 1.7e308);
+  EXPECT_EQ(parseMessageText("{name: '.nan'}")["name"], ".nan");
+}
+
+}  // namespace
+}  // namespace servoloop::node

@@ -93,7 +93,7 @@ class RoslaunchProject : public ::testing::Test {
           <rosparam file="$(find arm_control)/config/control.yaml" command="load"/>
           <rosparam>hinge_controller: {type: effort_controllers/JointPositionController, joint: left_hinge}</rosparam>
           <rosparam param="hinge_controller/pid">{p: 100.0, i: 0.01, d: 10.0}</rosparam>
-          <param name="rate" value="50"/>
+          <param name="rate" value="  50  "/>
           <param name="label" value="front arm"/>
           <param name="enabled" value="True"/>
           <param name="code" type="str" value="007"/>
@@ -145,7 +145,7 @@ TEST_F(RoslaunchProject, BringUpReadsToOneRobotWithItsControllersAndParameters) 
   EXPECT_CONTAINS(robot.params[1].yaml, "hinge_controller: {type: effort_controllers/JointPositionController");
   EXPECT_EQ(robot.params[2].ns, "/arm/hinge_controller");
   EXPECT_EQ(robot.params[2].yaml, "pid:\n  {p: 100.0, i: 0.01, d: 10.0}");
-  EXPECT_EQ(robot.params[3].yaml, "rate: 50");
+  EXPECT_EQ(robot.params[3].yaml, "rate: 50");  // value="  50  ": roslaunch strips it, an int
   EXPECT_EQ(robot.params[4].yaml, "label: \"front arm\"");
   EXPECT_EQ(robot.params[5].yaml, "enabled: true");
   EXPECT_EQ(robot.params[6].yaml, "code: \"007\"");
@@ -230,7 +230,18 @@ TEST_F(RoslaunchProject, MistakesNameTheFileLineAndFix) {
   EXPECT_CONTAINS(errorOf(R"~(<launch><arg name="a" default="1"/></launch>)~", {{"b", "2"}}),
                   "argument(s) b are not declared by this launch file (its <arg>s: a)");
   EXPECT_CONTAINS(errorOf("<launch>\n<arg name=\"a\" default=\"1\"/>\n<arg name=\"a\" default=\"2\"/></launch>"),
-                  "t.launch:3: <arg>: arg 'a' is declared twice in this file");
+                  "t.launch:3: <arg>: arg 'a' has already been declared (at line 2), as roslaunch says too");
+  // The <arg>s of an <include> are declared in the included file: once each.
+  EXPECT_CONTAINS(errorOf("<launch>\n<include file=\"x.launch\">\n<arg name=\"a\" value=\"1\"/>\n"
+                          "<arg name=\"a\" value=\"2\"/>\n</include></launch>"),
+                  "t.launch:4: <arg>: arg 'a' has already been declared in this <include> (at line 3)");
+  // No document type, so no entities (an XML bomb's stuff), wherever they are.
+  EXPECT_CONTAINS(errorOf("<?xml version=\"1.0\"?>\n<!DOCTYPE launch [<!ENTITY a \"1\">]>\n"
+                          "<launch><arg name=\"x\" default=\"&a;\"/></launch>"),
+                  "t.launch:2: <!DOCTYPE...> is refused: a roslaunch file has no document type (DTD) and no "
+                  "<!ENTITY>");
+  EXPECT_CONTAINS(errorOf("<launch>\n<group>\n<!ENTITY b \"2\">\n</group></launch>"),
+                  "t.launch:3: <!ENTITY...> is refused");
   EXPECT_CONTAINS(errorOf(R"~(<launch><group if="maybe"/></launch>)~"),
                   "if=\"maybe\" gives 'maybe', which is neither true/1 nor false/0");
   EXPECT_CONTAINS(errorOf(R"~(<launch><nodes/></launch>)~"), "<nodes> is not a roslaunch element");

@@ -133,6 +133,7 @@ std::string makeGnuplotScript(const PlotRequest& request) {
         for (const std::string& column : request.columns) wanted |= (column == name);
         if (!wanted) continue;
         const std::string series_title = tables.size() > 1 ? table.file.stem().string() + ": " + name : name;
+        requireDrawableColumn(table, i);  // gnuplot skips NaN and inf; a column of nothing but those draws nothing
         series.push_back({&table, i + 1, series_title, table.isFloat64(), ""});
       }
     }

@@ -17,8 +17,20 @@ namespace servoloop {
 std::filesystem::path findPackage(const std::string& name, const std::filesystem::path& near,
                                   const std::string& source_name);
 
+// <package folder>/<relative>, normalised, when it stays inside the package
+// folder, both lexically ("a/../../x" is refused) and once symbolic links are
+// followed (std::filesystem::weakly_canonical: a link in the package to /etc is
+// refused). Otherwise throws ConfigError naming `uri`, the package folder and
+// the fix. For every path that is relative to a package: package://, model://
+// (a Gazebo model's folder), a mesh path relative to the package's URDF.
+std::filesystem::path resolveInsidePackage(const std::filesystem::path& package_folder,
+                                           const std::filesystem::path& relative, const std::string& uri,
+                                           const std::string& source_name);
+
 // Resolves `package://<pkg>/<rest>` to <package folder>/<rest>; other text is
-// returned as it is. Throws as findPackage does.
+// returned as it is. Throws as findPackage does, and as resolveInsidePackage
+// does for a <rest> that leads out of the package (package://pkg/../../etc/passwd,
+// package://../etc/passwd).
 std::filesystem::path resolvePackageUri(const std::string& uri, const std::filesystem::path& near,
                                         const std::string& source_name);
 

@@ -34,6 +34,7 @@
 //   - a client that does not read what the node sends, until more than
 //     kIpcMaxPendingOutputBytes wait for it, is disconnected.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -77,6 +78,45 @@ std::string encodeIpcLine(const nlohmann::json& message);
 
 // The JSON type name as a user would say it ("an array", "a number", ...).
 std::string describeJsonType(const nlohmann::json& value);
+
+// --- Reading a request's fields ------------------------------------------------
+// Every field a handler reads goes through these: a field of the wrong type
+// throws servoloop::Error naming the request, the field, what it must be and
+// the value given, e.g.
+//   control.switch: 'timeout' must be a number of seconds, got "soon"
+// never nlohmann's "[json.exception.type_error.302] type must be ...".
+// `expected` says what the field must be ("true or false", "a number of
+// seconds"); a missing or null field gives the fallback (optional fields) or
+// throws "... is required" (required ones).
+
+// The request's op, for messages ("?" when it has none).
+std::string requestOpName(const nlohmann::json& request);
+
+// A value as a message shows it: its JSON text, cut short past ~80 characters.
+std::string describeJsonValue(const nlohmann::json& value);
+
+// "<op>: '<field>' must be <expected>, got <value>", thrown as servoloop::Error.
+[[noreturn]] void throwBadRequestField(const nlohmann::json& request, std::string_view field,
+                                       std::string_view expected, const nlohmann::json& given);
+
+// The field, or nullptr when it is absent or null.
+const nlohmann::json* findRequestField(const nlohmann::json& request, std::string_view field);
+
+bool requestBool(const nlohmann::json& request, std::string_view field, bool fallback);
+// A finite number (integers included); `expected` as in "a number of seconds".
+double requestNumber(const nlohmann::json& request, std::string_view field, double fallback,
+                     std::string_view expected = "a number");
+std::string requestString(const nlohmann::json& request, std::string_view field, const std::string& fallback);
+// A string that is present and not empty.
+std::string requireRequestString(const nlohmann::json& request, std::string_view field);
+// A whole number >= 0 that is present.
+std::uint64_t requireRequestUnsigned(const nlohmann::json& request, std::string_view field,
+                                     std::string_view expected = "a whole number >= 0");
+
+// The last resort of a dispatcher: a json::exception a handler let through,
+// as one message in the style above instead of nlohmann's raw text, e.g.
+//   control.stats: a field of the request has the wrong type (a boolean was expected, a string was given); ...
+std::string describeJsonException(const nlohmann::json& request, const nlohmann::json::exception& error);
 
 // A request line checked as the node checks it before any handler sees it:
 // ok, the request (an object with a string "op" and an integer or absent
