@@ -6,12 +6,28 @@
 #include "servoloop/controller_manager/safety_supervisor.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/hardware_interface/joint_interfaces.hpp"
+
+#include <cmath>
+#include <cstddef>
 
 namespace servoloop::controller_manager {
 
 ControlLoop::ControlLoop(hardware_interface::RobotHW& robot_hw, ControllerManager& manager,
                          const LoopCommonOptions& options, Duration control_period)
     : robot_hw_(robot_hw), manager_(manager), options_(options), control_period_(control_period) {
+  // The joint states read() fills, checked after every read(): a NaN or
+  // infinite one makes the read an error (see control_loop.hpp).
+  if (auto* states = robot_hw_.get<hardware_interface::JointStateInterface>()) {
+    for (const std::string& name : states->getNames()) {
+      const hardware_interface::JointStateHandle handle = states->getHandle(name);
+      if (!handle.valid()) continue;
+      joint_state_names_.push_back(name);
+      joint_state_values_.push_back(handle.getPositionPtr());
+      joint_state_values_.push_back(handle.getVelocityPtr());
+      joint_state_values_.push_back(handle.getEffortPtr());
+    }
+  }
   // A loop times its cycles (and so the controllers' updates) unless it says
   // otherwise (setPhaseTiming); the bare manager does not time them.
   manager_.setUpdateTiming(time_phases_);
@@ -37,13 +53,18 @@ const char* protectiveStopCause(HardwareCall call) noexcept {
   }
   return "protective stop";
 }
+
+constexpr const char* kJointStateQuantities[3] = {"position", "velocity", "effort"};
 }  // namespace
 
-void ControlLoop::recordFailure(HardwareCall call, ReturnType result, Time time,
-                                std::uint64_t cycle) noexcept {
-  if (hardware_errors_.record(call, result, time, cycle)) statistics_.recordHardwareError();
+void ControlLoop::recordFailure(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle,
+                                const NonFiniteJointState* non_finite) noexcept {
+  if (hardware_errors_.record(call, result, time, cycle, non_finite)) statistics_.recordHardwareError();
   if (options_.safety != nullptr && options_.safety->hardwareFailed(call, result, time)) {
-    manager_.containHardwareFailure(time, protectiveStopCause(call));
+    manager_.containHardwareFailure(time, non_finite != nullptr
+                                              ? "its read() gave a joint state that is not a finite number "
+                                                "(protective stop)"
+                                              : protectiveStopCause(call));
   }
   if (result == ReturnType::deactivate) {
     // The loop stops at the end of this cycle (finishCycle); the fault and
@@ -88,9 +109,33 @@ ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t c
     // other joints) under control. It is reported as an error of this call.
   }
   if (time_phases_) statistics_.recordRead(loop_clock::cycleClockNs() - start_ns);
-  recordHardwareResult(HardwareCall::read, result, time, cycle);
+  NonFiniteJointState non_finite;
+  if (result == ReturnType::ok && !jointStatesFinite(&non_finite)) [[unlikely]] {
+    // What read() left is no state of a robot: a failed read, named.
+    result = ReturnType::error;
+    recordFailure(HardwareCall::read, result, time, cycle, &non_finite);
+  } else {
+    recordHardwareResult(HardwareCall::read, result, time, cycle);
+  }
   if (options_.safety != nullptr) options_.safety->pollHardwareInput();
   return result;
+}
+
+bool ControlLoop::jointStatesFinite(NonFiniteJointState* found) const noexcept {
+  // One pass without branches over the values; the culprit is looked for
+  // only when there is one.
+  bool all_finite = true;
+  for (const double* value : joint_state_values_) all_finite &= std::isfinite(*value);
+  if (all_finite) [[likely]] return true;
+  for (std::size_t i = 0; i < joint_state_values_.size(); ++i) {
+    const double value = *joint_state_values_[i];
+    if (std::isfinite(value)) continue;
+    found->joint = &joint_state_names_[i / 3];
+    found->quantity = kJointStateQuantities[i % 3];
+    found->value = value;
+    return false;
+  }
+  return false;  // (changed under us: some value was not finite a moment ago)
 }
 
 ReturnType ControlLoop::writeHardware(Time time, Duration period, std::uint64_t cycle) noexcept {

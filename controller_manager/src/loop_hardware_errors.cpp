@@ -2,6 +2,9 @@
 // the non-real-time side through a single atomic flag.
 #include "servoloop/controller_manager/loop_hardware_errors.hpp"
 
+#include <algorithm>
+#include <cstring>
+
 #include <fmt/format.h>
 
 namespace servoloop::controller_manager {
@@ -19,19 +22,38 @@ const char* toString(HardwareCall call) noexcept {
 }
 
 std::string HardwareErrorReport::message() const {
+  if (quantity != nullptr) {
+    return fmt::format("hardware {}() gave joint '{}' a {} of {} at t = {:.6g} s (cycle {}); a joint state must be a "
+                       "finite number, so the read counts as failed",
+                       toString(call), joint.data(), quantity, value, time.seconds, cycle);
+  }
   return fmt::format("hardware {}() returned an error at t = {:.6g} s (cycle {})", toString(call),
                      time.seconds, cycle);
 }
 
-bool LoopHardwareErrors::record(HardwareCall call, ReturnType result, Time time,
-                                std::uint64_t cycle) noexcept {
+bool LoopHardwareErrors::record(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle,
+                                const NonFiniteJointState* non_finite) noexcept {
   if (result != ReturnType::error) return false;
   failed_this_cycle_ = true;
   if (!in_episode_) {
     in_episode_ = true;
     // The reader owns report_ while pending_ is set; leave it alone then.
     if (!pending_.load(std::memory_order_acquire)) {
-      report_ = HardwareErrorReport{call, time, cycle};
+      report_.call = call;
+      report_.time = time;
+      report_.cycle = cycle;
+      report_.quantity = nullptr;
+      report_.joint[0] = '\0';
+      if (non_finite != nullptr) {
+        report_.quantity = non_finite->quantity;
+        report_.value = non_finite->value;
+        if (non_finite->joint != nullptr) {
+          // Copied (no allocation), cut to the capacity.
+          const std::size_t length = std::min(non_finite->joint->size(), report_.joint.size() - 1);
+          std::memcpy(report_.joint.data(), non_finite->joint->data(), length);
+          report_.joint[length] = '\0';
+        }
+      }
       pending_.store(true, std::memory_order_release);
     }
   }

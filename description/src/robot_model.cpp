@@ -81,25 +81,56 @@ std::string describeElement(const tinyxml2::XMLElement* element) {
   return path;
 }
 
-// How many numbers an attribute holds (1 unless listed) and the least value
-// that means something physical (none unless listed).
+// The largest magnitudes a URDF may give, far beyond any real robot: past
+// them the physics is meaningless. The engines compute in floating point (a
+// double carries about 16 significant digits, Bullet's and MuJoCo's contact
+// and constraint code is tuned for metres and kilograms near 1): a mass of
+// 1e308 kg overflows the first product it enters (NaN or infinity in the
+// joints a few steps later), and at 1e9 m from the origin a double cannot
+// resolve positions finer than about 1e-7 m, so a link there cannot move by
+// a control step's worth. docs/reliability.md lists them.
+constexpr double kMaxLength_m = 1e9;            // origin xyz and geometry sizes
+constexpr double kMaxMass_kg = 1e12;            // <mass value>
+constexpr double kMaxInertia_kgm2 = 1e15;       // each <inertia> component (kMaxMass_kg × (~30 m)²)
+
+// An upper bound on an attribute's magnitude (see above), with its unit.
+struct MagnitudeBound {
+  double at_most;
+  const char* unit;
+};
+
+// How many numbers an attribute holds (1 unless listed), the least value
+// that means something physical (none unless listed) and the largest
+// magnitude the engines can simulate (none unless listed).
 struct NumberRule {
   std::size_t count = 1;
   std::optional<double> at_least;
   bool positive = false;  // > 0 rather than >= at_least
   const char* meaning = "";
+  std::optional<MagnitudeBound> at_most = std::nullopt;
 };
 
 NumberRule numberRule(const std::string& element, const std::string& attribute) {
-  if ((element == "origin" || element == "axis") && attribute == "xyz") return {3, std::nullopt, false, "x y z"};
+  const MagnitudeBound length{kMaxLength_m, "m"};
+  if (element == "origin" && attribute == "xyz") return {3, std::nullopt, false, "x y z", length};
+  if (element == "axis" && attribute == "xyz") return {3, std::nullopt, false, "x y z"};
   if (element == "origin" && attribute == "rpy") return {3, std::nullopt, false, "roll pitch yaw"};
   if (element == "mesh" && attribute == "scale") return {3, std::nullopt, false, "x y z factors"};
-  if (element == "box" && attribute == "size") return {3, std::nullopt, true, "three sizes > 0 (m)"};
+  if (element == "box" && attribute == "size") return {3, std::nullopt, true, "three sizes > 0 (m)", length};
   if (element == "cylinder" || element == "sphere" || element == "capsule") {
-    return {1, std::nullopt, true, "a size > 0 (m)"};
+    return {1, std::nullopt, true, "a size > 0 (m)", length};
+  }
+  if (element == "mass" && attribute == "value") {
+    return {1, std::nullopt, false, "a mass (kg)", MagnitudeBound{kMaxMass_kg, "kg"}};
+  }
+  if (element == "inertia") {
+    return {1, std::nullopt, false, "an inertia (kg·m²)", MagnitudeBound{kMaxInertia_kgm2, "kg·m²"}};
   }
   if (element == "limit" && (attribute == "effort" || attribute == "velocity")) {
     return {1, 0.0, false, "a limit >= 0 (a magnitude; URDF has no negative limits)"};
+  }
+  if (element == "safety_controller" && (attribute == "k_position" || attribute == "k_velocity")) {
+    return {1, 0.0, false, "a gain >= 0 (ros_control's soft limits: a negative gain drives the joint past its limit)"};
   }
   if (element == "dynamics") return {1, 0.0, false, "a coefficient >= 0 (a negative one would add energy)"};
   return {};
@@ -130,6 +161,13 @@ void checkNumbers(const tinyxml2::XMLElement* element, const std::string& source
       zero_vector = zero_vector && value == 0.0;
       if ((rule.positive && !(value > 0.0)) || (rule.at_least && value < *rule.at_least)) {
         wrong("'" + token + "' is out of range; expected " + rule.meaning);
+      }
+      if (rule.at_most && std::fabs(value) > rule.at_most->at_most) {
+        std::ostringstream bound;
+        bound << rule.at_most->at_most;
+        wrong("'" + token + "' is beyond " + bound.str() + " " + rule.at_most->unit +
+              ", the largest magnitude servoloop simulates: the physics engines compute in floating point, and "
+              "values this large overflow or lose all precision (NaN joints); no real robot comes near it");
       }
     }
     // (A fixed or floating joint has no axis to speak of: exporters often write 0 0 0 there.)

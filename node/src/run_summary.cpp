@@ -52,6 +52,7 @@ RobotSummary summarizeRobot(RobotInstance& robot) {
   summary.safety_reason = safety.reason();
   summary.protective_stops = safety.protectiveStops();
   summary.emergency_stops = safety.emergencyStops();
+  summary.stopped_by_hardware = safety.startsForbidden();
   return summary;
 }
 

@@ -82,6 +82,40 @@ TEST(ControlLoopAllocation, SafetyTransitionsAllocateNothing) {
   EXPECT_EQ(f.controller()->state(), ControllerState::failed);
 }
 
+// The check of every joint state after read(), clean and finding a NaN
+// (reported naming the joint, a protective stop containing the controller),
+// allocates nothing either.
+TEST(ControlLoopAllocation, NonFiniteJointStateChecksAllocateNothing) {
+  constexpr std::uint64_t kCycles = 20000;
+  testing::LoopFixture f(0.001, 500.0);
+  f.recorder->enabled = false;
+  SafetySupervisor safety(f.hw);
+  SimulationLoop::Options options;
+  options.safety = &safety;
+  SimulationLoop loop(f.hw, f.manager, options);
+  f.requestStart();
+  loop.cycleOnce();
+  ASSERT_TRUE(f.controller()->isRunning());
+  f.hw.nan_position_from = 10000;  // reads 10000..10004
+  f.hw.nan_position_until = 10005;
+
+  std::size_t allocations = 0;
+  {
+    AllocationCounter counter;  // this (the loop's) thread only
+    loop.runFor(Duration(static_cast<double>(kCycles) * 0.001));
+    allocations = counter.allocations();
+  }
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_EQ(loop.stepsTaken(), kCycles + 1);
+  EXPECT_EQ(loop.statistics().snapshot().hardware_errors, 5u);
+  EXPECT_EQ(safety.protectiveStops(), 1u);
+  EXPECT_EQ(f.controller()->state(), ControllerState::failed);
+  const auto report = loop.takeHardwareErrorReport();
+  ASSERT_TRUE(report.has_value());
+  EXPECT_NE(report->message().find("read() gave joint 'joint1' a position of nan"), std::string::npos)
+      << report->message();
+}
+
 // The wall-clock loop with its per-phase statistics (read, the controller's
 // update, write, wake-up latency, period jitter), a statistics reset asked
 // for mid-run, and the safety layer: 2000 cycles at 10 kHz, no allocation.

@@ -87,7 +87,8 @@ class EventRecorder {
 
 // One joint "joint1": unit inertia, effort-driven, integrated by step()
 // (semi-implicit Euler). Calls in [fail_from, fail_until) of read/write/step
-// (counted per call kind from 0) return the configured result.
+// (counted per call kind from 0) return the configured result; reads in
+// [nan_position_from, nan_position_until) report a NaN position.
 class FakeSimulatedRobotHW : public hi::SimulatedRobotHW {
  public:
   static constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
@@ -116,6 +117,13 @@ class FakeSimulatedRobotHW : public hi::SimulatedRobotHW {
     if (recorder_ != nullptr) recorder_->add(EventKind::read, time.seconds, period.seconds);
     if (read_sleep.count() > 0) std::this_thread::sleep_for(read_sleep);
     effort = effort_command;
+    // A NaN reading lasts one read: the joint's own position comes back at the next.
+    if (reported_nan_) position = position_before_nan_;
+    reported_nan_ = reads >= nan_position_from && reads < nan_position_until;
+    if (reported_nan_) {
+      position_before_nan_ = position;
+      position = std::numeric_limits<double>::quiet_NaN();
+    }
     return read_script.at(reads++);
   }
   ReturnType write(Time time, Duration period) override {
@@ -135,6 +143,7 @@ class FakeSimulatedRobotHW : public hi::SimulatedRobotHW {
   void reset() override {
     steps = reads = writes = 0;
     position = velocity = effort = effort_command = applied_effort = 0.0;
+    reported_nan_ = false;
   }
   void setEmergencyStop(bool) override {}
 
@@ -148,6 +157,10 @@ class FakeSimulatedRobotHW : public hi::SimulatedRobotHW {
   std::uint64_t reads = 0;
   std::uint64_t writes = 0;
   Script read_script;
+  // Reads in [nan_position_from, nan_position_until) (counted from 0) report a
+  // NaN position and return ok, as a driver that lost its encoder might.
+  std::uint64_t nan_position_from = kNever;
+  std::uint64_t nan_position_until = kNever;
   Script write_script;
   Script step_script;
   std::chrono::microseconds read_sleep{0};
@@ -160,6 +173,8 @@ class FakeSimulatedRobotHW : public hi::SimulatedRobotHW {
  private:
   double time_step_s_;
   EventRecorder* recorder_;
+  bool reported_nan_ = false;         // the last read() reported a NaN position
+  double position_before_nan_ = 0.0;  // the position it hid
 };
 
 // Writes `output` (parameter, default 2.5) to `joint` every update and

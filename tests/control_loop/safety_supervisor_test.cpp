@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <limits>
 #include <thread>
 
@@ -124,6 +125,72 @@ TEST(SafetySupervisor, ReadErrorIsAProtectiveStopThatStopsTheControllerAndStaysL
   f.recorder->clear();
   s.loop->cycleOnce();
   EXPECT_EQ(writtenEfforts(*f.recorder), std::vector<double>{2.5});
+}
+
+// A read() that returns ok but leaves a joint's position NaN (a driver that
+// lost its encoder, an engine whose state blew up) is a failed read: counted,
+// reported once naming the joint and the value, a protective stop that stops
+// the controller with its safe output; the loop runs on.
+TEST(SafetySupervisor, ANaNJointStateFromReadIsAReadErrorNamingTheJointAndContainsTheController) {
+  LoopFixture f(0.001);
+  SafetyLoop s(f);  // cycle 0 (read 0) done
+  f.hw.nan_position_from = 20;  // read 20 is cycle 20's
+  f.hw.nan_position_until = 21;
+  f.recorder->clear();
+  for (int i = 0; i < 40; ++i) s.loop->cycleOnce();  // cycles 1..40
+
+  const LoopStatisticsSnapshot stats = s.loop->statistics().snapshot();
+  EXPECT_EQ(stats.hardware_errors, 1u);
+  const auto report = s.loop->takeHardwareErrorReport();
+  ASSERT_TRUE(report.has_value());
+  EXPECT_EQ(report->call, HardwareCall::read);
+  EXPECT_EQ(report->cycle, 20u);
+  EXPECT_NE(report->message().find("read() gave joint 'joint1' a position of nan"), std::string::npos)
+      << report->message();
+  EXPECT_NE(report->message().find("(cycle 20)"), std::string::npos) << report->message();
+  EXPECT_FALSE(s.loop->takeHardwareErrorReport().has_value());  // once
+
+  // Contained: protective stop, the controller failed, the safe effort 0
+  // written from the failing cycle on.
+  EXPECT_EQ(s.safety.state(), SafetyState::protective_stop);
+  EXPECT_EQ(s.safety.protectiveStops(), 1u);
+  EXPECT_EQ(f.controller()->state(), ControllerState::failed);
+  const std::vector<double> efforts = writtenEfforts(*f.recorder);
+  ASSERT_EQ(efforts.size(), 40u);
+  for (std::size_t i = 0; i < efforts.size(); ++i) EXPECT_EQ(efforts[i], i < 19 ? 2.5 : 0.0) << "write " << i;
+  const std::vector<ControllerFault> faults = f.manager.processFaults();
+  ASSERT_EQ(faults.size(), 1u);
+  EXPECT_EQ(faults[0].kind, FaultKind::hardware_failed);
+  EXPECT_NE(faults[0].message.find("its read() gave a joint state that is not a finite number"), std::string::npos)
+      << faults[0].message;
+
+  // The loop ran on, and the hardware's later (finite) reads are no errors.
+  EXPECT_EQ(s.loop->stepsTaken(), 41u);
+  EXPECT_FALSE(s.loop->hardwareAskedToStop());
+  EXPECT_TRUE(std::isfinite(f.hw.position));
+}
+
+// Without a safety layer a non-finite joint state is counted and reported
+// like any read error, as long as it lasts; an infinite value is named too.
+TEST(SafetySupervisor, WithoutTheSupervisorANaNReadIsCountedAndReportedLikeAReadError) {
+  LoopFixture f(0.001);
+  SimulationLoop loop(f.hw, f.manager);
+  f.hw.nan_position_from = 5;  // reads 5, 6, 7
+  f.hw.nan_position_until = 8;
+  loop.runFor(Duration(0.02));
+  EXPECT_EQ(loop.stepsTaken(), 20u);
+  EXPECT_EQ(loop.statistics().snapshot().hardware_errors, 3u);
+  const auto report = loop.takeHardwareErrorReport();
+  ASSERT_TRUE(report.has_value());
+  EXPECT_EQ(report->cycle, 5u);
+  EXPECT_NE(report->message().find("joint 'joint1' a position of nan"), std::string::npos) << report->message();
+  EXPECT_FALSE(loop.takeHardwareErrorReport().has_value());  // one episode, one report
+
+  f.hw.velocity = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(loop.cycleOnce(), ReturnType::error);
+  const auto second = loop.takeHardwareErrorReport();
+  ASSERT_TRUE(second.has_value());
+  EXPECT_NE(second->message().find("joint 'joint1' a velocity of inf"), std::string::npos) << second->message();
 }
 
 TEST(SafetySupervisor, WriteAndStepErrorsAreProtectiveStopsToo) {

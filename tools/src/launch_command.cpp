@@ -192,6 +192,16 @@ void runLaunch(const LaunchOptions& options) {
                    options.duration_s ? " (see above); exit status 1" : " (see above)");
     failed = true;
   }
+  // So must the robots have run to the end: one stopped for its hardware (a
+  // read/write/step error, a NaN joint state from read(), the loop stopped)
+  // ended the run with its controllers contained.
+  for (const node::RobotSummary& robot : summary.robots) {
+    if (!robot.stopped_by_hardware) continue;
+    logger().error("robot {}: the run ended with the robot stopped for its hardware: {}{}", robot.robot_namespace,
+                   robot.safety_reason.empty() ? robot.safety_state : robot.safety_reason,
+                   options.duration_s ? " (see above); exit status 1" : " (see above)");
+    failed = true;
+  }
   if (options.duration_s && failed) throw CliExit{1};
 }
 

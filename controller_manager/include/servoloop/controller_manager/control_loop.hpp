@@ -19,10 +19,18 @@
 // drop the robot. Options::stop_after_failed_cycles makes a persistent failure
 // stop the loop instead. A call that returns ReturnType::deactivate stops the
 // loop at the end of that cycle (the hardware asked to be stopped cleanly). A
-// hardware call that throws (it must not) counts as an error.
+// hardware call that throws (it must not) counts as an error. So does a
+// read() that leaves a joint state (position, velocity or effort of a joint
+// in the RobotHW's JointStateInterface) NaN or infinite, whatever it returned:
+// its report names the joint and the value, and with a safety supervisor it
+// is a protective stop like any other read error, so no controller acts on
+// it. The handles are collected when the loop is built (the hardware must be
+// initialised by then), and checked after every read() without allocating.
 #include <atomic>
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "servoloop/controller_manager/loop_hardware_errors.hpp"
 #include "servoloop/controller_manager/loop_statistics.hpp"
@@ -164,12 +172,22 @@ class ControlLoop {
   LoopStatistics& mutableStatistics() noexcept { return statistics_; }
 
  private:
-  void recordFailure(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept;
+  // non_finite: set when an ok read() left a joint state not finite.
+  void recordFailure(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle,
+                     const NonFiniteJointState* non_finite = nullptr) noexcept;
+  // Real-time. True when every joint state is finite; otherwise false, with
+  // the first joint state that is not in *found.
+  bool jointStatesFinite(NonFiniteJointState* found) const noexcept;
 
   hardware_interface::RobotHW& robot_hw_;
   ControllerManager& manager_;
   LoopCommonOptions options_;
   Duration control_period_;
+
+  // Every joint state the hardware offers, three per joint (position,
+  // velocity, effort), and the joints' names; collected at construction.
+  std::vector<const double*> joint_state_values_;
+  std::vector<std::string> joint_state_names_;
 
   LoopStatistics statistics_;
   LoopHardwareErrors hardware_errors_;

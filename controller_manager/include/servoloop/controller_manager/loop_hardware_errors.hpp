@@ -6,7 +6,9 @@
 // which the non-real-time side takes — so a failure that persists for
 // thousands of cycles is reported once, not once per cycle. Every error is
 // still counted (LoopStatistics::hardware_errors).
+#include <array>
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -21,12 +23,30 @@ enum class HardwareCall : std::uint8_t { read, write, step };
 // "read", "write", "step".
 const char* toString(HardwareCall call) noexcept;
 
+// A joint state that read() left not finite (NaN or infinite): the loop
+// counts such a read() as failed (ReturnType::error), whatever it returned.
+struct NonFiniteJointState {
+  const std::string* joint = nullptr;  // the joint's name (owned by the loop)
+  const char* quantity = "position";   // "position", "velocity" or "effort"
+  double value = 0.0;
+};
+
 struct HardwareErrorReport {
+  // The longest joint name a report carries (longer ones are cut).
+  static constexpr std::size_t kJointNameCapacity = 128;
+
   HardwareCall call = HardwareCall::read;  // the first call that failed in the episode
   Time time;                               // control time of the cycle it failed in
   std::uint64_t cycle = 0;                 // loop cycle it failed in (0-based)
+  // When the call returned ok but left a joint state not finite: what
+  // (quantity is null otherwise). Copied, so the report outlives the loop.
+  const char* quantity = nullptr;  // static text: "position", "velocity", "effort"
+  double value = 0.0;
+  std::array<char, kJointNameCapacity> joint{};  // NUL-terminated
 
-  // "hardware read() returned an error at t = 1.234 s (cycle 1234)".
+  // "hardware read() returned an error at t = 1.234 s (cycle 1234)", or
+  // "hardware read() gave joint 'joint1' a position of nan at t = 0.02 s
+  // (cycle 20)".
   std::string message() const;
 };
 
@@ -34,7 +54,9 @@ class LoopHardwareErrors {
  public:
   // Real-time. Records one hardware call's result; returns true when it was an
   // error (the caller counts it).
-  bool record(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle) noexcept;
+  // non_finite (may be null): the joint state that made an ok call an error.
+  bool record(HardwareCall call, ReturnType result, Time time, std::uint64_t cycle,
+              const NonFiniteJointState* non_finite = nullptr) noexcept;
 
   // Real-time. Closes a cycle: true if a call failed in it. A clean cycle ends
   // the episode, so the next error is reported again.

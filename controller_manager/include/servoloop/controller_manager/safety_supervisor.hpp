@@ -4,7 +4,8 @@
 //   running          normal operation.
 //   protective_stop  the hardware failed: a read() or write() returned
 //                    ReturnType::error (or threw), e.g. a drive that reports
-//                    it is not ready. In that cycle the controllers that claim
+//                    it is not ready, or a read() left a joint state NaN or
+//                    infinite (the loop counts that as a read error). In that cycle the controllers that claim
 //                    commands are stopped with safe outputs (zero effort and
 //                    velocity, position held) and their fallback controllers
 //                    started (ControllerManager::containHardwareFailure). The

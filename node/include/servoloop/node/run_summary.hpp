@@ -32,6 +32,10 @@ struct RobotSummary {
   std::string safety_reason;  // empty when running
   std::uint64_t protective_stops = 0;
   std::uint64_t emergency_stops = 0;
+  // The run ended with the robot stopped for its hardware: a protective stop
+  // (also under an emergency stop) or a fault holds. A --duration run then
+  // exits with status 1.
+  bool stopped_by_hardware = false;
 };
 
 struct RunSummary {
