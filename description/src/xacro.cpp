@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <tinyxml2.h>
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include "servoloop/core/errors.hpp"
@@ -216,6 +217,13 @@ class Expander : public xacro::Names {
     YAML::Node document;
     try {
       document = YAML::Load(text);
+    } catch (const YAML::DeepRecursion& e) {
+      // yaml-cpp stops at a fixed depth with "bad file", which reads as a
+      // syntax error; e.depth() is the level refused, one past the limit.
+      throw ExpressionError(call + yaml_file + ": the YAML nests deeper than yaml-cpp's limit of " +
+                            std::to_string(e.depth() - 1) + " levels" +
+                            (e.mark.is_null() ? "" : " (at line " + std::to_string(e.mark.line + 1) + ")") +
+                            "; no YAML file for load_yaml needs that: flatten it");
     } catch (const YAML::Exception& e) {
       const std::string at = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1) + ":" +
                                                          std::to_string(e.mark.column + 1);

@@ -1,10 +1,13 @@
 #include "servoloop/hardware_interface/joint_limits_yaml.hpp"
 
 #include <array>
+#include <cmath>
+#include <utility>
 #include <string_view>
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/core/number_text.hpp"
 #include "servoloop/params/parameters_yaml.hpp"
 #include "servoloop/params/schema.hpp"
 
@@ -161,6 +164,15 @@ bool getSoftJointLimits(const YAML::Node& yaml, const std::string& joint_name,
                  result.k_position);
   readGroupValue(joint_node, joint_name, "has_soft_limits", "k_velocity", previously_set,
                  result.k_velocity);
+  // ros_control's soft limits push back with -k·(distance past the limit): a
+  // negative (or infinite) gain would drive the joint further out instead.
+  for (const auto& [key, gain] : {std::pair{"k_position", result.k_position}, std::pair{"k_velocity", result.k_velocity}}) {
+    if (!(std::isfinite(gain) && gain >= 0.0)) {
+      throw ConfigError(keyPath(joint_name, key) + ": " + formatDouble(gain) +
+                        " is not a gain soft limits can use; a negative or non-finite gain drives the joint past "
+                        "its limit instead of back: give a finite gain >= 0 (e.g. " + key + ": 10)");
+    }
+  }
   readGroupValue(joint_node, joint_name, "has_soft_limits", "soft_lower_limit", previously_set,
                  result.min_position);
   readGroupValue(joint_node, joint_name, "has_soft_limits", "soft_upper_limit", previously_set,

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include "launch_file_keys.hpp"
@@ -395,6 +396,13 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   YAML::Node root;
   try {
     root = YAML::Load(std::string(yaml));
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp stops at a fixed depth with "bad file", which reads as a
+    // syntax error; e.depth() is the level refused, one past the limit.
+    throw ConfigError(fmt::format("{}: the YAML nests deeper than yaml-cpp's limit of {} levels{}; no launch file "
+                                  "needs that: flatten it",
+                                  source_name, e.depth() - 1,
+                                  e.mark.is_null() ? std::string() : fmt::format(" (at line {})", e.mark.line + 1)));
   } catch (const YAML::ParserException& e) {
     throw ConfigError(fmt::format("{}:{}:{}: not valid YAML: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg));
   }

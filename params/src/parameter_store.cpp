@@ -8,6 +8,8 @@
 #include <optional>
 #include <sstream>
 
+#include <yaml-cpp/depthguard.h>
+
 #include "servoloop/core/number_text.hpp"
 #include "servoloop/core/text_file.hpp"
 
@@ -337,6 +339,13 @@ void ParameterStore::loadString(std::string_view yaml, std::string_view source_n
   YAML::Node document;
   try {
     document = YAML::Load(std::string(yaml));
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's parser recurses once per level and stops at a fixed depth
+    // (DepthGuard): its own message ("bad file") would send the user looking
+    // for a syntax error. e.depth() is the level refused, one past the limit.
+    throw ConfigError(source + ": the YAML nests deeper than yaml-cpp's limit of " + std::to_string(e.depth() - 1) +
+                      " levels" + (e.mark.is_null() ? "" : " (at line " + std::to_string(e.mark.line + 1) + ")") +
+                      "; no parameter file needs that: flatten it");
   } catch (const YAML::Exception& e) {
     throw ConfigError(markText(source, e.mark) + ": invalid YAML: " + e.msg +
                       "; fix the syntax there (indentation, a ':' after each key, closed brackets and quotes)");

@@ -96,12 +96,25 @@ TEST_F(JointStateControllerTest, RestartPublishesInItsFirstCycleAgain) {
   EXPECT_EQ(runAt1kHz(controller, 11, 40), (std::vector<int>{11, 31}));
 }
 
-TEST_F(JointStateControllerTest, NonPositiveRateNeverPublishes) {
-  for (const char* params : {"{publish_rate: 0}", "{publish_rate: -5}"}) {
+// A rate of 0 loads and never publishes, as in ros_controllers; a negative
+// one is refused naming the parameter and value.
+TEST_F(JointStateControllerTest, ZeroRateNeverPublishesAndANegativeRateIsRefused) {
+  {
     JointStateController controller;
-    initController(controller, hw, makeContext("jsc", params, &bus));
+    initController(controller, hw, makeContext("jsc", "{publish_rate: 0}", &bus));
     controller.startRequest(Time(0.0));
-    EXPECT_TRUE(runAt1kHz(controller, 1, 50).empty()) << params;
+    EXPECT_TRUE(runAt1kHz(controller, 1, 50).empty());
+  }
+  JointStateController controller;
+  std::vector<hardware_interface::InterfaceResources> claimed;
+  try {
+    controller.initRequest(&hw, makeContext("joint_state_controller", "{publish_rate: -100}", &bus), claimed);
+    FAIL() << "expected ConfigError for publish_rate -100";
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("robot/joint_state_controller/publish_rate"), std::string::npos) << message;
+    EXPECT_NE(message.find("is -100.0;"), std::string::npos) << message;
+    EXPECT_NE(message.find("publish_rate: 50"), std::string::npos) << message;
   }
   EXPECT_TRUE(received.empty());
 }

@@ -54,19 +54,53 @@ const char* jointTypeName(int type) {
   }
 }
 
-// The link tree as nested {"link", "children"}.
-ordered_json linkTree(const urdf::Link& link) {
-  ordered_json node;
-  node["link"] = link.name;
-  node["children"] = ordered_json::array();
-  for (const auto& child : link.child_links) node["children"].push_back(linkTree(*child));
-  return node;
+// The link tree's deepest level (the root is level 0) that the report shows
+// nested: past it the text report prints one line instead of the indentation
+// (each level indents four more spaces: a 20,000-link chain would print 800 MB
+// of spaces), and --json refuses (see runCheckUrdf).
+constexpr std::size_t kMaxTreeDepth = 1000;
+
+// The link tree as nested {"link", "children"}, built with an explicit stack
+// (a chain of thousands of links would overflow the call stack otherwise).
+// `depth` gets the deepest link's level (the root is level 0).
+ordered_json linkTree(const urdf::Link& root, std::size_t& depth) {
+  ordered_json tree{{"link", root.name}, {"children", ordered_json::array()}};
+  depth = 0;
+  struct Pending {
+    const urdf::Link* link;
+    ordered_json* node;  // stays valid: a node's children array is complete before its elements are visited
+    std::size_t level;
+  };
+  std::vector<Pending> pending{{&root, &tree, 0}};
+  while (!pending.empty()) {
+    const Pending current = pending.back();
+    pending.pop_back();
+    depth = std::max(depth, current.level);
+    ordered_json& children = (*current.node)["children"];
+    for (const auto& child : current.link->child_links) {
+      children.push_back(ordered_json{{"link", child->name}, {"children", ordered_json::array()}});
+    }
+    for (std::size_t i = 0; i < current.link->child_links.size(); ++i) {
+      pending.push_back({current.link->child_links[i].get(), &children[i], current.level + 1});
+    }
+  }
+  return tree;
 }
 
 // Joints in tree order (depth first from the root), as a reader follows the tree.
-void collectJoints(const urdf::Link& link, std::vector<const urdf::Joint*>& joints) {
-  for (const auto& joint : link.child_joints) joints.push_back(joint.get());
-  for (const auto& child : link.child_links) collectJoints(*child, joints);
+std::vector<const urdf::Joint*> collectJoints(const urdf::Link& root) {
+  std::vector<const urdf::Joint*> joints;
+  std::vector<const urdf::Link*> pending{&root};
+  while (!pending.empty()) {
+    const urdf::Link* link = pending.back();
+    pending.pop_back();
+    for (const auto& joint : link->child_joints) joints.push_back(joint.get());
+    // Reversed, so the first child's subtree comes off the stack first.
+    for (auto child = link->child_links.rbegin(); child != link->child_links.rend(); ++child) {
+      pending.push_back(child->get());
+    }
+  }
+  return joints;
 }
 
 ordered_json jointJson(const urdf::Joint& joint) {
@@ -168,12 +202,47 @@ std::string joinStrings(const ordered_json& list, const char* separator = ", ") 
   return text;
 }
 
-void printTree(const ordered_json& node, int depth) {
-  const auto& children = node["children"];
-  for (std::size_t i = 0; i < children.size(); ++i) {
-    std::cout << std::string(static_cast<std::size_t>(depth) * 4 + 4, ' ') << "child("
-              << i + 1 << "):  " << children[i]["link"].get<std::string>() << "\n";
-    printTree(children[i], depth + 1);
+// How many links hang below `node` in the tree.
+std::size_t linksBelow(const ordered_json& node) {
+  std::size_t count = 0;
+  std::vector<const ordered_json*> pending{&node};
+  while (!pending.empty()) {
+    const ordered_json& current = *pending.back();
+    pending.pop_back();
+    for (const auto& child : current["children"]) {
+      ++count;
+      pending.push_back(&child);
+    }
+  }
+  return count;
+}
+
+// check_urdf's indented tree below the root, in depth-first order, with an
+// explicit stack; links deeper than kMaxTreeDepth get one line instead.
+void printTree(const ordered_json& root) {
+  struct Pending {
+    const ordered_json* node;
+    std::size_t level;  // the root is level 0, and not printed here
+    std::size_t index;  // among its siblings
+  };
+  std::vector<Pending> pending{{&root, 0, 0}};
+  while (!pending.empty()) {
+    const Pending current = pending.back();
+    pending.pop_back();
+    const ordered_json& node = *current.node;
+    if (current.level > 0) {
+      std::cout << std::string(current.level * 4, ' ') << "child(" << current.index + 1
+                << "):  " << node["link"].get<std::string>() << "\n";
+    }
+    const auto& children = node["children"];
+    if (current.level == kMaxTreeDepth && !children.empty()) {
+      std::cout << std::string((current.level + 1) * 4, ' ') << "... " << linksBelow(node)
+                << " more link(s) below " << node["link"].get<std::string>() << " not shown: the tree is deeper than "
+                << kMaxTreeDepth << " levels (the joints list below has them all)\n";
+      continue;
+    }
+    // Reversed, so the first child and its subtree come off the stack first.
+    for (std::size_t i = children.size(); i-- > 0;) pending.push_back({&children[i], current.level + 1, i});
   }
 }
 
@@ -231,7 +300,7 @@ void printText(const ordered_json& report) {
   const auto& tree = report["tree"];
   std::cout << "root Link: " << tree["link"].get<std::string>() << " has "
             << tree["children"].size() << " child(ren)\n";
-  printTree(tree, 0);
+  printTree(tree);
 
   std::cout << "\njoints:\n";
   for (const auto& joint : report["joints"]) printJoint(joint);
@@ -293,9 +362,18 @@ void runCheckUrdf(const CheckUrdfOptions& options) {
   report["file"] = options.file;
   report["robot"] = model->getName();
   report["root_link"] = model->getRoot()->name;
-  report["tree"] = linkTree(*model->getRoot());
-  std::vector<const urdf::Joint*> joints;
-  collectJoints(*model->getRoot(), joints);
+  std::size_t tree_depth = 0;
+  report["tree"] = linkTree(*model->getRoot(), tree_depth);
+  // nlohmann's dump recurses once per level, so a deeper tree could overflow
+  // the stack. --json refuses rather than emit a flat list: a consumer reads
+  // "tree" as nested {"link", "children"}, and a different shape for deep
+  // trees only would surprise it more than an error that says what to do.
+  if (options.json && tree_depth > kMaxTreeDepth) {
+    throw ConfigError(options.file + ": the link tree is " + std::to_string(tree_depth) +
+                      " links deep, deeper than the " + std::to_string(kMaxTreeDepth) +
+                      " levels --json nests; run check-urdf without --json for the text report");
+  }
+  const std::vector<const urdf::Joint*> joints = collectJoints(*model->getRoot());
   report["joints"] = ordered_json::array();
   for (const auto* joint : joints) report["joints"].push_back(jointJson(*joint));
   report["transmissions"] = ordered_json::array();

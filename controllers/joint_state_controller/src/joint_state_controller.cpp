@@ -8,6 +8,7 @@
 #include "servoloop/controllers/common/controller_params.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/core/number_text.hpp"
 
 namespace servoloop::controllers {
 
@@ -15,7 +16,15 @@ namespace cm = controller_manager;
 
 bool JointStateController::init(hardware_interface::JointStateInterface* hw,
                                 const cm::ControllerContext& context) {
-  gate_.setRate(requireNumber(context, "publish_rate", "publish_rate: 50"));
+  // ros_controllers loads a rate of 0 and never publishes (kept, with a
+  // warning below: a ROS YAML may say so on purpose); a negative rate is no
+  // rate at all and is refused.
+  const double rate = requireNumber(context, "publish_rate", "publish_rate: 50");
+  if (rate < 0.0) {
+    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, "publish_rate") +
+                      "' is " + formatDouble(rate) + "; a rate is > 0 in Hz (0: never publish), e.g. publish_rate: 50");
+  }
+  gate_.setRate(rate);
 
   std::vector<std::string> names = hw->getNames();
   std::sort(names.begin(), names.end());
@@ -37,10 +46,10 @@ bool JointStateController::init(hardware_interface::JointStateInterface* hw,
     // joints' constants are in place, update() only writes the measured values.
     publisher_.msg() = prototype_;
   }
-  if (!(gate_.rate() > 0.0)) {
-    logger().warn("controller '{}': publish_rate {} <= 0, so joint states are never published; give a rate in Hz, "
-                  "e.g. publish_rate: 50",
-                  context.name, gate_.rate());
+  if (rate == 0.0) {
+    logger().warn("controller '{}': publish_rate 0, so joint states are never published (as in ros_controllers); "
+                  "give a rate in Hz, e.g. publish_rate: 50",
+                  context.name);
   }
   return true;
 }

@@ -3,7 +3,8 @@
 // joint the hardware has, as ros_control's joint_state_controller does.
 //
 // Parameters (under <robot ns>/<controller>):
-//   publish_rate  required, Hz; <= 0 never publishes
+//   publish_rate  required, Hz; 0 never publishes (as in ros_controllers),
+//                 a negative rate is refused
 //   extra_joints  optional list of {name, position, velocity, effort}:
 //                 joints the hardware does not have, published with those
 //                 constant values (each value defaults to 0)
