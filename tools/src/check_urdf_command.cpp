@@ -363,7 +363,11 @@ void runCheckUrdf(const CheckUrdfOptions& options) {
   report["robot"] = model->getName();
   report["root_link"] = model->getRoot()->name;
   std::size_t tree_depth = 0;
-  report["tree"] = linkTree(*model->getRoot(), tree_depth);
+  ordered_json tree = linkTree(*model->getRoot(), tree_depth);
+  // The tree goes in last (its key keeps its place): an ordered_json object
+  // is a vector of (const key, value) pairs, which a growing object copies,
+  // and a copy of a deep tree recurses once per level.
+  report["tree"] = nullptr;
   // nlohmann's dump recurses once per level, so a deeper tree could overflow
   // the stack. --json refuses rather than emit a flat list: a consumer reads
   // "tree" as nested {"link", "children"}, and a different shape for deep
@@ -382,6 +386,7 @@ void runCheckUrdf(const CheckUrdfOptions& options) {
   report["skipped"] = {{"links", simulatable.skipped_links},
                        {"joints", simulatable.skipped_joints},
                        {"transmissions", simulatable.skipped_transmissions}};
+  report["tree"] = std::move(tree);
 
   if (options.json) {
     std::cout << report.dump(2) << "\n";
