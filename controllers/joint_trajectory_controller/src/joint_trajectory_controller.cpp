@@ -77,7 +77,7 @@ void JointTrajectoryController<Interface>::stopping(const Time& /*time*/) {
 
 template <class Interface>
 void JointTrajectoryController<Interface>::setSafeOutput() {
-  follower_.stop(TrajectoryFollower::kFaultReason);
+  follower_.stopForFault();
 }
 
 template <class Interface>

@@ -313,15 +313,18 @@ void TrajectoryFollower::start(const Time& time, const std::vector<double>& actu
   running_.store(true, std::memory_order_release);
 }
 
-void TrajectoryFollower::stop(const char* reason) noexcept {
+void TrajectoryFollower::stop() noexcept {
+  // As ros_controllers' stopping(): the running goal is preempted.
+  stopFollowing(GoalStatus::preempted, TrajectoryErrorCode::successful, kStoppedReason);
+}
+
+void TrajectoryFollower::stopForFault() noexcept {
+  stopFollowing(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal, kFaultReason);
+}
+
+void TrajectoryFollower::stopFollowing(GoalStatus status, TrajectoryErrorCode code, const char* reason) noexcept {
   running_.store(false, std::memory_order_release);
-  // A plain stop (a switch) preempts the running goal, as ros_controllers'
-  // stopping() does; any other reason (a fault) aborts it.
-  if (reason == kStoppedReason) {
-    finishActive(GoalStatus::preempted, TrajectoryErrorCode::successful, -1, reason);
-  } else {
-    finishActive(GoalStatus::aborted, TrajectoryErrorCode::invalid_goal, -1, reason);
-  }
+  finishActive(status, code, -1, reason);
   handoff_.retire(active_);
   active_ = nullptr;
   // A goal on its way is not followed either (a push after this sees

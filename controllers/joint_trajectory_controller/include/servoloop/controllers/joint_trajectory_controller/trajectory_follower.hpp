@@ -84,11 +84,11 @@ class TrajectoryFollower {
   // Real-time. actual_positions/velocities: one per joint.
   void start(const Time& time, const std::vector<double>& actual_positions,
              const std::vector<double>& actual_velocities) noexcept;
-  // Real-time: stops following. The running goal ends with `reason` (a
-  // string literal) as its error_string: preempted for kStoppedReason (a
-  // switch, as ros_controllers' stopping() preempts it), aborted for any
-  // other; a goal not taken yet is aborted.
-  void stop(const char* reason = kStoppedReason) noexcept;
+  // Real-time: stops following. stop() (a switch) preempts the running goal,
+  // as ros_controllers' stopping() does; stopForFault() aborts it. Either
+  // gives the reason below as its error_string and aborts a goal not taken yet.
+  void stop() noexcept;
+  void stopForFault() noexcept;
 
   // Why goals end when their controller stops (error_string of the result).
   static constexpr const char* kStoppedReason =
@@ -156,6 +156,7 @@ class TrajectoryFollower {
   void sampleDesired(double now) noexcept;
   void applyCommand(Command* command, double now) noexcept;
   void hold(double now) noexcept;
+  void stopFollowing(GoalStatus status, TrajectoryErrorCode code, const char* reason) noexcept;
   void finishActive(GoalStatus status, TrajectoryErrorCode code, int joint = -1,
                     const char* reason = nullptr) noexcept;
   void checkTolerances(double now) noexcept;
