@@ -45,21 +45,33 @@ TEST(ControlLoopAllocation, HundredThousandSimulationCyclesAllocateNothing) {
   EXPECT_TRUE(f.controller()->isRunning());
 }
 
+// A simulation loop at 1 kHz with a safety supervisor, its controller
+// started (the switch carried out by one cycle).
+struct SafeSimulation {
+  SafeSimulation() : loop(f.hw, f.manager, optionsWith(&safety)) {
+    f.recorder->enabled = false;
+    f.requestStart();
+    loop.cycleOnce();
+  }
+  static SimulationLoop::Options optionsWith(SafetySupervisor* safety) {
+    SimulationLoop::Options options;
+    options.safety = safety;
+    return options;
+  }
+  testing::LoopFixture f{0.001, 500.0};
+  SafetySupervisor safety{f.hw};
+  SimulationLoop loop;
+};
+
 // With the safety layer: an emergency stop engaged and released every 1000
 // cycles, the hardware input polled every cycle, and a read error's
 // protective stop containing the controller, all allocation-free.
 TEST(ControlLoopAllocation, SafetyTransitionsAllocateNothing) {
   constexpr std::uint64_t kChunks = 50;
   constexpr std::uint64_t kCyclesPerChunk = 1000;
-  testing::LoopFixture f(0.001, 500.0);
-  f.recorder->enabled = false;
-  SafetySupervisor safety(f.hw);
-  SimulationLoop::Options options;
-  options.safety = &safety;
-  SimulationLoop loop(f.hw, f.manager, options);
-  f.requestStart();
-  loop.cycleOnce();
-  ASSERT_TRUE(f.controller()->isRunning());
+  SafeSimulation s;
+  ASSERT_TRUE(s.f.controller()->isRunning());
+  auto& [f, safety, loop] = s;
   f.hw.read_script.from = 40000;
   f.hw.read_script.until = 40001;
 
@@ -87,15 +99,9 @@ TEST(ControlLoopAllocation, SafetyTransitionsAllocateNothing) {
 // allocates nothing either.
 TEST(ControlLoopAllocation, NonFiniteJointStateChecksAllocateNothing) {
   constexpr std::uint64_t kCycles = 20000;
-  testing::LoopFixture f(0.001, 500.0);
-  f.recorder->enabled = false;
-  SafetySupervisor safety(f.hw);
-  SimulationLoop::Options options;
-  options.safety = &safety;
-  SimulationLoop loop(f.hw, f.manager, options);
-  f.requestStart();
-  loop.cycleOnce();
-  ASSERT_TRUE(f.controller()->isRunning());
+  SafeSimulation s;
+  ASSERT_TRUE(s.f.controller()->isRunning());
+  auto& [f, safety, loop] = s;
   f.hw.nan_position_from = 10000;  // reads 10000..10004
   f.hw.nan_position_until = 10005;
 
