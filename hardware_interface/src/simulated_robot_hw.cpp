@@ -17,4 +17,8 @@ void SimulatedRobotHW::setJointPositions(const std::vector<std::string>& /*joint
   throw Error("this simulator cannot move its joints directly (set_model_configuration)");
 }
 
+void SimulatedRobotHW::setBaseState(const BaseGroundTruth& /*state*/) {
+  throw Error("this simulator has no floating base to move (set_model_state)");
+}
+
 }  // namespace servoloop::hardware_interface

@@ -323,6 +323,7 @@ void withMessageFromJson(std::string_view type_name, const json& value, Fn&& fn)
   }
   if (type_name == geometry_msgs::Twist::kTypeName) return decode(geometry_msgs::Twist{});
   if (type_name == tf2_msgs::TFMessage::kTypeName) return decode(tf2_msgs::TFMessage{});
+  if (type_name == gazebo_msgs::ModelStates::kTypeName) return decode(gazebo_msgs::ModelStates{});
   std::string known;
   for (const std::string& type : knownMessageTypes()) known += (known.empty() ? "" : ", ") + type;
   throw Error("unknown message type '" + std::string(type_name) + "'; known types: " + known);
@@ -350,6 +351,7 @@ json toJson(const realtime::MessageView& msg) {
   if (const auto* m = msg.as<control_msgs::JointTrajectoryControllerState>()) return toJson(*m);
   if (const auto* m = msg.as<geometry_msgs::Twist>()) return toJson(*m);
   if (const auto* m = msg.as<tf2_msgs::TFMessage>()) return toJson(*m);
+  if (const auto* m = msg.as<gazebo_msgs::ModelStates>()) return toJson(*m);
   throw Error("message type '" + std::string(msg.type) + "' has no JSON form");
 }
 

@@ -41,6 +41,7 @@ inline const std::map<std::string_view, std::vector<std::string_view>>& fieldTab
       {control_msgs::JointTrajectoryControllerState::kTypeName, {"stamp", "joint_names", "desired", "actual", "error"}},
       {geometry_msgs::Twist::kTypeName, {"linear", "angular"}},
       {tf2_msgs::TFMessage::kTypeName, {"transforms"}},
+      {gazebo_msgs::ModelStates::kTypeName, {"name", "pose", "twist"}},
   };
   return table;
 }

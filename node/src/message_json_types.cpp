@@ -81,6 +81,19 @@ json toJson(const tf2_msgs::TFMessage& msg) {
   return json{{"transforms", transforms}};
 }
 
+json toJson(const gazebo_msgs::ModelStates& msg) {
+  json poses = json::array();
+  json twists = json::array();
+  for (const geometry_msgs::Pose& p : msg.pose) {
+    poses.push_back({{"position", {{"x", p.position.x}, {"y", p.position.y}, {"z", p.position.z}}},
+                     {"orientation",
+                      {{"x", p.orientation.x}, {"y", p.orientation.y}, {"z", p.orientation.z},
+                       {"w", p.orientation.w}}}});
+  }
+  for (const geometry_msgs::Twist& t : msg.twist) twists.push_back(toJson(t));
+  return json{{"name", msg.name}, {"pose", poses}, {"twist", twists}};
+}
+
 namespace {
 
 json toJson(const trajectory_msgs::JointTrajectoryPoint& point) {
@@ -266,6 +279,41 @@ void fromJson(const json& value, tf2_msgs::TFMessage& out) {
                       {&t.translation.x, &t.translation.y, &t.translation.z});
     item.numberObject("rotation", item.field("rotation"), {"x", "y", "z", "w"},
                       {&t.rotation.x, &t.rotation.y, &t.rotation.z, &t.rotation.w});
+  }
+}
+
+void fromJson(const json& value, gazebo_msgs::ModelStates& out) {
+  constexpr std::string_view type = gazebo_msgs::ModelStates::kTypeName;
+  FieldReader reader(type, value);
+  reader.strings("name", out.name);
+  const json* poses = reader.field("pose");
+  const json* twists = reader.field("twist");
+  if (poses != nullptr && !poses->is_array()) reader.fail("pose", "a list of poses", *poses);
+  if (twists != nullptr && !twists->is_array()) reader.fail("twist", "a list of twists", *twists);
+  static const std::vector<std::string_view> pose_fields = {"position", "orientation"};
+  static const std::vector<std::string_view> twist_fields = {"linear", "angular"};
+  out.pose.assign(poses == nullptr ? 0 : poses->size(), {});
+  out.twist.assign(twists == nullptr ? 0 : twists->size(), {});
+  for (std::size_t i = 0; i < out.pose.size(); ++i) {
+    const std::string where = "pose[" + std::to_string(i) + "]";
+    FieldReader item(type, (*poses)[i], pose_fields, where);
+    geometry_msgs::Pose& p = out.pose[i];
+    item.numberObject("position", item.field("position"), {"x", "y", "z"},
+                      {&p.position.x, &p.position.y, &p.position.z});
+    item.numberObject("orientation", item.field("orientation"), {"x", "y", "z", "w"},
+                      {&p.orientation.x, &p.orientation.y, &p.orientation.z, &p.orientation.w});
+  }
+  for (std::size_t i = 0; i < out.twist.size(); ++i) {
+    const std::string where = "twist[" + std::to_string(i) + "]";
+    FieldReader item(type, (*twists)[i], twist_fields, where);
+    geometry_msgs::Twist& t = out.twist[i];
+    item.numberObject("linear", item.field("linear"), {"x", "y", "z"}, {&t.linear.x, &t.linear.y, &t.linear.z});
+    item.numberObject("angular", item.field("angular"), {"x", "y", "z"}, {&t.angular.x, &t.angular.y, &t.angular.z});
+  }
+  if (out.pose.size() != out.name.size() || out.twist.size() != out.name.size()) {
+    throw Error(std::string(type) + ": " + std::to_string(out.name.size()) + " names, " +
+                std::to_string(out.pose.size()) + " poses and " + std::to_string(out.twist.size()) +
+                " twists; give one pose and one twist per name");
   }
 }
 

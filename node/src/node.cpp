@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <thread>
 
 #include <fmt/format.h>
@@ -102,6 +103,8 @@ void Node::createWorld() {
     options.on_thread_start = [realtime = launch_.realtime] { applyRealtimeSettings(realtime, "the world loop"); };
   }
   world_loop_ = std::make_unique<world::WorldLoop>(*world_, std::move(options));
+  model_states_ = std::make_unique<ModelStatesPublisher>(settings.time_step_s);
+  world_loop_->setObserver(model_states_.get());
   if (options_.start_paused) world_loop_->pause();
 }
 
@@ -164,6 +167,68 @@ std::string modelNames(const std::vector<std::string>& namespaces) {
 
 }  // namespace
 
+namespace {
+
+// A fixed base's pose: where it was spawned (<ns>/sim/pose: x y z roll pitch yaw).
+void spawnPose(const params::ParameterStore& parameters, const std::string& robot_namespace, double (&position)[3],
+               double (&orientation)[4]) {
+  const std::string ns = robot_namespace == "/" ? "" : robot_namespace;
+  std::vector<double> pose = parameters.get<std::vector<double>>(ns + "/sim/pose", std::vector<double>(6, 0.0));
+  pose.resize(6, 0.0);
+  std::copy(pose.begin(), pose.begin() + 3, position);
+  const double cr = std::cos(pose[3] / 2), sr = std::sin(pose[3] / 2);
+  const double cp = std::cos(pose[4] / 2), sp = std::sin(pose[4] / 2);
+  const double cy = std::cos(pose[5] / 2), sy = std::sin(pose[5] / 2);
+  orientation[0] = sr * cp * cy - cr * sp * sy;
+  orientation[1] = cr * sp * cy + sr * cp * sy;
+  orientation[2] = cr * cp * sy - sr * sp * cy;
+  orientation[3] = cr * cp * cy + sr * sp * sy;
+}
+
+}  // namespace
+
+void Node::refreshModelStates() {
+  if (!world_loop_ || !model_states_) return;
+  std::lock_guard serial(model_states_mutex_);
+  std::vector<ModelStatesPublisher::Model> models;
+  realtime::TopicBus* bus = nullptr;
+  {
+    std::lock_guard lock(robots_mutex_);
+    std::size_t best_length = 0;
+    std::map<std::string, int> name_count;
+    for (const auto& robot : robots_) ++name_count[robot->robotName()];
+    for (const auto& robot : robots_) {
+      auto* simulated = dynamic_cast<const hardware_interface::SimulatedRobotHW*>(&robot->hardware());
+      if (simulated == nullptr || robot->wallClock()) continue;
+      ModelStatesPublisher::Model model;
+      // Gazebo's model names are unique; robots of one URDF go by their namespace.
+      model.name = name_count[robot->robotName()] == 1 ? robot->robotName() : robot->robotNamespace().substr(1);
+      hardware_interface::BaseGroundTruth probe;
+      if (simulated->readBaseGroundTruth(probe)) {
+        model.floating = simulated;
+      } else {
+        double position[3];
+        double orientation[4];
+        spawnPose(parameters_, robot->robotNamespace(), position, orientation);
+        model.fixed_pose.position = {position[0], position[1], position[2]};
+        model.fixed_pose.orientation = {orientation[0], orientation[1], orientation[2], orientation[3]};
+      }
+      models.push_back(std::move(model));
+    }
+    // The topic goes where `topic echo` looks for it (as robotForTopic picks).
+    RobotInstance* carrier = robots_.empty() ? nullptr : robots_.front().get();
+    for (const auto& robot : robots_) {
+      const std::string& ns = robot->robotNamespace();
+      if (topicUnder(ModelStatesPublisher::kTopic, ns) && ns.size() > best_length) {
+        carrier = robot.get();
+        best_length = ns.size();
+      }
+    }
+    if (carrier != nullptr) bus = &carrier->topics();
+  }
+  world_loop_->whilePaused([&] { model_states_->setModels(std::move(models), bus); });
+}
+
 ModelState Node::modelState(const std::string& model) {
   RobotInstance* robot = findModel(model);
   if (robot == nullptr) {
@@ -181,19 +246,9 @@ ModelState Node::modelState(const std::string& model) {
     std::copy(std::begin(base.angular_velocity), std::end(base.angular_velocity), state.angular_velocity);
     return state;
   }
-  // A fixed base stays where it was spawned (<ns>/sim/pose: x y z roll pitch yaw).
+  // A fixed base stays where it was spawned.
   state.fixed = true;
-  const std::string ns = state.ns == "/" ? "" : state.ns;
-  std::vector<double> pose = parameters_.get<std::vector<double>>(ns + "/sim/pose", std::vector<double>(6, 0.0));
-  pose.resize(6, 0.0);
-  std::copy(pose.begin(), pose.begin() + 3, state.position);
-  const double cr = std::cos(pose[3] / 2), sr = std::sin(pose[3] / 2);
-  const double cp = std::cos(pose[4] / 2), sp = std::sin(pose[4] / 2);
-  const double cy = std::cos(pose[5] / 2), sy = std::sin(pose[5] / 2);
-  state.orientation[0] = sr * cp * cy - cr * sp * sy;
-  state.orientation[1] = cr * sp * cy + sr * cp * sy;
-  state.orientation[2] = cr * cp * sy - sr * sp * cy;
-  state.orientation[3] = cr * cp * cy + sr * sp * sy;
+  spawnPose(parameters_, state.ns, state.position, state.orientation);
   return state;
 }
 
@@ -212,6 +267,120 @@ void Node::setModelConfiguration(const std::string& model, const std::vector<std
   }
   world::WorldLoop& loop = requireWorldLoop("set_model_configuration");
   loop.whilePaused([&] { simulated->setJointPositions(joints, positions); });
+}
+
+void Node::setModelState(const std::string& model, const std::optional<ModelPose>& pose,
+                         const std::optional<ModelTwist>& twist) {
+  RobotInstance* robot = findModel(model);
+  if (robot == nullptr) {
+    throw Error(fmt::format("set_model_state: no model '{}' in this world (it has: {})", model,
+                            modelNames(robotNamespaces())));
+  }
+  auto* simulated = dynamic_cast<hardware_interface::SimulatedRobotHW*>(&robot->hardware());
+  if (simulated == nullptr || robot->wallClock()) {
+    throw Error(fmt::format("set_model_state: robot '{}' runs on hardware (or the wall clock); the world cannot move it",
+                            robot->robotNamespace()));
+  }
+  world::WorldLoop& loop = requireWorldLoop("set_model_state");
+  loop.whilePaused([&] {
+    hardware_interface::BaseGroundTruth state;
+    if (!simulated->readBaseGroundTruth(state)) {
+      throw Error(fmt::format("set_model_state: model '{}' ({}) has a fixed base, welded to the world at its spawn "
+                              "pose; only a floating base can be moved (give it another sim/pose and reset the "
+                              "world, or spawn it elsewhere)",
+                              robot->robotName(), robot->robotNamespace()));
+    }
+    if (pose) {
+      std::copy(std::begin(pose->position), std::end(pose->position), state.position);
+      std::copy(std::begin(pose->orientation), std::end(pose->orientation), state.orientation);
+    }
+    if (twist) {
+      std::copy(std::begin(twist->linear), std::end(twist->linear), state.linear_velocity);
+      std::copy(std::begin(twist->angular), std::end(twist->angular), state.angular_velocity);
+    }
+    try {
+      simulated->setBaseState(state);
+    } catch (const Error& e) {
+      throw Error(fmt::format("set_model_state: model '{}': {}", robot->robotName(), e.what()));
+    }
+  });
+}
+
+std::string Node::deleteModel(const std::string& model) {
+  std::unique_ptr<RobotInstance> robot;
+  std::unique_ptr<NodeOperations> operations;
+  std::unique_ptr<ipc::IpcServer> server;
+  std::vector<std::unique_ptr<TopicRecorder>> recordings;
+  {
+    std::lock_guard lock(robots_mutex_);
+    if (!accepting_robots_) throw Error("delete_model: the node is shutting down");
+    const std::string ns = model.empty() || model.front() == '/' ? model : "/" + model;
+    auto it = std::find_if(robots_.begin(), robots_.end(), [&](const auto& r) { return r->robotNamespace() == ns; });
+    if (it == robots_.end()) {
+      it = std::find_if(robots_.begin(), robots_.end(), [&](const auto& r) { return r->robotName() == model; });
+    }
+    if (it == robots_.end()) {
+      std::vector<std::string> names;
+      for (const auto& r : robots_) names.push_back(r->robotNamespace());
+      throw Error(fmt::format("delete_model: no model '{}' in this world (it has: {})", model, modelNames(names)));
+    }
+    robot = std::move(*it);
+    robots_.erase(it);
+    for (std::size_t i = 0; i < operations_.size(); ++i) {
+      if (operations_[i]->robot() == robot.get()) {
+        operations = std::move(operations_[i]);
+        server = std::move(servers_[i]);
+        operations_.erase(operations_.begin() + static_cast<std::ptrdiff_t>(i));
+        servers_.erase(servers_.begin() + static_cast<std::ptrdiff_t>(i));
+        break;
+      }
+    }
+    for (auto r = recorders_.begin(); r != recorders_.end();) {
+      if (&(*r)->bus() == &robot->topics()) {
+        recordings.push_back(std::move(*r));
+        r = recorders_.erase(r);
+      } else {
+        ++r;
+      }
+    }
+  }
+  // Off /gazebo/model_states (and off its bus, if it carried the topic) first.
+  refreshModelStates();
+  const std::string ns = robot->robotNamespace();
+  std::string running;
+  for (const controller_manager::ControllerSpec& controller : robot->manager().listControllers()) {
+    if (controller.state == controller_manager::ControllerState::running) {
+      running += (running.empty() ? "" : ", ") + controller.name;
+    }
+  }
+  logger().info("deleting model '{}' ({}){}", robot->robotName(), ns,
+                running.empty() ? std::string() : "; stopping its running controllers first: " + running);
+  // Out of the loop first: no cycle of it runs from here on.
+  robot->stop();
+  robot->topics().flush();
+  for (auto& recording : recordings) recording->close();
+  robot->shutdownControllers();
+  {
+    std::lock_guard names(namespaces_mutex_);
+    namespaces_.erase(ns);
+  }
+  // The socket stops before the robot it serves goes; its bodies leave the
+  // world between two cycles.
+  auto finish = [this, robot = std::move(robot), operations = std::move(operations),
+                 server = std::move(server)]() mutable {
+    if (server) server->stop();
+    operations.reset();
+    server.reset();
+    changeWorld([&] { robot.reset(); });
+  };
+  if (operations && NodeOperations::servingOnThisThread() == operations.get()) {
+    std::lock_guard lock(robots_mutex_);
+    model_reapers_.emplace_back(std::move(finish));
+  } else {
+    finish();
+  }
+  logger().info("deleted model {}", ns);
+  return ns;
 }
 
 WorldState Node::worldState() const {
@@ -260,6 +429,16 @@ RobotInstance* Node::robotForTopic(const std::string& topic) {
 }
 
 std::string Node::spawnRobot(const RobotSpec& spec) {
+  // Model names are unique, as in Gazebo: the model services find a model by it.
+  if (!spec.model.empty()) {
+    std::lock_guard lock(robots_mutex_);
+    for (const auto& robot : robots_) {
+      if (robot->robotName() == spec.model) {
+        throw Error(fmt::format("a model named '{}' exists already (namespace {}); give the new one another model name",
+                                spec.model, robot->robotNamespace()));
+      }
+    }
+  }
   for (const auto& parameters : spec.params) {
     if (parameters.file.empty()) {
       parameters_.loadString(parameters.yaml, parameters.source_name, parameters.ns);
@@ -347,6 +526,8 @@ std::string Node::spawnRobot(const RobotSpec& spec) {
       throw;
     }
   }
+  lock.unlock();
+  refreshModelStates();
   return ns;
 }
 
@@ -373,7 +554,22 @@ void Node::start() {
   if (started_) return;
   started_ = true;
   start_time_ = std::chrono::steady_clock::now();
-  if (options_.serve_ipc && robots_.empty()) startServer("/", nullptr);
+  // The world's own socket (default.sock), for the world and model commands
+  // of a world with several robots. A node with robots leaves it to another
+  // node that holds it already; without a robot it is the node's only socket.
+  const bool root_robot = std::any_of(robots_.begin(), robots_.end(),
+                                      [](const auto& robot) { return robot->robotNamespace() == "/"; });
+  if (options_.serve_ipc && robots_.empty()) {
+    startServer("/", nullptr);
+  } else if (options_.serve_ipc && !root_robot) {
+    try {
+      startServer("/", nullptr);
+    } catch (const Error& e) {
+      logger().info("the world socket is served by another node ({}); this world is reached through its robots' "
+                    "sockets",
+                    e.what());
+    }
+  }
   // The world's robots join its loop before it runs, so all of them enter
   // (their launch controllers start) before the world's first physics step;
   // robots on the wall clock start their own threads.
@@ -438,6 +634,15 @@ void Node::shutdown() {
     std::lock_guard lock(robots_mutex_);
     accepting_robots_ = false;
   }
+  // Robots deleted over their own socket finish leaving.
+  std::vector<std::thread> reapers;
+  {
+    std::lock_guard lock(robots_mutex_);
+    reapers.swap(model_reapers_);
+  }
+  for (std::thread& reaper : reapers) {
+    if (reaper.joinable()) reaper.join();
+  }
   // No new requests while the world is taken down; open streams end here,
   // and a `world.step` still running ends now.
   for (auto& server : servers_) server->stop();
@@ -455,6 +660,14 @@ void Node::shutdown() {
   for (RobotInstance* robot : robots()) robot->shutdownControllers();
   recorders_.clear();
   servers_.clear();
+  // A deletion that began before the shutdown did.
+  {
+    std::lock_guard lock(robots_mutex_);
+    reapers.swap(model_reapers_);
+  }
+  for (std::thread& reaper : reapers) {
+    if (reaper.joinable()) reaper.join();
+  }
   std::lock_guard lock(robots_mutex_);
   robots_.clear();
 }

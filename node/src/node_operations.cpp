@@ -17,6 +17,7 @@
 #include "servoloop/node/action_json.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/node.hpp"
+#include "request_fields.hpp"
 #include "servoloop/node/robot_namespace.hpp"
 #include "servoloop/node/run_summary.hpp"
 #include "servoloop/params/parameter_store.hpp"
@@ -46,6 +47,12 @@ std::string optionalString(const json& request, const char* field, const std::st
   return ipc::requestString(request, field, fallback);
 }
 
+void throwIfFailed(const controller_manager::ServiceResult& result) {
+  if (!result) throw Error(result.message);
+}
+
+}  // namespace
+
 std::vector<std::string> stringList(const json& request, const char* field) {
   std::vector<std::string> values;
   const auto it = request.find(field);
@@ -60,12 +67,6 @@ std::vector<std::string> stringList(const json& request, const char* field) {
   }
   return values;
 }
-
-void throwIfFailed(const controller_manager::ServiceResult& result) {
-  if (!result) throw Error(result.message);
-}
-
-}  // namespace
 
 NodeOperations::NodeOperations(Node& node, RobotInstance* robot, std::string socket_namespace)
     : node_(node), robot_(robot), socket_namespace_(std::move(socket_namespace)) {
@@ -87,7 +88,23 @@ NodeOperations::~NodeOperations() {
   subscriptions.clear();  // unsubscribes, outside the lock
 }
 
+namespace {
+// The operations object whose request (or deferred job) this thread serves.
+thread_local const NodeOperations* t_serving = nullptr;
+
+struct ServingScope {
+  explicit ServingScope(const NodeOperations* operations) : previous(t_serving) { t_serving = operations; }
+  ~ServingScope() { t_serving = previous; }
+  ServingScope(const ServingScope&) = delete;
+  ServingScope& operator=(const ServingScope&) = delete;
+  const NodeOperations* previous;
+};
+}  // namespace
+
+const NodeOperations* NodeOperations::servingOnThisThread() noexcept { return t_serving; }
+
 void NodeOperations::workerLoop() {
+  const ServingScope serving(this);
   while (true) {
     Job job;
     {
@@ -139,6 +156,7 @@ RobotInstance& NodeOperations::robotFor(const std::string& op) {
 }
 
 json NodeOperations::handle(const json& request, ipc::IpcConnection& connection) {
+  const ServingScope serving(this);
   const std::string op = ipc::requestOpName(request);
   if (op == "ping") return ping();
   if (op == "world.shutdown") {
@@ -147,36 +165,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
     return nullptr;
   }
   if (op.starts_with("world.")) return worldOp(op, request, connection);
-  if (op == "model.list") {
-    json models = json::array();
-    for (const std::string& ns : node_.robotNamespaces()) models.push_back(modelStateToJson(node_.modelState(ns)));
-    return {{"models", std::move(models)}};
-  }
-  if (op == "model.get") return modelStateToJson(node_.modelState(requireString(request, "model")));
-  if (op == "model.set_configuration") {
-    const std::string model = requireString(request, "model");
-    std::vector<double> positions;
-    const auto given = request.find("joint_positions");
-    if (given == request.end() || !given->is_array()) {
-      if (given == request.end() || given->is_null()) {
-        throw Error("model.set_configuration: 'joint_positions' is required (a list of numbers, one per joint name)");
-      }
-      ipc::throwBadRequestField(request, "joint_positions", "a list of numbers, one per joint name", *given);
-    }
-    for (std::size_t i = 0; i < given->size(); ++i) {
-      const json& position = (*given)[i];
-      if (!position.is_number() || !std::isfinite(position.get<double>())) {
-        ipc::throwBadRequestField(request, "joint_positions[" + std::to_string(i) + "]", "a finite number",
-                                  position);
-      }
-      positions.push_back(position.get<double>());
-    }
-    node_.setModelConfiguration(model, stringList(request, "joint_names"), positions);
-    return nullptr;
-  }
-  if (op == "model.spawn") {
-    return deferToWorker(request, connection, [this, request] { return modelSpawn(request); });
-  }
+  if (op.starts_with("model.")) return modelOp(op, request, connection);
   if (op.starts_with("param.")) return paramOp(op, request);
   if (op == "control.list_types") return controlListTypes();
 
@@ -258,20 +247,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
               "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries,"
               "safety,estop,recover,stats}, "
               "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, "
-              "action.{list,send,status,cancel}, model.{list,get,spawn,set_configuration}, world.{state,pause,unpause,step,reset,shutdown}");
-}
-
-json modelStateToJson(const ModelState& state) {
-  const auto vector3 = [](const double (&v)[3]) { return json{{"x", v[0]}, {"y", v[1]}, {"z", v[2]}}; };
-  return {{"name", state.name},
-          {"namespace", state.ns},
-          {"fixed", state.fixed},
-          {"pose",
-           {{"position", vector3(state.position)},
-            {"orientation",
-             {{"x", state.orientation[0]}, {"y", state.orientation[1]}, {"z", state.orientation[2]},
-              {"w", state.orientation[3]}}}}},
-          {"twist", {{"linear", vector3(state.linear_velocity)}, {"angular", vector3(state.angular_velocity)}}}};
+              "action.{list,send,status,cancel}, model.{list,get,spawn,set_configuration,set_state,delete}, world.{state,pause,unpause,step,reset,shutdown}");
 }
 
 json NodeOperations::worldState() {
@@ -582,85 +558,6 @@ json NodeOperations::actionCancel(const json& request, ipc::IpcConnection& conne
   }
   goal->cancel();
   return nullptr;
-}
-
-json NodeOperations::modelSpawn(const json& request) {
-  RobotSpec spec;
-  spec.urdf = requireString(request, "urdf");
-  if (!spec.urdf.is_absolute()) throw Error("'model.spawn': urdf '" + spec.urdf.string() + "' must be an absolute path");
-  if (!std::filesystem::is_regular_file(spec.urdf)) {
-    throw Error("'model.spawn': URDF file '" + spec.urdf.string() + "' does not exist");
-  }
-  spec.model = optionalString(request, "model", "");
-  spec.robot_namespace = optionalString(request, "namespace", "");
-  // The names are checked before anything is built: a robot refused after
-  // it runs would be one nobody can reach.
-  if (request.contains("model")) {
-    const bool plain = !spec.model.empty() && std::isalpha(static_cast<unsigned char>(spec.model.front())) &&
-                       std::all_of(spec.model.begin(), spec.model.end(), [](char c) {
-                         return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-                       });
-    if (!plain) {
-      throw ConfigError("'model.spawn': model name '" + spec.model +
-                        "' is not a ROS base name: it must start with a letter and hold only letters, digits and "
-                        "'_' (it is the robot's default namespace /<model>)");
-    }
-  }
-  {
-    const std::string chosen = spec.robot_namespace.empty() && !spec.model.empty() ? "/" + spec.model
-                                                                                   : spec.robot_namespace;
-    if (!chosen.empty()) {
-      std::string resolved;
-      try {
-        resolved = params::resolveName("/", chosen);
-        if (resolved != "/") realtime::TopicBus::normalizeTopicName(resolved);
-      } catch (const Error& e) {
-        throw ConfigError("'model.spawn': robot namespace '" + chosen + "' is not a ROS graph name (" + e.what() +
-                          "); give e.g. -N /my_robot");
-      }
-      if (const std::string problem = spawnNamespaceProblem(resolved); !problem.empty()) {
-        throw ConfigError("'model.spawn': robot namespace '" +
-                          (chosen.size() > 80 ? chosen.substr(0, 80) + "..." : chosen) + "' " + problem);
-      }
-    }
-  }
-  for (const std::string& file : stringList(request, "params")) {
-    if (!std::filesystem::path(file).is_absolute()) {
-      throw Error("'model.spawn': params file '" + file + "' must be an absolute path");
-    }
-    spec.params.push_back(ParameterFile{file, "/", "", ""});
-  }
-  if (request.contains("pose")) {
-    const nlohmann::json& pose = request["pose"];
-    if (!pose.is_array() || (pose.size() != 3 && pose.size() != 6)) {
-      throw Error("'model.spawn': pose must be [x, y, z] or [x, y, z, roll, pitch, yaw]");
-    }
-    std::array<double, 6> values{};
-    for (std::size_t i = 0; i < pose.size(); ++i) {
-      if (!pose[i].is_number() || !std::isfinite(pose[i].get<double>())) {
-        throw Error("'model.spawn': pose[" + std::to_string(i) + "] must be a finite number");
-      }
-      values[i] = pose[i].get<double>();
-    }
-    spec.pose = values;
-  }
-  if (request.contains("xacro_args")) {
-    const nlohmann::json& args = request["xacro_args"];
-    if (!args.is_object()) throw Error("'model.spawn': xacro_args must be an object of name: value strings");
-    for (const auto& [name, value] : args.items()) {
-      if (!value.is_string()) throw Error("'model.spawn': xacro_args." + name + " must be a string");
-      spec.xacro_args[name] = value.get<std::string>();
-    }
-  }
-  if (request.contains("fixed_base")) {
-    if (!request["fixed_base"].is_boolean()) throw Error("'model.spawn': fixed_base must be true or false");
-    spec.fixed_base = request["fixed_base"].get<bool>();
-  }
-  // What the spawn warned about (a robot starting in the floor, a URDF that
-  // needed mending) goes back to the client too, not only to the node's log.
-  const ThreadLogCapture capture;
-  const std::string robot_namespace = node_.spawnRobot(spec);
-  return {{"namespace", robot_namespace}, {"warnings", capture.warnings()}};
 }
 
 }  // namespace servoloop::node

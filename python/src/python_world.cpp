@@ -184,6 +184,11 @@ nlohmann::json World::modelState(const std::string& name) const {
   return node::modelStateToJson(node().modelState(name));
 }
 
+nlohmann::json World::setModelState(const nlohmann::json& request) {
+  const Busy busy(busy_);
+  return node::setModelStateFromJson(node(), request);
+}
+
 void World::setParam(const std::string& name, const std::string& value_json) {
   if (name.empty() || name == "/") throw Error("set_param: name a parameter, e.g. /robot/controller/pid/p");
   const Busy busy(busy_);

@@ -74,6 +74,9 @@ class World {
   // A model's pose and twist in the world frame (name: its namespace with
   // or without the leading '/', or its model name).
   nlohmann::json modelState(const std::string& name) const;
+  // Gazebo's set_model_state: `request` {model, pose?, twist?} as
+  // modelState() gives them; returns the new state.
+  nlohmann::json setModelState(const nlohmann::json& request);
 
   // value: JSON text. A controller's parameter takes effect at the next reset.
   void setParam(const std::string& name, const std::string& value_json);

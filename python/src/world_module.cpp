@@ -154,6 +154,23 @@ and step_cycles() advance it, reset() brings it back to its start.)")
           },
           py::arg("name"), "A model's pose and twist in the world frame (Gazebo's get_model_state)")
       .def(
+          "set_model_state",
+          [](World& world, const std::string& name, const py::object& pose, const py::object& twist) {
+            nlohmann::json request = {{"op", "model.set_state"}, {"model", name}};
+            if (!pose.is_none()) request["pose"] = servoloop::python::toJson(pose);
+            if (!twist.is_none()) request["twist"] = servoloop::python::toJson(twist);
+            nlohmann::json state;
+            {
+              py::gil_scoped_release release;
+              state = world.setModelState(request);
+            }
+            return servoloop::python::fromJson(state);
+          },
+          py::arg("name"), py::arg("pose") = py::none(), py::arg("twist") = py::none(),
+          "Teleport a floating model and/or set its velocity (Gazebo's set_model_state): pose {position, "
+          "orientation} and twist {linear, angular} as model_state gives them, world frame; what is not given "
+          "stays. Returns the new state")
+      .def(
           "set_param",
           [](World& world, const std::string& name, const py::object& value) {
             world.setParam(name, servoloop::python::toJson(value).dump());

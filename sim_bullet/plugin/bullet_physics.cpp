@@ -108,6 +108,16 @@ bool BulletPhysics::readBaseState(sim_common::EngineBaseState& out) const noexce
   return true;
 }
 
+void BulletPhysics::setBaseState(const sim_common::EngineBaseState& state) {
+  if (!world_ || world_->isFixedBase()) sim_common::PhysicsEngine::setBaseState(state);
+  BaseState base;
+  base.position = state.position;
+  base.orientation = state.orientation;
+  base.linear_velocity = state.linear_velocity;
+  base.angular_velocity = state.angular_velocity;
+  world_->setBaseState(base);
+}
+
 void BulletPhysics::applyMotorEffortLimits() {
   for (std::size_t j = 0; j < world_index_.size(); ++j) {
     world_->setJointMotorEffortLimit(world_index_[j], motor_effort_limits_[j]);

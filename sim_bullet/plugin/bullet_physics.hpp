@@ -40,6 +40,7 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
 
   double jointPosition(std::size_t joint) const noexcept override;
   bool readBaseState(sim_common::EngineBaseState& out) const noexcept override;
+  void setBaseState(const sim_common::EngineBaseState& state) override;
   double jointVelocity(std::size_t joint) const noexcept override;
   // The effort applied during the last step: the effort command in effort
   // mode, the motor's effort in velocity/position mode.

@@ -16,6 +16,10 @@ void PhysicsEngine::joinWorld(hardware_interface::SimulatedWorld& world) {
   }
 }
 
+void PhysicsEngine::setBaseState(const EngineBaseState& /*state*/) {
+  throw Error(std::string("the ") + name() + " engine has no floating base to move");
+}
+
 void PhysicsEngine::readJointStates(std::span<EngineJointState> states) const noexcept {
   readJointStatesVia(*this, states);
 }

@@ -242,6 +242,38 @@ bool SimRobotHW::readBaseGroundTruth(hi::BaseGroundTruth& out) const noexcept {
   return true;
 }
 
+void SimRobotHW::setBaseState(const hi::BaseGroundTruth& state) {
+  if (!engine_) throw Error("SimRobotHW::setBaseState: call init() first");
+  EngineBaseState probe;
+  if (!engine_->readBaseState(probe)) {
+    throw Error(fmt::format("{}: the robot's base is fixed to the world (at its spawn pose, <ns>/sim/pose); only a "
+                            "floating base can be moved. Give the robot another sim/pose and reset the world, or "
+                            "spawn it elsewhere",
+                            source_name_));
+  }
+  const auto finite = [](const double* values, int count) {
+    return std::all_of(values, values + count, [](double v) { return std::isfinite(v); });
+  };
+  if (!finite(state.position, 3) || !finite(state.orientation, 4) || !finite(state.linear_velocity, 3) ||
+      !finite(state.angular_velocity, 3)) {
+    throw Error(fmt::format("{}: every value of the pose and twist must be a finite number", source_name_));
+  }
+  Eigen::Quaterniond orientation(state.orientation[3], state.orientation[0], state.orientation[1],
+                                 state.orientation[2]);
+  if (!(orientation.norm() > 1e-9)) {
+    throw Error(fmt::format("{}: the orientation quaternion (x y z w) is zero; give a rotation, e.g. 0 0 0 1",
+                            source_name_));
+  }
+  EngineBaseState base;
+  base.position = Eigen::Vector3d(state.position[0], state.position[1], state.position[2]);
+  base.orientation = orientation.normalized();
+  base.linear_velocity = Eigen::Vector3d(state.linear_velocity[0], state.linear_velocity[1], state.linear_velocity[2]);
+  base.angular_velocity =
+      Eigen::Vector3d(state.angular_velocity[0], state.angular_velocity[1], state.angular_velocity[2]);
+  engine_->setBaseState(base);
+  readEngineState();
+}
+
 void SimRobotHW::readEngineState() noexcept {
   transmissions::RobotTransmissions& tr = *transmissions_;
   engine_->readJointStates(engine_states_);

@@ -77,6 +77,24 @@ bool MujocoPhysics::readBaseState(sim_common::EngineBaseState& out) const noexce
   return true;
 }
 
+void MujocoPhysics::setBaseState(const sim_common::EngineBaseState& state) {
+  if (base_qpos_address_ < 0 || !data_) sim_common::PhysicsEngine::setBaseState(state);
+  double* q = data_->qpos + base_qpos_address_;
+  double* v = data_->qvel + base_dof_address_;
+  const Eigen::Quaterniond orientation = state.orientation.normalized();
+  const Eigen::Vector3d angular_in_body = orientation.conjugate() * state.angular_velocity;
+  for (int i = 0; i < 3; ++i) {
+    q[i] = state.position[i];
+    v[i] = state.linear_velocity[i];
+    v[3 + i] = angular_in_body[i];
+  }
+  q[3] = orientation.w();
+  q[4] = orientation.x();
+  q[5] = orientation.y();
+  q[6] = orientation.z();
+  mj_forward(model_.get(), data_.get());
+}
+
 void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                          const std::vector<sim_common::EngineJointConfig>& joints, const std::string& source_name) {
   std::map<std::string, double> armature;

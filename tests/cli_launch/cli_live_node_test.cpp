@@ -228,5 +228,59 @@ TEST(CliLiveNode, SpawnModelShowsTheWarningsOfTheSpawn) {
   EXPECT_EQ(launched.status, 0) << launched.err;
 }
 
+// `servoloop model set|delete` on a world of two free boxes: the world's own
+// socket serves the world and model commands although there are two robots;
+// a box teleported on a paused world is where `model get` finds it, a NaN is
+// refused, and a deleted box is gone (from the list, with its socket) while
+// the other stays.
+TEST(CliLiveNode, ModelSetTeleportsAndModelDeleteRemovesOneOfTwoModels) {
+  ScopedRunDir run_dir;
+  const fs::path& scratch = run_dir.scratch();
+  std::ofstream(scratch / "box.urdf") << R"(<robot name="box"><link name="box">
+  <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>)";
+  const fs::path world = scratch / "boxes.launch.yaml";
+  std::ofstream(world) << "world: {ground_plane: true}\nrobots:\n"
+                          "  - {urdf: box.urdf, model: crate, namespace: /crate, pose: [0, 0, 0.1, 0, 0, 0]}\n"
+                          "  - {urdf: box.urdf, model: pallet, namespace: /pallet, pose: [1, 0, 0.1, 0, 0, 0]}\n";
+  CliProcess launch({"launch", world.string()}, scratch);
+  CliResult paused;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  do {  // until the world serves its socket
+    paused = runCli({"world", "pause"}, scratch, 30.0);
+    if (paused.status == 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  } while (std::chrono::steady_clock::now() < deadline);
+  ASSERT_EQ(paused.status, 0) << paused.err << launch.currentOut();
+
+  const CliResult set = runCli({"model", "set", "crate", "--pose", "0.5", "-0.25", "2", "--twist", "0", "0", "1"},
+                               scratch, 30.0);
+  ASSERT_EQ(set.status, 0) << set.err;
+  EXPECT_THAT(set.out, HasSubstr("position:    [0.5, -0.25, 2]"));
+  EXPECT_THAT(set.out, HasSubstr("linear:      [0, 0, 1]"));
+  const CliResult got = runCli({"model", "get", "crate"}, scratch, 30.0);
+  EXPECT_THAT(got.out, HasSubstr("position:    [0.5, -0.25, 2]")) << "a paused world keeps the pose set";
+  const CliResult nan = runCli({"model", "set", "crate", "--pose", "0", "nan", "1"}, scratch, 30.0);
+  EXPECT_NE(nan.status, 0);
+  EXPECT_THAT(nan.err, HasSubstr("finite"));
+
+  const CliResult deleted = runCli({"model", "delete", "pallet"}, scratch, 30.0);
+  ASSERT_EQ(deleted.status, 0) << deleted.err;
+  EXPECT_THAT(deleted.out, HasSubstr("deleted /pallet"));
+  const CliResult listed = runCli({"model", "list"}, scratch, 30.0);
+  EXPECT_THAT(listed.out, HasSubstr("crate (/crate)"));
+  EXPECT_THAT(listed.out, ::testing::Not(HasSubstr("pallet")));
+  EXPECT_NE(runCli({"control", "list", "-N", "/pallet"}, scratch, 30.0).status, 0) << "its socket is closed";
+  const CliResult again = runCli({"model", "delete", "pallet"}, scratch, 30.0);
+  EXPECT_NE(again.status, 0);
+  EXPECT_THAT(again.err, HasSubstr("no model 'pallet' in this world (it has: /crate)"));
+  EXPECT_EQ(runCli({"world", "unpause"}, scratch, 30.0).status, 0);
+
+  launch.signal(SIGINT);
+  const CliResult launched = launch.wait(30.0);
+  ASSERT_FALSE(launched.timed_out);
+  EXPECT_EQ(launched.status, 0) << launched.err;
+}
+
 }  // namespace
 }  // namespace servoloop::cli::testing

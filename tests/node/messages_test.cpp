@@ -48,12 +48,43 @@ TEST(Messages, TypeNames) {
   EXPECT_EQ(knownMessageTypes(),
             (std::vector<std::string>{"control_msgs/JointControllerState",
                                       "control_msgs/JointTrajectoryControllerState", "diagnostic_msgs/DiagnosticArray",
-                                      "geometry_msgs/Twist",
+                                      "gazebo_msgs/ModelStates", "geometry_msgs/Twist",
                                       "nav_msgs/Odometry", "sensor_msgs/JointState", "std_msgs/Bool",
                                       "std_msgs/Float64", "std_msgs/Float64MultiArray", "tf2_msgs/TFMessage",
                                       "trajectory_msgs/JointTrajectory"}));
   EXPECT_TRUE(isKnownMessageType("std_msgs/Float64"));
   EXPECT_FALSE(isKnownMessageType("std_msgs/Float32"));
+}
+
+// gazebo_msgs/ModelStates as `topic echo` shows it and `topic pub` reads it:
+// one pose and one twist per name.
+TEST(Messages, ModelStatesJsonRoundTripAndOnePoseAndTwistPerName) {
+  gazebo_msgs::ModelStates msg;
+  msg.name = {"ground_plane", "crate"};
+  msg.pose.resize(2);
+  msg.twist.resize(2);
+  msg.pose[1].position = {1.0, -2.0, 0.1};
+  msg.pose[1].orientation = {0.0, 0.0, 0.6, 0.8};
+  msg.twist[1].linear = {0.5, 0.0, 0.0};
+  msg.twist[1].angular = {0.0, 0.0, -1.0};
+  const json j = toJson(msg);
+  EXPECT_EQ(j["pose"][1]["orientation"]["z"], 0.6);
+  EXPECT_EQ(j["twist"][1]["angular"]["z"], -1.0);
+  gazebo_msgs::ModelStates back;
+  fromJson(j, back);
+  EXPECT_EQ(back.name, msg.name);
+  EXPECT_EQ(back.pose[1].position.y, -2.0);
+  EXPECT_EQ(back.pose[1].orientation.w, 0.8);
+  EXPECT_EQ(back.pose[0].orientation.w, 1.0);
+  EXPECT_EQ(back.twist[1].linear.x, 0.5);
+  json ragged = j;
+  ragged["twist"].erase(1);
+  try {
+    fromJson(ragged, back);
+    ADD_FAILURE() << "two names with one twist were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("2 names, 2 poses and 1 twists"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Messages, Float64JsonRoundTrip) {

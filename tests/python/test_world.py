@@ -101,6 +101,35 @@ class WorldTest(unittest.TestCase):
         with servoloop.World(SEED) as world:
             self.assertTrue(world.model_state("one_DOF_robot")["fixed"])
 
+    def test_set_model_state_throws_the_crate_on_a_ballistic_path(self):
+        """From 3 m up at (0, 1, 2) m/s: y = y0 + t, z = z0 + 2 t - g t^2 / 2,
+        vz = 2 - g t (semi-implicit Euler at 1 ms: z within g t dt / 2)."""
+        g, t = 9.81, 0.4
+        with servoloop.World(PUSH) as world:
+            state = world.model_state("crate")
+            y0 = state["pose"]["position"]["y"]
+            state["pose"]["position"]["z"] = 3.0
+            state["twist"]["linear"] = {"x": 0.0, "y": 1.0, "z": 2.0}
+            thrown = world.set_model_state("crate", pose=state["pose"], twist=state["twist"])
+            self.assertEqual(thrown["pose"]["position"]["z"], 3.0)
+            world.step(t)
+            flown = world.model_state("crate")
+            self.assertAlmostEqual(flown["pose"]["position"]["y"], y0 + 1.0 * t, delta=1e-6)
+            self.assertAlmostEqual(flown["pose"]["position"]["z"], 3.0 + 2.0 * t - g * t * t / 2, delta=3e-3)
+            self.assertAlmostEqual(flown["twist"]["linear"]["z"], 2.0 - g * t, delta=1e-6)
+            # Only a twist: the pose stays where the flight took it.
+            still = world.set_model_state("crate", twist={"linear": {"x": 0, "y": 0, "z": 0},
+                                                          "angular": {"x": 0, "y": 0, "z": 0}})
+            self.assertEqual(still["pose"]["position"]["z"], flown["pose"]["position"]["z"])
+            with self.assertRaises(servoloop.Error) as bad:
+                world.set_model_state("crate", twist={"linear": {"x": 1, "y": 0}})
+            self.assertIn("twist.linear.z", str(bad.exception))
+        with servoloop.World(SEED) as world:
+            with self.assertRaises(servoloop.Error) as fixed:
+                world.set_model_state("one_DOF_robot", pose={"position": {"x": 0, "y": 0, "z": 1},
+                                                              "orientation": {"x": 0, "y": 0, "z": 0, "w": 1}})
+            self.assertIn("fixed base", str(fixed.exception))
+
     def test_errors_are_python_exceptions_with_the_command_lines_text(self):
         with self.assertRaises(servoloop.ConfigError) as missing:
             servoloop.World(os.path.join(tempfile.gettempdir(), "no-such.launch.yaml"))

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csignal>
 #include <signal.h>
@@ -369,6 +370,87 @@ TEST_F(Ros1BridgeTest, GazeboWorldServicesPauseSetConfigurationAndReset) {
 
   ASSERT_EQ(run({ros("rosservice"), "call", "/gazebo/unpause_physics"}).status, 0);
   EXPECT_THAT(runCli({"world", "state"}, run_.scratch()).out, HasSubstr("running at t ="));
+}
+
+// Gazebo's model services and /gazebo/model_states, as a ROS user calls
+// them, on a paused world (so a pose read back is the pose set): a
+// box spawned from its URDF text as spawn_model -urdf sends it (robot
+// namespace "/", spawn_model's default), moved with set_model_state (only a
+// position given: the orientation left at zeros is upright, as in Gazebo),
+// falling for 0.1 s once stepped, then deleted.
+TEST_F(Ros1BridgeTest, GazeboModelServicesSpawnSetAndDelete) {
+  // (x, y, z) of get_model_state's pose, or nullopt when the call fails.
+  const auto modelPosition = [&](const std::string& model) -> std::optional<std::array<double, 3>> {
+    static const std::regex pattern(R"(position:\s*x: ([-+0-9.eE]+)\s*y: ([-+0-9.eE]+)\s*z: ([-+0-9.eE]+))");
+    const std::string out = run({ros("rosservice"), "call", "/gazebo/get_model_state", "{model_name: " + model + "}"}).out;
+    std::smatch match;
+    if (out.find("success: True") == std::string::npos || !std::regex_search(out, match, pattern)) return std::nullopt;
+    return std::array<double, 3>{std::stod(match[1].str()), std::stod(match[2].str()), std::stod(match[3].str())};
+  };
+  const auto expectAt = [&](const std::string& model, double x, double y, double z) {
+    const auto position = modelPosition(model);
+    ASSERT_TRUE(position.has_value()) << model << " not found";
+    EXPECT_NEAR((*position)[0], x, 1e-9);
+    EXPECT_NEAR((*position)[1], y, 1e-9);
+    EXPECT_NEAR((*position)[2], z, 1e-9);
+  };
+  // The world's models, published by the node and bridged (before the pause:
+  // a paused world publishes none).
+  EXPECT_TRUE(waitUntil([&] {
+    return run({ros("rostopic"), "echo", "-n", "1", "/gazebo/model_states"}, 10.0).out.find("- one_DOF_robot") !=
+           std::string::npos;
+  }, 30.0));
+  ASSERT_EQ(run({ros("rosservice"), "call", "/gazebo/pause_physics"}).status, 0);
+
+  // A free 0.2 m, 1 kg box, 1 m up at x = 2.
+  const std::string crate =
+      "<robot name=\"crate\"><link name=\"base\"><inertial><mass value=\"1.0\"/>"
+      "<inertia ixx=\"0.0067\" ixy=\"0\" ixz=\"0\" iyy=\"0.0067\" iyz=\"0\" izz=\"0.0067\"/></inertial>"
+      "<collision><geometry><box size=\"0.2 0.2 0.2\"/></geometry></collision></link></robot>";
+  const std::string spawn = "/gazebo/spawn_urdf_model";
+  const ProcessResult spawned =
+      run({ros("rosservice"), "call", spawn,
+           "{model_name: crate, model_xml: '" + crate + "', robot_namespace: '/', initial_pose: {position: {x: 2.0, "
+           "y: 0.0, z: 1.0}, orientation: {x: 0.0, y: 0.0, z: 0.0, w: 1.0}}, reference_frame: world}"},
+          90.0);
+  ASSERT_EQ(spawned.status, 0) << spawned.err;
+  ASSERT_THAT(spawned.out, HasSubstr("success: True"));
+  expectAt("crate", 2.0, 0.0, 1.0);
+  EXPECT_THAT(run({ros("rosservice"), "call", spawn, "{model_name: crate2, model_xml: ''}"}).out,
+              AllOf(HasSubstr("success: False"), HasSubstr("model_xml is empty")));
+  EXPECT_THAT(run({ros("rosservice"), "call", spawn,
+                   "{model_name: crate2, model_xml: '" + crate + "', reference_frame: 'crate::base'}"}).out,
+              AllOf(HasSubstr("success: False"), HasSubstr("crate::base")));
+
+  const std::string set = "/gazebo/set_model_state";
+  const ProcessResult moved = run({ros("rosservice"), "call", set,
+                                   "{model_state: {model_name: crate, pose: {position: {x: 1.0, y: -0.5, z: 3.0}}, "
+                                   "reference_frame: world}}"});
+  ASSERT_EQ(moved.status, 0) << moved.err;
+  EXPECT_THAT(moved.out, HasSubstr("success: True"));
+  expectAt("crate", 1.0, -0.5, 3.0);
+  EXPECT_THAT(run({ros("rosservice"), "call", set, "{model_state: {model_name: crate, reference_frame: 'crate::base'}}"}).out,
+              AllOf(HasSubstr("success: False"), HasSubstr("crate::base")));
+  // (rosservice wraps the long status message: the words checked are short.)
+  EXPECT_THAT(run({ros("rosservice"), "call", set, "{model_state: {model_name: one_DOF_robot}}"}).out,
+              AllOf(HasSubstr("success: False"), HasSubstr("has a fixed")));
+  // 100 steps of 1 ms from rest: free fall by g t^2 / 2 = 49 mm (semi-implicit
+  // Euler: within g t dt / 2 = 0.5 mm of it).
+  ASSERT_EQ(runCli({"world", "step", "100"}, run_.scratch()).status, 0);
+  const auto fallen = modelPosition("crate");
+  ASSERT_TRUE(fallen.has_value());
+  EXPECT_NEAR((*fallen)[0], 1.0, 1e-6);
+  EXPECT_NEAR((*fallen)[2], 3.0 - 9.81 * 0.1 * 0.1 / 2, 2e-3);
+
+  const std::string delete_model = "/gazebo/delete_model";
+  const ProcessResult deleted = run({ros("rosservice"), "call", delete_model, "{model_name: crate}"}, 60.0);
+  ASSERT_EQ(deleted.status, 0) << deleted.err;
+  EXPECT_THAT(deleted.out, HasSubstr("success: True"));
+  EXPECT_THAT(run({ros("rosservice"), "call", "/gazebo/get_model_state", "{model_name: crate}"}).out,
+              HasSubstr("success: False"));
+  EXPECT_THAT(run({ros("rosservice"), "call", delete_model, "{model_name: crate}"}).out, HasSubstr("success: False"));
+  EXPECT_THAT(runCli({"control", "list", "-N", "/one_DOF_robot"}, run_.scratch()).out, HasSubstr("( running )"));
+  ASSERT_EQ(run({ros("rosservice"), "call", "/gazebo/unpause_physics"}).status, 0);
 }
 
 TEST_F(Ros1BridgeTest, TrajectoryGoalThroughActionlib) {

@@ -2,6 +2,7 @@
 // project generates are ROS's own on the wire (md5sums as ROS Noetic's
 // generated code publishes them), and every bridged type survives JSON → ROS →
 // serialised bytes → ROS → JSON unchanged, NaN included.
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -15,13 +16,19 @@
 #include <controller_manager_msgs/ListControllers.h>
 #include <controller_manager_msgs/SwitchController.h>
 #include <gazebo_msgs/ApplyJointEffort.h>
+#include <gazebo_msgs/DeleteModel.h>
 #include <gazebo_msgs/GetJointProperties.h>
 #include <gazebo_msgs/GetModelState.h>
+#include <gazebo_msgs/ModelState.h>
+#include <gazebo_msgs/ModelStates.h>
+#include <gazebo_msgs/SetModelState.h>
+#include <gazebo_msgs/SpawnModel.h>
 #include <gtest/gtest.h>
 #include <ros/message_traits.h>
 #include <ros/service_traits.h>
 
 #include "controller_manager_services.hpp"
+#include "gazebo_model_services.hpp"
 #include "gazebo_services.hpp"
 #include "parameter_bridge.hpp"
 #include "ros_message_json.hpp"
@@ -53,6 +60,16 @@ TEST(Ros1Messages, GeneratedPackagesHaveRosMd5sums) {
             "7b30be900f50aa21efec4a0ec92d91c9");
   EXPECT_EQ(std::string(ros::service_traits::MD5Sum<gazebo_msgs::GetModelState>::value()),
             "4c515e936d3319c9610c559c60bfc3d4");
+  EXPECT_EQ(std::string(ros::service_traits::MD5Sum<gazebo_msgs::SetModelState>::value()),
+            "5b3ab0281d4f5445def017e3a2e4a07b");
+  EXPECT_EQ(std::string(ros::service_traits::MD5Sum<gazebo_msgs::SpawnModel>::value()),
+            "9ed9c82c96abe1a00c3e8cdaeee24413");
+  EXPECT_EQ(std::string(ros::service_traits::MD5Sum<gazebo_msgs::DeleteModel>::value()),
+            "9ce56b4e9e54616de25d796dc972a262");
+  EXPECT_EQ(std::string(ros::message_traits::MD5Sum<gazebo_msgs::ModelState>::value()),
+            "9330fd35f2fcd82d457e54bd54e10593");
+  EXPECT_EQ(std::string(ros::message_traits::MD5Sum<gazebo_msgs::ModelStates>::value()),
+            "48c080191eb15c41858319b4d8a609c2");
 }
 
 TEST(Ros1Messages, EveryBridgedTypeRoundTripsThroughRosSerialisation) {
@@ -87,6 +104,14 @@ TEST(Ros1Messages, EveryBridgedTypeRoundTripsThroughRosSerialisation) {
        {{"stamp", 4.0}, {"status", {{{"level", 2}, {"name", "loop"}, {"message", "protective stop"},
                                       {"hardware_id", "one_DOF_robot"},
                                       {"values", {{{"key", "overruns"}, {"value", "3"}}}}}}}}},
+      {"gazebo_msgs/ModelStates",
+       {{"name", {"ground_plane", "crate"}},
+        {"pose", {{{"position", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}},
+                   {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"w", 1.0}}}},
+                  {{"position", {{"x", 1.5}, {"y", -0.25}, {"z", nullptr}}},
+                   {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.6}, {"w", 0.8}}}}}},
+        {"twist", {{{"linear", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}, {"angular", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}},
+                   {{"linear", {{"x", 0.1}, {"y", 0.0}, {"z", -2.0}}}, {"angular", {{"x", 0.0}, {"y", 0.0}, {"z", 2.0}}}}}}}},
   };
   for (const auto& [type, msg] : cases.items()) {
     SCOPED_TRACE(type);
@@ -110,12 +135,19 @@ TEST(Ros1Messages, CommandsGoToTheNodeAndStatesComeFromIt) {
     EXPECT_TRUE(servoloop::ros1::findBridgedType(command)->command) << command;
   }
   for (const char* state : {"sensor_msgs/JointState", "control_msgs/JointControllerState", "nav_msgs/Odometry",
-                            "tf2_msgs/TFMessage", "diagnostic_msgs/DiagnosticArray"}) {
+                            "tf2_msgs/TFMessage", "diagnostic_msgs/DiagnosticArray", "gazebo_msgs/ModelStates"}) {
     ASSERT_NE(servoloop::ros1::findBridgedType(state), nullptr) << state;
     EXPECT_FALSE(servoloop::ros1::findBridgedType(state)->command) << state;
   }
-  EXPECT_EQ(servoloop::ros1::findBridgedType("gazebo_msgs/ModelStates"), nullptr);
-  EXPECT_THROW(servoloop::ros1::roundTrip("gazebo_msgs/ModelStates", json::object()), std::invalid_argument);
+  // /gazebo/model_states, as the node publishes it, round-trips.
+  const json model_states = {
+      {"name", {"one_DOF_robot"}},
+      {"pose", {{{"position", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}},
+                 {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"w", 1.0}}}}}},
+      {"twist", {{{"linear", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}, {"angular", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}}}}};
+  EXPECT_EQ(servoloop::ros1::roundTrip("gazebo_msgs/ModelStates", model_states), model_states);
+  EXPECT_EQ(servoloop::ros1::findBridgedType("gazebo_msgs/LinkStates"), nullptr);
+  EXPECT_THROW(servoloop::ros1::roundTrip("gazebo_msgs/LinkStates", json::object()), std::invalid_argument);
 }
 
 TEST(Ros1Messages, ControllerStatesAndInterfacesUseRosControlNames) {
@@ -232,6 +264,32 @@ TEST(Ros1GazeboServices, JointTypesAndDampingComeFromTheUrdf) {
   EXPECT_EQ(joints.at("slide").gazebo_type, gazebo_msgs::GetJointProperties::Response::PRISMATIC);
   EXPECT_EQ(joints.at("glue").gazebo_type, gazebo_msgs::GetJointProperties::Response::FIXED);
   EXPECT_THROW(servoloop::ros1::urdfJoints("<robot"), std::runtime_error);
+}
+
+TEST(Ros1GazeboServices, SpawnPosesTurnIntoUrdfRollPitchYaw) {
+  // The quaternion of R = Rz(yaw)·Ry(pitch)·Rx(roll), back to its angles.
+  const double roll = 0.3, pitch = -0.4, yaw = 2.5;
+  const double cr = std::cos(roll / 2), sr = std::sin(roll / 2);
+  const double cp = std::cos(pitch / 2), sp = std::sin(pitch / 2);
+  const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2);
+  const double w = cr * cp * cy + sr * sp * sy;
+  const double x = sr * cp * cy - cr * sp * sy;
+  const double y = cr * sp * cy + sr * cp * sy;
+  const double z = cr * cp * sy - sr * sp * cy;
+  auto rpy = servoloop::ros1::rollPitchYaw(x, y, z, w);
+  EXPECT_NEAR(rpy[0], roll, 1e-12);
+  EXPECT_NEAR(rpy[1], pitch, 1e-12);
+  EXPECT_NEAR(rpy[2], yaw, 1e-12);
+  // Not normalised: the same rotation.
+  rpy = servoloop::ros1::rollPitchYaw(2 * x, 2 * y, 2 * z, 2 * w);
+  EXPECT_NEAR(rpy[2], yaw, 1e-12);
+  // The zero quaternion (a ROS message left at its defaults): no rotation.
+  EXPECT_EQ(servoloop::ros1::rollPitchYaw(0, 0, 0, 0), (std::array<double, 3>{0.0, 0.0, 0.0}));
+
+  EXPECT_TRUE(servoloop::ros1::isWorldFrame(""));
+  EXPECT_TRUE(servoloop::ros1::isWorldFrame("world"));
+  EXPECT_TRUE(servoloop::ros1::isWorldFrame("map"));
+  EXPECT_FALSE(servoloop::ros1::isWorldFrame("crate::base"));
 }
 
 }  // namespace

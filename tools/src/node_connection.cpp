@@ -176,7 +176,14 @@ servoloop::ipc::IpcClient connectToWorld() {
 
 std::vector<std::string> runningNodeNames() {
   std::vector<std::string> names;
-  for (const auto& node : acceptingNodes()) names.push_back(node.node_name);
+  bool any_robot = false;
+  for (const auto& node : acceptingNodes()) {
+    names.push_back(node.node_name);
+    any_robot |= node.node_name != "/";
+  }
+  // Beside robot sockets, the world's socket shows nothing of its own (its
+  // robots are reached through theirs).
+  if (any_robot) std::erase(names, std::string("/"));
   return names;
 }
 

@@ -3,7 +3,7 @@
 // every client command shares (the --namespace option, SIGINT/SIGTERM flags).
 //
 // A node serves one socket per robot namespace, plus the world's socket
-// (`default.sock`, node name "/") while it has no robot. A command picks:
+// (`default.sock`, node name "/"). A command picks:
 //   - the node named by --namespace, if given;
 //   - for a topic or parameter name, the node whose namespace prefixes it;
 //   - otherwise the only robot node running (or the world's socket if that is
@@ -51,7 +51,7 @@ servoloop::ipc::IpcClient connectForName(const std::string& name, const std::str
 servoloop::ipc::IpcClient connectToWorld();
 
 // The name of every node accepting connections now, sorted (e.g. "/arm/left",
-// "/one_DOF_robot"; "/" for a world's socket).
+// "/one_DOF_robot"; "/" for a world's socket, only when no robot's is there).
 std::vector<std::string> runningNodeNames();
 
 // Connects to the running node of that exact name (as runningNodeNames gives it).

@@ -59,7 +59,8 @@ void addRos1BridgeCommand(CLI::App& root) {
       ->type_name("NS");
   bridge->add_flag("--no-sim-time", options->no_sim_time, "Leave /use_sim_time false");
   bridge->add_flag("--no-gazebo-services", options->no_gazebo_services,
-                   "Do not serve /gazebo/apply_joint_effort, get_joint_properties and get_model_state");
+                   "Do not serve Gazebo's /gazebo/* services (model state, spawn and delete, pause, reset, joint "
+                   "efforts and properties)");
   bridge->add_flag("--print-env", options->print_env,
                    "Print the PYTHONPATH that lets rostopic and rosservice read control_msgs and "
                    "controller_manager_msgs (eval \"$(servoloop ros1-bridge --print-env)\")");

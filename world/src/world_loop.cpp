@@ -276,6 +276,9 @@ void WorldLoop::run() {
       wake_.wait_for(lock, kIdlePoll, [&] { return requestsWaiting(); });
       continue;
     }
+    if (observer_ != nullptr) {
+      segment = std::min(segment, std::max<std::uint64_t>(1, observer_->betweenSegments(steps())));
+    }
     for (WorldMember* member : active_) member->simulationLoop().beginExternalRun();
     if (options_.before_segment) options_.before_segment();
     const std::uint64_t ran = runSegment(segment);

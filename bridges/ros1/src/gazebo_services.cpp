@@ -9,13 +9,10 @@
 
 #include <gazebo_msgs/ApplyJointEffort.h>
 #include <gazebo_msgs/GetJointProperties.h>
-#include <gazebo_msgs/GetModelState.h>
 #include <gazebo_msgs/SetModelConfiguration.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <tinyxml2.h>
-
-#include "ros_message_json.hpp"
 
 namespace servoloop::ros1 {
 
@@ -83,12 +80,6 @@ GazeboServices::GazeboServices(ros::NodeHandle& nh, NodeLink& link, const RobotS
   const json description = link.call("robot.description");
   model_ = description.value("model", "");
   joints_ = urdfJoints(description.value("urdf", ""));
-  try {
-    spawn_pose_ = link.call("param.get", {{"name", link.resolve("sim/pose")}}).at("value").get<std::vector<double>>();
-  } catch (const std::exception&) {
-    spawn_pose_.assign(6, 0.0);  // no pose given: the world's origin
-  }
-  spawn_pose_.resize(6, 0.0);
 
   servers_.push_back(nh.advertiseService<gazebo_msgs::GetJointProperties::Request, gazebo_msgs::GetJointProperties::Response>(
       "/gazebo/get_joint_properties",
@@ -148,40 +139,6 @@ GazeboServices::GazeboServices(ros::NodeHandle& nh, NodeLink& link, const RobotS
         tick();  // an effort that starts now is sent now
         response.success = true;
         response.status_message = "ApplyJointEffort: effort set";
-        return true;
-      }));
-
-  servers_.push_back(nh.advertiseService<gazebo_msgs::GetModelState::Request, gazebo_msgs::GetModelState::Response>(
-      "/gazebo/get_model_state",
-      [this](gazebo_msgs::GetModelState::Request& request, gazebo_msgs::GetModelState::Response& response) {
-        if (request.model_name != model_) {
-          response.success = false;
-          response.status_message = "GetModelState: model [" + request.model_name + "] does not exist (this bridge serves [" +
-                                    model_ + "])";
-          return true;
-        }
-        response.header.stamp = ros::Time(std::max(state_.simTime(), 0.0));
-        response.header.frame_id = request.relative_entity_name;
-        if (const auto ground_truth = state_.groundTruth()) {
-          nav_msgs::Odometry odometry;
-          fromJson(*ground_truth, odometry);
-          response.pose = odometry.pose.pose;
-          response.twist = odometry.twist.twist;
-        } else {
-          // A fixed base stays where it was spawned (roll, pitch, yaw → quaternion).
-          response.pose.position.x = spawn_pose_[0];
-          response.pose.position.y = spawn_pose_[1];
-          response.pose.position.z = spawn_pose_[2];
-          const double cr = std::cos(spawn_pose_[3] / 2), sr = std::sin(spawn_pose_[3] / 2);
-          const double cp = std::cos(spawn_pose_[4] / 2), sp = std::sin(spawn_pose_[4] / 2);
-          const double cy = std::cos(spawn_pose_[5] / 2), sy = std::sin(spawn_pose_[5] / 2);
-          response.pose.orientation.w = cr * cp * cy + sr * sp * sy;
-          response.pose.orientation.x = sr * cp * cy - cr * sp * sy;
-          response.pose.orientation.y = cr * sp * cy + sr * cp * sy;
-          response.pose.orientation.z = cr * cp * sy - sr * sp * cy;
-        }
-        response.success = true;
-        response.status_message = "GetModelState: got properties";
         return true;
       }));
 

@@ -14,12 +14,13 @@
 //                                 the sum on its command topic whenever it
 //                                 changes (in the node's simulated time, read
 //                                 every 1 ms of wall time);
-//   /gazebo/get_model_state       the robot's pose and twist: the ground truth
-//                                 of a floating base, else its spawn pose;
 //   /gazebo/pause_physics, /gazebo/unpause_physics, /gazebo/reset_simulation,
 //   /gazebo/reset_world           the world's controls (servoloop world ...;
 //                                 both resets also restart the time);
 //   /gazebo/set_model_configuration  joint positions of a model, at rest.
+//
+// The model services (get_model_state, set_model_state, spawn_urdf_model,
+// delete_model) are in gazebo_model_services.hpp.
 //
 // A call the bridge cannot serve answers success=false with the reason in
 // status_message (for example, no effort controller on the joint).
@@ -87,7 +88,6 @@ class GazeboServices {
   std::string model_;
   std::string namespace_;
   std::map<std::string, UrdfJoint> joints_;
-  std::vector<double> spawn_pose_;  // x y z roll pitch yaw
 
   std::mutex controllers_mutex_;
   nlohmann::json controllers_ = nlohmann::json::array();

@@ -17,6 +17,7 @@
 
 #include "action_bridge.hpp"
 #include "controller_manager_services.hpp"
+#include "gazebo_model_services.hpp"
 #include "gazebo_services.hpp"
 #include "robot_state_cache.hpp"
 #include "node_link.hpp"
@@ -59,12 +60,14 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   servoloop::ros1::ControllerManagerServices services(nh, service_link, copy.copied);
   servoloop::ros1::RobotStateCache robot_state;
   servoloop::ros1::TopicBridge topics(nh, link, robot_state);
-  // Gazebo's joint and model services, on a connection of their own.
+  // Gazebo's joint, world and model services, on a connection of their own.
   std::optional<servoloop::ros1::NodeLink> gazebo_link;
   std::optional<servoloop::ros1::GazeboServices> gazebo;
+  std::optional<servoloop::ros1::GazeboModelServices> gazebo_models;
   if (gazebo_services) {
     gazebo_link.emplace(node_namespace);
     gazebo.emplace(nh, *gazebo_link, robot_state);
+    gazebo_models.emplace(nh, *gazebo_link, robot_state);
   }
   // Actions on a connection of their own (the node answers a goal's status
   // only on the connection that sent it), polled on a thread of their own.
@@ -126,7 +129,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-sim-time", no_sim_time, "Leave /use_sim_time false (ROS nodes keep the wall clock)");
   bool no_gazebo_services = false;
   app.add_flag("--no-gazebo-services", no_gazebo_services,
-               "Do not serve /gazebo/apply_joint_effort, get_joint_properties, get_model_state");
+               "Do not serve Gazebo's services: /gazebo/get_joint_properties, apply_joint_effort, get_model_state, "
+               "set_model_state, set_model_configuration, spawn_urdf_model, delete_model, pause_physics, "
+               "unpause_physics, reset_simulation, reset_world");
   // ROS remappings (name:=value) pass through to ros::init.
   app.allow_extras();
   CLI11_PARSE(app, argc, argv);

@@ -8,6 +8,7 @@
 #include <control_msgs/JointControllerState.h>
 #include <control_msgs/JointTrajectoryControllerState.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <gazebo_msgs/ModelStates.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/console.h>
@@ -164,12 +165,6 @@ json toJson(const geometry_msgs::Quaternion& q) {
   return {{"x", value(q.x)}, {"y", value(q.y)}, {"z", value(q.z)}, {"w", value(q.w)}};
 }
 
-void fromJson(const json& j, geometry_msgs::Twist& m) {
-  fromJson(child(j, "linear"), m.linear);
-  fromJson(child(j, "angular"), m.angular);
-}
-json toJson(const geometry_msgs::Twist& m) { return {{"linear", toJson(m.linear)}, {"angular", toJson(m.angular)}}; }
-
 template <std::size_t N>
 void covarianceFrom(const json& j, boost::array<double, N>& out) {
   const std::vector<double> xs = numbers(j, "covariance");
@@ -234,6 +229,27 @@ json toJson(const diagnostic_msgs::DiagnosticArray& m) {
   return {{"stamp", seconds(m.header.stamp)}, {"status", std::move(status)}};
 }
 
+// No header: Gazebo's model states carry no stamp. One pose and one twist per
+// name, in the world frame and axes.
+void fromJson(const json& j, gazebo_msgs::ModelStates& m) {
+  m.name = strings(j, "name");
+  m.pose.clear();
+  m.twist.clear();
+  if (const auto it = j.find("pose"); it != j.end() && it->is_array()) {
+    for (const json& pose : *it) fromJson(pose, m.pose.emplace_back());
+  }
+  if (const auto it = j.find("twist"); it != j.end() && it->is_array()) {
+    for (const json& twist : *it) fromJson(twist, m.twist.emplace_back());
+  }
+}
+json toJson(const gazebo_msgs::ModelStates& m) {
+  json poses = json::array();
+  for (const auto& pose : m.pose) poses.push_back(toJson(pose));
+  json twists = json::array();
+  for (const auto& twist : m.twist) twists.push_back(toJson(twist));
+  return {{"name", m.name}, {"pose", std::move(poses)}, {"twist", std::move(twists)}};
+}
+
 template <class Msg>
 json serialiseAndBack(const json& msg) {
   Msg original;
@@ -290,7 +306,8 @@ const std::map<std::string, BridgedType, std::less<>>& registry() {
                              bridged<control_msgs::JointControllerState>(false),
                              bridged<control_msgs::JointTrajectoryControllerState>(false),
                              bridged<nav_msgs::Odometry>(false), bridged<tf2_msgs::TFMessage>(false),
-                             bridged<diagnostic_msgs::DiagnosticArray>(false)}) {
+                             bridged<diagnostic_msgs::DiagnosticArray>(false),
+                             bridged<gazebo_msgs::ModelStates>(false)}) {
       out.emplace(type.name, std::move(type));
     }
     return out;
@@ -334,6 +351,20 @@ json toJson(const nav_msgs::Odometry& m) {
           {"twist", {{"linear", toJson(m.twist.twist.linear)}, {"angular", toJson(m.twist.twist.angular)},
                      {"covariance", covarianceOf(m.twist.covariance)}}}};
 }
+
+void fromJson(const json& j, geometry_msgs::Pose& m) {
+  fromJson(child(j, "position"), m.position);
+  fromJson(child(j, "orientation"), m.orientation);
+}
+json toJson(const geometry_msgs::Pose& m) {
+  return {{"position", toJson(m.position)}, {"orientation", toJson(m.orientation)}};
+}
+
+void fromJson(const json& j, geometry_msgs::Twist& m) {
+  fromJson(child(j, "linear"), m.linear);
+  fromJson(child(j, "angular"), m.angular);
+}
+json toJson(const geometry_msgs::Twist& m) { return {{"linear", toJson(m.linear)}, {"angular", toJson(m.angular)}}; }
 
 void fromJson(const json& j, trajectory_msgs::JointTrajectoryPoint& m) {
   m.positions = numbers(j, "positions");

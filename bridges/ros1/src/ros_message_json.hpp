@@ -14,6 +14,8 @@
 #include <ros/publisher.h>
 #include <ros/subscriber.h>
 #include <control_msgs/JointTrajectoryControllerState.h>
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <trajectory_msgs/JointTrajectory.h>
 #include <trajectory_msgs/JointTrajectoryPoint.h>
@@ -37,8 +39,9 @@ struct BridgedType {
 };
 
 // Trajectories, a trajectory controller's state (a trajectory action's
-// feedback) and odometry (a floating base's ground truth) in the node's JSON
-// form, for the action bridge and the Gazebo services.
+// feedback), odometry (a floating base's ground truth) and a pose and twist
+// (a model's state) in the node's JSON form, for the action bridge and the
+// Gazebo services.
 void fromJson(const nlohmann::json& j, trajectory_msgs::JointTrajectoryPoint& m);
 nlohmann::json toJson(const trajectory_msgs::JointTrajectoryPoint& m);
 void fromJson(const nlohmann::json& j, trajectory_msgs::JointTrajectory& m);
@@ -47,6 +50,12 @@ void fromJson(const nlohmann::json& j, control_msgs::JointTrajectoryControllerSt
 nlohmann::json toJson(const control_msgs::JointTrajectoryControllerState& m);
 void fromJson(const nlohmann::json& j, nav_msgs::Odometry& m);
 nlohmann::json toJson(const nav_msgs::Odometry& m);
+// {position: {x, y, z}, orientation: {x, y, z, w}}
+void fromJson(const nlohmann::json& j, geometry_msgs::Pose& m);
+nlohmann::json toJson(const geometry_msgs::Pose& m);
+// {linear: {x, y, z}, angular: {x, y, z}}
+void fromJson(const nlohmann::json& j, geometry_msgs::Twist& m);
+nlohmann::json toJson(const geometry_msgs::Twist& m);
 
 // The type, or nullptr when the bridge does not carry it.
 const BridgedType* findBridgedType(std::string_view type_name);

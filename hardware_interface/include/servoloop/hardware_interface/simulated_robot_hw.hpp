@@ -62,6 +62,15 @@ class SimulatedRobotHW : public RobotHW {
   // base floats; false (out untouched) for a fixed base or a simulator that
   // does not track it.
   virtual bool readBaseGroundTruth(BaseGroundTruth& /*out*/) const noexcept { return false; }
+
+  // Non-real-time, with no cycle running (the world paused between two):
+  // teleports a floating root link to `state` (pose and twist, world frame
+  // and axes, as readBaseGroundTruth gives them), as Gazebo's
+  // set_model_state does; the joints keep their positions and velocities.
+  // The orientation is normalised. Throws servoloop::Error for a value that
+  // is not a finite number, a zero quaternion, or a fixed base (nothing
+  // moved). By default: refused (a simulator without a floating base).
+  virtual void setBaseState(const BaseGroundTruth& state);
 };
 
 }  // namespace servoloop::hardware_interface

@@ -38,6 +38,7 @@ nlohmann::json toJson(const trajectory_msgs::JointTrajectory& msg);
 nlohmann::json toJson(const control_msgs::JointTrajectoryControllerState& msg);
 nlohmann::json toJson(const geometry_msgs::Twist& msg);
 nlohmann::json toJson(const tf2_msgs::TFMessage& msg);
+nlohmann::json toJson(const gazebo_msgs::ModelStates& msg);
 
 void fromJson(const nlohmann::json& json, std_msgs::Float64& out);
 void fromJson(const nlohmann::json& json, std_msgs::Bool& out);
@@ -50,6 +51,7 @@ void fromJson(const nlohmann::json& json, trajectory_msgs::JointTrajectory& out)
 void fromJson(const nlohmann::json& json, control_msgs::JointTrajectoryControllerState& out);
 void fromJson(const nlohmann::json& json, geometry_msgs::Twist& out);
 void fromJson(const nlohmann::json& json, tf2_msgs::TFMessage& out);
+void fromJson(const nlohmann::json& json, gazebo_msgs::ModelStates& out);
 
 template <class Msg>
 Msg messageFromJson(const nlohmann::json& json) {

@@ -32,6 +32,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -39,6 +40,7 @@
 
 #include "servoloop/ipc/ipc_server.hpp"
 #include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/model_states_publisher.hpp"
 #include "servoloop/node/robot_instance.hpp"
 #include "servoloop/node/run_summary.hpp"
 #include "servoloop/node/topic_recorder.hpp"
@@ -83,6 +85,17 @@ struct ModelState {
   double orientation[4] = {0.0, 0.0, 0.0, 1.0};  // quaternion x, y, z, w
   double linear_velocity[3] = {0.0, 0.0, 0.0};   // m/s, world axes
   double angular_velocity[3] = {0.0, 0.0, 0.0};  // rad/s, world axes
+};
+
+// What set_model_state gives: a pose (orientation x, y, z, w; normalised)
+// and a twist (world axes).
+struct ModelPose {
+  double position[3] = {0.0, 0.0, 0.0};
+  double orientation[4] = {0.0, 0.0, 0.0, 1.0};
+};
+struct ModelTwist {
+  double linear[3] = {0.0, 0.0, 0.0};
+  double angular[3] = {0.0, 0.0, 0.0};
 };
 
 // Where the world stands (world.state).
@@ -159,6 +172,22 @@ class Node {
   // non-finite position, or a robot on hardware.
   void setModelConfiguration(const std::string& model, const std::vector<std::string>& joints,
                              const std::vector<double>& positions);
+  // Gazebo's set_model_state: the floating base of the robot with that
+  // namespace or model name teleported, between two cycles, to `pose`
+  // and/or moving with `twist` (world frame and axes, as modelState() gives
+  // them); what is not given stays as it is, and the joints keep their
+  // state. Throws servoloop::Error for an unknown model, a fixed base, a
+  // robot on hardware, or a value that is not a finite number (nothing moved).
+  void setModelState(const std::string& model, const std::optional<ModelPose>& pose,
+                     const std::optional<ModelTwist>& twist);
+  // Gazebo's delete_model: the robot with that namespace or model name
+  // taken out of the world. Its running controllers are stopped first (with
+  // a log line) and all are unloaded, its recordings closed, its socket
+  // closed and its bodies removed between two cycles; the other robots run
+  // on. Returns its namespace. Throws servoloop::Error naming the models
+  // there are for an unknown one. Called over the robot's own socket, the
+  // socket closes and the bodies go just after the reply.
+  std::string deleteModel(const std::string& model);
   // The robot with that namespace ("/name" or "name") or model name, or nullptr.
   RobotInstance* findModel(const std::string& model);
   // The robot whose bus carries `topic`: the one with the longest namespace
@@ -186,6 +215,9 @@ class Node {
 
  private:
   void createWorld();
+  // The models /gazebo/model_states lists (and the bus carrying it), after
+  // a robot joined or left.
+  void refreshModelStates();
   // Runs `change` (adding a robot to the world, or taking one out) between
   // two cycles of the world loop when the robots touch, at once otherwise.
   void changeWorld(const std::function<void()>& change);
@@ -204,6 +236,8 @@ class Node {
   plugin::PluginPtr<hardware_interface::SimulatedWorld> world_plugin_;  // the backend's shared world
   std::unique_ptr<hardware_interface::SimulatedWorld> separate_worlds_;  // or robots simulated apart
   hardware_interface::SimulatedWorld* world_ = nullptr;
+  std::unique_ptr<ModelStatesPublisher> model_states_;  // the world loop's observer
+  std::mutex model_states_mutex_;  // one refreshModelStates() at a time
   std::unique_ptr<world::WorldLoop> world_loop_;
 
   // Woken by a robot whose loop has ended (declared before robots_, whose
@@ -225,6 +259,9 @@ class Node {
   bool started_ = false;
   bool shut_down_ = false;
   bool accepting_robots_ = true;  // cleared (under robots_mutex_) when shutdown begins
+  // Finishing deleteModel() for robots deleted over their own socket
+  // (under robots_mutex_; joined when shutdown begins).
+  std::vector<std::thread> model_reapers_;
   std::chrono::steady_clock::time_point start_time_{};
   std::optional<RunSummary> final_summary_;
 

@@ -34,6 +34,10 @@ class RobotInstance;
 // A model's state as model.get replies it (and the Python package gives it):
 // name, namespace, fixed, pose {position, orientation}, twist {linear, angular}.
 nlohmann::json modelStateToJson(const ModelState& state);
+// model.set_state: `request` {model, pose?, twist?} (the JSON form of
+// modelStateToJson) read and carried out by Node::setModelState; returns the
+// model's new state. Throws servoloop::Error naming a missing or bad field.
+nlohmann::json setModelStateFromJson(Node& node, const nlohmann::json& request);
 
 class NodeOperations {
  public:
@@ -47,6 +51,12 @@ class NodeOperations {
 
   // The IpcServer::Handler.
   nlohmann::json handle(const nlohmann::json& request, ipc::IpcConnection& connection);
+
+  // The socket's robot (nullptr for the world socket).
+  RobotInstance* robot() const noexcept { return robot_; }
+  // The operations whose request or deferred job the calling thread serves
+  // now, or nullptr (a thread that serves none).
+  static const NodeOperations* servingOnThisThread() noexcept;
 
  private:
   using Job = std::function<void()>;
@@ -69,6 +79,8 @@ class NodeOperations {
   nlohmann::json topicPub(RobotInstance& robot, const nlohmann::json& request);
   nlohmann::json topicSubscribe(RobotInstance& robot, const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json topicUnsubscribe(const nlohmann::json& request, ipc::IpcConnection& connection);
+  // model.*: model_operations.cpp.
+  nlohmann::json modelOp(const std::string& op, const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json modelSpawn(const nlohmann::json& request);
   nlohmann::json actionList(RobotInstance& robot);
   nlohmann::json actionSend(RobotInstance& robot, const nlohmann::json& request, ipc::IpcConnection& connection);

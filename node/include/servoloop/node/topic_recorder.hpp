@@ -35,6 +35,7 @@ class TopicRecorder {
   void close();
 
   const std::string& topic() const { return topic_; }
+  const realtime::TopicBus& bus() const { return bus_; }
   const std::filesystem::path& file() const { return file_; }
   // The topic's type once known ("" before the first message).
   std::string type() const;

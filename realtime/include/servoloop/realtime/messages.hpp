@@ -133,6 +133,12 @@ struct Twist {
   Vector3 angular;
 };
 
+// Where a body is: position (m) and orientation.
+struct Pose {
+  Point position;
+  Quaternion orientation;
+};
+
 // Where child_frame_id is in frame_id: translation (m) and rotation.
 struct TransformStamped {
   double stamp = 0.0;  // control time, s
@@ -153,6 +159,20 @@ struct TFMessage {
 };
 
 }  // namespace tf2_msgs
+
+namespace gazebo_msgs {
+
+// Every model of the world with its pose in the world frame and its twist
+// (linear velocity of the model frame's origin, angular velocity; world axes),
+// as Gazebo publishes them on /gazebo/model_states.
+struct ModelStates {
+  static constexpr std::string_view kTypeName = "gazebo_msgs/ModelStates";
+  std::vector<std::string> name;
+  std::vector<geometry_msgs::Pose> pose;
+  std::vector<geometry_msgs::Twist> twist;
+};
+
+}  // namespace gazebo_msgs
 
 namespace diagnostic_msgs {
 

@@ -117,6 +117,10 @@ class PhysicsEngine {
   // Real-time. The floating root link's state after the last step; false
   // (out untouched) for a fixed base or an engine that does not track one.
   virtual bool readBaseState(EngineBaseState& /*out*/) const noexcept { return false; }
+  // Non-real-time. Teleports the floating root link to `state` (finite, unit
+  // quaternion); the joints keep their state. Throws servoloop::Error for a
+  // fixed base or an engine that does not track one (the default).
+  virtual void setBaseState(const EngineBaseState& state);
 
   // Real-time. Every joint's state at once, `states[j]` for joint j, as the
   // getters above give it; `states` holds one entry per joint of init()'s

@@ -107,6 +107,8 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   const urdf::ModelInterface& model() const { return *model_; }
 
   bool readBaseGroundTruth(hardware_interface::BaseGroundTruth& out) const noexcept override;
+  // Non-real-time, no cycle running: the engine's floating base teleported.
+  void setBaseState(const hardware_interface::BaseGroundTruth& state) override;
   const SimSettings& settings() const noexcept { return settings_; }
   const hardware_interface::RobotJointLimits& jointLimits() const noexcept { return joint_limits_; }
   const ActuatorParameters& actuatorParameters(ActuatorIndex actuator) const {

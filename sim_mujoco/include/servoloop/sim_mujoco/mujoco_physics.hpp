@@ -67,6 +67,7 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
 
   double jointPosition(std::size_t joint) const noexcept override;
   bool readBaseState(sim_common::EngineBaseState& out) const noexcept override;
+  void setBaseState(const sim_common::EngineBaseState& state) override;
   double jointVelocity(std::size_t joint) const noexcept override;
   // The effort applied during the last step: the effort command in effort
   // mode, the motor's effort in velocity/position mode.

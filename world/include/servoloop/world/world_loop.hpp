@@ -65,6 +65,18 @@ class WorldMember {
   virtual controller_manager::SimulationLoop& simulationLoop() = 0;
 };
 
+// Watches the whole world between two segments of cycles (e.g. publishing
+// every model's state at a fixed rate of world time). Called on the world's
+// thread, never while it stands paused.
+class WorldObserver {
+ public:
+  virtual ~WorldObserver() = default;
+  // Between two segments that run cycles: `steps` physics steps have run.
+  // Returns how many more steps may run before it needs this call again
+  // (at least 1).
+  virtual std::uint64_t betweenSegments(std::uint64_t steps) = 0;
+};
+
 struct WorldLoopOptions {
   // Simulated seconds per wall second; 0: free-running.
   double real_time_factor = 0.0;
@@ -106,6 +118,9 @@ class WorldLoop {
   // between two segments (no cycle, no physics step): for adding bodies to
   // the world or taking them out. Exceptions from `change` propagate.
   void whilePaused(const std::function<void()>& change);
+  // The observer of the world (nullptr: none); before start(), or inside
+  // whilePaused's change. It must outlive the loop or be replaced first.
+  void setObserver(WorldObserver* observer) noexcept { observer_ = observer; }
   // Ends the current segment early, so that every member's betweenSegments()
   // runs soon (e.g. after a request it serves there).
   void wake();
@@ -166,7 +181,8 @@ class WorldLoop {
   bool standing_ = false;         // the thread holds the paused world (no segment runs)
   WorldMember* entering_ = nullptr;  // whose enterWorld() runs now
 
-  // The world's thread only.
+  // The world's thread only (and whilePaused's change).
+  WorldObserver* observer_ = nullptr;
   std::vector<WorldMember*> members_;
   std::vector<WorldMember*> active_;  // members cycling in this segment
 
