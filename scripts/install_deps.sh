@@ -11,7 +11,7 @@ packages=(
   libyaml-cpp-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
   libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
-  libmujoco-dev libpng-dev gnuplot-nox libassimp-dev
+  libmujoco-dev libpng-dev gnuplot-nox libassimp-dev libsdformat-dev
   python3-dev pybind11-dev python3-numpy python3-yaml python3-distributed
   "$@"
 )

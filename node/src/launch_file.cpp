@@ -2,6 +2,7 @@
 // line, key and fix.
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/roslaunch_xml.hpp"
+#include "servoloop/node/sdf_world_launch.hpp"
 
 #include <sched.h>
 
@@ -16,6 +17,7 @@
 #include "launch_file_keys.hpp"
 #include "servoloop/core/text_file.hpp"
 #include "servoloop/core/time.hpp"
+#include "servoloop/description/sdf_world.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
@@ -34,6 +36,9 @@ class Parser {
  public:
   Parser(std::string_view source_name, fs::path base_directory)
       : source_(source_name), base_(std::move(base_directory)) {}
+
+  // world.file, once world() has read it ("" when not given).
+  const fs::path& worldFile() const { return world_file_; }
 
   // "file:line:column: key" of a node, for errors.
   std::string at(const YAML::Node& node, const std::string& key) const {
@@ -170,6 +175,7 @@ class Parser {
       world.real_time_factor = nonNegativeNumber(node["real_time_factor"], "world.real_time_factor",
                                                  "(0 runs as fast as possible)");
     }
+    if (node["file"]) world_file_ = existingFile(node["file"], "world.file", "world file");
     return world;
   }
 
@@ -341,6 +347,7 @@ class Parser {
  private:
   std::string source_;
   fs::path base_;
+  mutable fs::path world_file_;  // set by world()
 };
 
 std::string knownTypesList() {
@@ -415,6 +422,16 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
   launch.world = parser.world(root["world"]);
   launch.controller_manager = parser.controllerManager(root["controller_manager"]);
   launch.robots = parser.list(root["robots"], "robots", &Parser::robot);
+  if (const fs::path& world_file = parser.worldFile(); !world_file.empty()) {
+    // The world file's models come first; what the launch file says of the
+    // world itself wins over what the world file says.
+    const YAML::Node world = root["world"];
+    GivenWorldSettings given;
+    given.time_step = static_cast<bool>(world["time_step"]);
+    given.gravity = static_cast<bool>(world["gravity"]);
+    given.ground_plane = static_cast<bool>(world["ground_plane"]);
+    addSdfWorld(world_file, launch.world, launch.robots, given);
+  }
   launch.publish = parser.list(root["publish"], "publish", &Parser::publication);
   launch.record = parser.list(root["record"], "record", &Parser::record);
   if (root["plot"] && !root["plot"].IsNull()) launch.plot = parser.path(root["plot"], "plot");
@@ -424,6 +441,13 @@ LaunchFile parseLaunchFile(std::string_view yaml, std::string_view source_name, 
 
 LaunchFile loadLaunchFile(const fs::path& path, const std::map<std::string, std::string>& roslaunch_args) {
   if (isRoslaunchPath(path)) return loadRoslaunchFile(path, roslaunch_args);
+  if (isSdfWorldPath(path)) {
+    if (!roslaunch_args.empty()) {
+      throw ConfigError(fmt::format("{}: name:=value arguments are for ROS .launch files; a world file takes none",
+                                    path.string()));
+    }
+    return loadSdfWorldLaunch(path);
+  }
   if (!roslaunch_args.empty()) {
     throw ConfigError(fmt::format("{}: name:=value arguments ({}:={}) are for ROS .launch files; a YAML launch file "
                                   "takes none (a .xacro robot takes xacro_args: in the file)",

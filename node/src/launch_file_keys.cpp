@@ -34,6 +34,7 @@ const Schema& world() {
           {"ground_plane", ValueType::boolean, "a ground plane at z = 0"},
           {"real_time_factor", ValueType::number, "pacing against the wall clock; 0 runs as fast as possible", {.min = 0.0}},
           {"clock", ValueType::text, "sim (lockstep with the physics) or wall (paced by the wall clock)"},
+          {"file", ValueType::text, "an SDFormat world file (.world, .sdf): its models and settings"},
       },
       UnknownKeys::error);
   return schema;

@@ -98,7 +98,7 @@ RobotInstance::RobotInstance(const RobotSpec& spec, const RobotWorld& world)
   }
 
   // Robot description and namespace.
-  robot_description_ = readRobotDescription(spec.urdf, spec.xacro_args);
+  robot_description_ = spec.description.empty() ? readRobotDescription(spec.urdf, spec.xacro_args) : spec.description;
   // A simulator (also one standing in for hardware, `hardware: {type: mock}`)
   // gets the description without what it cannot simulate, as in Gazebo;
   // hardware moves every joint, massless links or not, and gets it whole.

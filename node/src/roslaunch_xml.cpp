@@ -22,6 +22,7 @@
 #include "servoloop/description/package_path.hpp"
 #include "servoloop/description/xacro.hpp"
 #include "servoloop/node/robot_namespace.hpp"
+#include "servoloop/node/sdf_world_launch.hpp"
 #include "servoloop/params/parameter_store.hpp"
 
 namespace servoloop::node {
@@ -295,9 +296,17 @@ class Reader {
       world_.ground_plane = true;
       const auto world_name = passed.find("world_name");
       if (world_name != passed.end() && world_name->second.find("empty.world") == std::string::npos) {
-        logger().warn("{}: Gazebo world '{}' is not loaded: servoloop's world is Gazebo's empty world (a ground "
-                      "plane and gravity); the robots are spawned into it",
-                      place(e, scope).text(), world_name->second);
+        // An SDFormat world file: read (its models come before the spawned
+        // robots); Gazebo's own worlds/ names it does not have.
+        const fs::path world_file = resolvePath(world_name->second, scope);
+        std::error_code ec;
+        if (fs::is_regular_file(world_file, ec)) {
+          world_file_ = world_file;
+        } else {
+          logger().warn("{}: Gazebo world '{}' is not a file servoloop finds (looked for {}); the robots are spawned "
+                        "into an empty world (a ground plane and gravity)",
+                        place(e, scope).text(), world_name->second, world_file.string());
+        }
       }
       return;
     }
@@ -591,6 +600,7 @@ class Reader {
     LaunchFile launch;
     launch.source = source;
     launch.world = world_;
+    if (!world_file_.empty()) addSdfWorld(world_file_, launch.world, launch.robots);
     std::vector<std::string> namespaces;
     for (const SpawnModel& spawn : spawns_) {
       RobotSpec robot;
@@ -756,6 +766,7 @@ class Reader {
   std::vector<Spawner> spawners_;
   std::vector<std::string> skipped_;
   WorldSettings world_;
+  fs::path world_file_;  // gazebo_ros's world_name, when it is a file
 };
 
 }  // namespace

@@ -62,6 +62,9 @@ struct ParameterFile {
 // One robot to spawn.
 struct RobotSpec {
   std::filesystem::path urdf;  // absolute; a .xacro file is expanded with xacro_args
+  // The URDF's text, when given, is read instead of `urdf` (which then only
+  // names where it came from: an SDF world's model).
+  std::string description;
   std::map<std::string, std::string> xacro_args;
   std::string model;           // model name; "" = the URDF's robot name
   std::string robot_namespace; // "" = not given (see robot_namespace.hpp)
