@@ -32,6 +32,10 @@ constexpr const char* kStopImpedance = "0.95 0.99 0.001";
 constexpr int kContactsPerBody = 16;
 constexpr int kMinContacts = 100;
 constexpr int kConstraintRowsPerContact = 6;
+// Friction coefficients ranked for geom priorities (frictionAttributes): in
+// steps of 0.001 up to 1000.
+constexpr double kFrictionRanksPerUnit = 1000.0;
+constexpr double kMaxRankedFriction = 1000.0;
 
 std::string number(double value) {
   char text[32];
@@ -85,21 +89,38 @@ bool isMovable(const urdf::Joint& joint) {
 class MjcfWriter {
  public:
   MjcfWriter(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
-             const std::map<std::string, double>& joint_armature, const std::string& source_name)
-      : model_(model), settings_(settings), joint_armature_(joint_armature), source_name_(source_name) {}
+             const std::map<std::string, double>& joint_armature, const std::string& source_name,
+             std::string prefix = {}, bool shared = false)
+      : model_(model), settings_(settings), joint_armature_(joint_armature), source_name_(source_name),
+        prefix_(std::move(prefix)), shared_(shared) {}
+
+  // The robot's share of a world (names prefixed, no <option>, no ground).
+  MjcfParts parts() {
+    MjcfParts parts;
+    std::ostringstream world;
+    writeWorldBody(world);
+    parts.worldbody = world.str();
+    parts.assets = assets_.str();
+    if (!settings_.self_collide) {
+      // No two bodies of the robot touch (other robots' bodies do).
+      for (std::size_t i = 0; i < body_names_.size(); ++i) {
+        for (std::size_t j = i + 1; j < body_names_.size(); ++j) {
+          parts.contact += "    <exclude body1=\"" + body_names_[i] + "\" body2=\"" + body_names_[j] + "\"/>\n";
+        }
+      }
+    } else {
+      parts.contact = excludes_.str();
+    }
+    std::ostringstream equalities;
+    writeMimicEqualities(equalities);
+    parts.equality = equalities.str();
+    parts.contacts = kContactsPerBody * body_count_;
+    parts.constraint_rows = parts.contacts * kConstraintRowsPerContact + 2 * movable_joint_count_;
+    parts.balance_inertia = !unbalanced_inertias_.empty();
+    return parts;
+  }
 
   std::string write() {
-    const urdf::LinkConstSharedPtr root = model_.getRoot();
-    if (!root) throw ConfigError(source_name_ + ": the robot has no root link");
-    const bool root_is_world = root->name == "world";
-    // The "world" link stands at the spawn pose (Gazebo's): a static body
-    // there when the pose moves it, the world body itself otherwise.
-    const bool placed =
-        root_is_world && (!settings_.base_position.isZero() ||
-                          !settings_.base_orientation.normalized().isApprox(Eigen::Quaterniond::Identity()));
-    checkNestingDepth(*root, placed);
-    floating_base_ = !sim_common::isFixedBase(model_, settings_.base);
-
     std::ostringstream world;
     if (settings_.ground_plane) {
       // Without self-collision the robot's geoms (contype 1, conaffinity 2)
@@ -110,25 +131,7 @@ class MjcfWriter {
                "condim=\"1\""
             << (settings_.self_collide ? "" : " contype=\"2\" conaffinity=\"1\"") << "/>\n";
     }
-    if (root_is_world) {
-      int depth = 2;
-      if (placed) {
-        world << "    <body name=\"" << kSpawnFrameBody << "\" " << basePoseAttributes() << ">\n";
-        world_welded_links_.push_back(kSpawnFrameBody);
-        depth = 3;
-      }
-      for (const auto& child : root->child_links) collectWorldWelded(*child);
-      writeGeoms(*root, world, std::string(2 * depth, ' '));
-      for (const auto& child : root->child_links) writeBody(*child, world, depth, /*welded_to_world=*/true);
-      if (placed) world << "    </body>\n";
-    } else {
-      if (!floating_base_) {  // the root body is welded to the world at the spawn pose
-        world_welded_links_.push_back(root->name);
-        for (const auto& child : root->child_links) collectWorldWelded(*child);
-      }
-      writeBody(*root, world, 2, /*welded_to_world=*/!floating_base_);
-    }
-
+    writeWorldBody(world);
     const double dt = settings_.time_step_s;
     const int contacts = std::max(kMinContacts, kContactsPerBody * (body_count_ + 1));
     std::ostringstream out;
@@ -149,12 +152,50 @@ class MjcfWriter {
     if (!assets_.str().empty()) out << "  <asset>\n" << assets_.str() << "  </asset>\n";
     out << "  <worldbody>\n" << world.str() << "  </worldbody>\n";
     if (!excludes_.str().empty()) out << "  <contact>\n" << excludes_.str() << "  </contact>\n";
-    writeMimicEqualities(out);
+    std::ostringstream equalities;
+    writeMimicEqualities(equalities);
+    if (!equalities.str().empty()) out << "  <equality>\n" << equalities.str() << "  </equality>\n";
     out << "</mujoco>\n";
     return out.str();
   }
 
  private:
+  // The robot's bodies under <worldbody> (without the ground).
+  void writeWorldBody(std::ostringstream& world) {
+    const urdf::LinkConstSharedPtr root = model_.getRoot();
+    if (!root) throw ConfigError(source_name_ + ": the robot has no root link");
+    const bool root_is_world = root->name == "world";
+    // The "world" link stands at the spawn pose (Gazebo's): a static body
+    // there when the pose moves it, the world body itself otherwise.
+    // In a shared world always a body: the world body's own geoms would be
+    // the ground's and every robot's alike.
+    const bool placed =
+        root_is_world && (shared_ || !settings_.base_position.isZero() ||
+                          !settings_.base_orientation.normalized().isApprox(Eigen::Quaterniond::Identity()));
+    checkNestingDepth(*root, placed);
+    floating_base_ = !sim_common::isFixedBase(model_, settings_.base);
+
+    if (root_is_world) {
+      int depth = 2;
+      if (placed) {
+        world << "    <body name=\"" << name(kSpawnFrameBody) << "\" " << basePoseAttributes() << ">\n";
+        body_names_.push_back(name(kSpawnFrameBody));
+        world_welded_links_.push_back(kSpawnFrameBody);
+        depth = 3;
+      }
+      for (const auto& child : root->child_links) collectWorldWelded(*child);
+      writeGeoms(*root, world, std::string(2 * depth, ' '));
+      for (const auto& child : root->child_links) writeBody(*child, world, depth, /*welded_to_world=*/true);
+      if (placed) world << "    </body>\n";
+    } else {
+      if (!floating_base_) {  // the root body is welded to the world at the spawn pose
+        world_welded_links_.push_back(root->name);
+        for (const auto& child : root->child_links) collectWorldWelded(*child);
+      }
+      writeBody(*root, world, 2, /*welded_to_world=*/!floating_base_);
+    }
+  }
+
   // Refuses, before anything is written, a tree deeper than MuJoCo reads
   // (kMaxNestedBodies), naming the chain, its depth and the limit, rather
   // than leaving MuJoCo to stop at it with tinyxml2's words. `spawn_frame`:
@@ -227,7 +268,8 @@ class MjcfWriter {
     const std::string indent(2 * depth, ' ');
     const urdf::JointSharedPtr& joint = link.parent_joint;
     ++body_count_;
-    out << indent << "<body name=\"" << xmlEscape(link.name) << "\"";
+    out << indent << "<body name=\"" << name(link.name) << "\"";
+    body_names_.push_back(name(link.name));
     if (joint) {
       out << " " << poseAttributes(joint->parent_to_joint_origin_transform);
     } else {
@@ -238,7 +280,7 @@ class MjcfWriter {
     bool moves = false;
     if (!joint) {  // the root link: free, or welded to the world at the spawn pose
       if (floating_base_) {
-        out << indent << "  <freejoint name=\"" << xmlEscape(link.name) << "_floating_base\"/>\n";
+        out << indent << "  <freejoint name=\"" << name(link.name + "_floating_base") << "\"/>\n";
         moves = true;
       }
     } else if (isMovable(*joint)) {
@@ -248,7 +290,7 @@ class MjcfWriter {
       // links welded to the world form one rigid base, as in the bullet backend.
       if (welded_to_world) {
         for (const std::string& static_link : world_welded_links_) {
-          excludes_ << "    <exclude body1=\"" << xmlEscape(static_link) << "\" body2=\"" << xmlEscape(link.name)
+          excludes_ << "    <exclude body1=\"" << name(static_link) << "\" body2=\"" << name(link.name)
                     << "\"/>\n";
         }
       }
@@ -266,8 +308,7 @@ class MjcfWriter {
   // <mimic>: q_m = offset + multiplier·q_l, as a joint equality (MuJoCo's
   // polynomial y = a0 + a1·x with both joints' reference positions at 0),
   // solved with the stiffness of the joint stops.
-  void writeMimicEqualities(std::ostringstream& out) const {
-    std::ostringstream equalities;
+  void writeMimicEqualities(std::ostringstream& equalities) const {
     for (const auto& [name, joint] : model_.joints_) {
       if (!joint || !joint->mimic || !isMovable(*joint)) continue;
       const urdf::JointConstSharedPtr leader = model_.getJoint(joint->mimic->joint_name);
@@ -275,13 +316,15 @@ class MjcfWriter {
         throw ConfigError(source_name_ + ": joint '" + name + "' <mimic joint=\"" + joint->mimic->joint_name +
                           "\">: no movable joint of that name; name a revolute, continuous or prismatic joint");
       }
-      equalities << "    <joint joint1=\"" << xmlEscape(name) << "\" joint2=\"" << xmlEscape(leader->name)
+      equalities << "    <joint joint1=\"" << this->name(name) << "\" joint2=\"" << this->name(leader->name)
                  << "\" polycoef=\"" << number(joint->mimic->offset) << " " << number(joint->mimic->multiplier)
                  << " 0 0 0\" solref=\"" << number(kStopTimeConstantInSteps * settings_.time_step_s)
                  << " 1\" solimp=\"" << kStopImpedance << "\"/>\n";
     }
-    if (!equalities.str().empty()) out << "  <equality>\n" << equalities.str() << "  </equality>\n";
   }
+
+  // A name of the robot's in the MJCF: with the robot's prefix in a shared world.
+  std::string name(const std::string& urdf_name) const { return xmlEscape(prefix_ + urdf_name); }
 
   // pos/quat of the root link: the spawn pose of the settings.
   std::string basePoseAttributes() const {
@@ -310,7 +353,7 @@ class MjcfWriter {
   void writeJoint(const urdf::Joint& joint, std::ostringstream& out, const std::string& indent) {
     ++movable_joint_count_;
     const bool prismatic = joint.type == urdf::Joint::PRISMATIC;
-    out << indent << "<joint name=\"" << xmlEscape(joint.name) << "\" type=\"" << (prismatic ? "slide" : "hinge")
+    out << indent << "<joint name=\"" << name(joint.name) << "\" type=\"" << (prismatic ? "slide" : "hinge")
         << "\" pos=\"0 0 0\" axis=\"" << vec3(joint.axis.x, joint.axis.y, joint.axis.z) << "\"";
     const bool limited = joint.type != urdf::Joint::CONTINUOUS && joint.limits &&
                          std::isfinite(joint.limits->lower) && std::isfinite(joint.limits->upper) &&
@@ -405,9 +448,17 @@ class MjcfWriter {
   // The link's Gazebo <mu1>/<mu2> as the geom's sliding friction (MuJoCo's
   // default torsional and rolling terms, used only with condim > 3); a
   // frictionless link has normal-only contacts.
+  // Two links touching slide with the smaller of their two coefficients, as
+  // in the bullet backend (Gazebo's ODE): MuJoCo takes the contact's friction
+  // from the geom of higher priority (the larger when equal), so the lower
+  // friction gets the higher priority. The ground (priority 0, frictionless)
+  // yields to every link, which keeps its own friction there.
   std::string frictionAttributes(const urdf::Link& link) const {
     const double mu = sim_common::linkFriction(settings_.link_friction, link.name);
-    return " friction=\"" + number(mu) + " 0.005 0.0001\"" + (mu == 0.0 ? " condim=\"1\"" : "");
+    const long long rank = std::llround(std::clamp(mu, 0.0, kMaxRankedFriction) * kFrictionRanksPerUnit);
+    const long long priority = 1 + static_cast<long long>(kMaxRankedFriction * kFrictionRanksPerUnit) - rank;
+    return " friction=\"" + number(mu) + " 0.005 0.0001\" priority=\"" + std::to_string(priority) + "\"" +
+           (mu == 0.0 ? " condim=\"1\"" : "");
   }
 
   std::string addMesh(const urdf::Link& link, const urdf::Mesh& mesh) {
@@ -418,7 +469,7 @@ class MjcfWriter {
     } catch (const ConfigError& error) {
       throw ConfigError(source_name_ + ": link '" + link.name + "' <collision> mesh: " + error.what());
     }
-    const std::string name = "servoloop_mesh_" + std::to_string(mesh_count_++);
+    const std::string name = prefix_ + "servoloop_mesh_" + std::to_string(mesh_count_++);
     // Scaled already (a mirroring scale included): MuJoCo gets the hull's corners.
     assets_ << "    <mesh name=\"" << name << "\" vertex=\"";
     for (std::size_t i = 0; i < vertices.size(); ++i) {
@@ -432,6 +483,9 @@ class MjcfWriter {
   const sim_common::SimSettings& settings_;
   const std::map<std::string, double>& joint_armature_;
   const std::string& source_name_;
+  std::string prefix_;                  // before every name (a robot in a shared world)
+  bool shared_ = false;
+  std::vector<std::string> body_names_;  // as written
   std::ostringstream assets_;
   std::ostringstream excludes_;
   std::vector<std::string> world_welded_links_;  // (not the world link itself: it is <worldbody>)
@@ -447,6 +501,56 @@ class MjcfWriter {
 std::string mjcfFromUrdf(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                          const std::map<std::string, double>& joint_armature, const std::string& source_name) {
   return MjcfWriter(model, settings, joint_armature, source_name).write();
+}
+
+std::string mjcfOfWorld(const hardware_interface::SimulatedWorldSettings& settings,
+                        const std::vector<const MjcfParts*>& robots) {
+  int contacts = kMinContacts;
+  int rows = 0;
+  bool balance = false;
+  std::string assets, bodies, contact, equality;
+  for (const MjcfParts* robot : robots) {
+    contacts += robot->contacts;
+    rows += robot->constraint_rows;
+    balance |= robot->balance_inertia;
+    assets += robot->assets;
+    bodies += robot->worldbody;
+    contact += robot->contact;
+    equality += robot->equality;
+  }
+  rows += (kMinContacts)*kConstraintRowsPerContact;
+  const double dt = settings.time_step_s;
+  std::ostringstream out;
+  out << "<mujoco model=\"servoloop_world\">\n"
+      << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"" << (balance ? " balanceinertia=\"true\"" : "")
+      << "/>\n"
+      << "  <option timestep=\"" << number(dt) << "\" gravity=\""
+      << vec3(settings.gravity[0], settings.gravity[1], settings.gravity[2]) << "\" integrator=\"RK4\"/>\n"
+      << "  <size nconmax=\"" << contacts << "\" njmax=\"" << rows << "\"/>\n"
+      << "  <default>\n"
+      << "    <joint solreflimit=\"" << number(kStopTimeConstantInSteps * dt) << " 1\" solimplimit=\""
+      << kStopImpedance << "\" solreffriction=\"" << number(kStopTimeConstantInSteps * dt)
+      << " 1\" solimpfriction=\"" << kStopImpedance << "\"/>\n"
+      << "  </default>\n";
+  if (!assets.empty()) out << "  <asset>\n" << assets << "  </asset>\n";
+  out << "  <worldbody>\n";
+  if (settings.ground_plane) {
+    // As for one robot: a frictionless, normal-only ground leaves each
+    // contact the link's own friction (MuJoCo takes the larger of two).
+    out << "    <geom name=\"servoloop_ground_plane\" type=\"plane\" size=\"0 0 1\" friction=\"0 0 0\" "
+           "condim=\"1\"/>\n";
+  }
+  out << bodies << "  </worldbody>\n";
+  if (!contact.empty()) out << "  <contact>\n" << contact << "  </contact>\n";
+  if (!equality.empty()) out << "  <equality>\n" << equality << "  </equality>\n";
+  out << "</mujoco>\n";
+  return out.str();
+}
+
+MjcfParts mjcfPartsFromUrdf(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
+                            const std::map<std::string, double>& joint_armature, const std::string& source_name,
+                            const std::string& prefix) {
+  return MjcfWriter(model, settings, joint_armature, source_name, prefix, true).parts();
 }
 
 }  // namespace servoloop::sim_mujoco

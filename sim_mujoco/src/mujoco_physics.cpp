@@ -6,54 +6,25 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <string_view>
 
 #include <mujoco/mujoco.h>
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/sim_common/ground_penetration.hpp"
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
+#include "servoloop/sim_mujoco/mujoco_world.hpp"
+#include "mjcf_compile.hpp"
 
 namespace servoloop::sim_mujoco {
 namespace {
 
 using sim_common::JointCommandMode;
 
-constexpr const char* kModelFileName = "servoloop_model.xml";
 // Projected Gauss-Seidel sweeps for several coupled motors (one motor is
 // solved exactly in one sweep); stops early once the efforts settle.
 constexpr int kMotorSolverSweeps = 50;
 constexpr double kMotorSolverTolerance = 1e-12;
-
-// Compiles MJCF text from memory: one file in a virtual file system (which is
-// ~2 MB, hence on the heap).
-mjModel* compileMjcf(const std::string& mjcf, const std::string& source_name) {
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  if (mj_makeEmptyFileVFS(vfs.get(), kModelFileName, static_cast<int>(mjcf.size())) != 0) {
-    throw Error(source_name + ": could not create MuJoCo's in-memory model file");
-  }
-  const int file = mj_findFileVFS(vfs.get(), kModelFileName);
-  std::memcpy(vfs->filedata[file], mjcf.data(), mjcf.size());
-  char error[1024] = "";
-  mjModel* model = mj_loadXML(kModelFileName, vfs.get(), error, sizeof(error));
-  mj_deleteVFS(vfs.get());
-  if (model == nullptr) {
-    const std::string text = error;
-    // mjcfFromUrdf refuses a tree deeper than tinyxml2's limit up front; a
-    // MuJoCo built on another tinyxml2 may stop sooner, with words that say
-    // nothing of the robot.
-    if (text.find("XML_ELEMENT_DEPTH_EXCEEDED") != std::string::npos) {
-      throw ConfigError(source_name + ": a kinematic chain of the robot is too deep for MuJoCo: its model nests one "
-                                      "body inside another for each joint of a chain, and MuJoCo's XML reader "
-                                      "refused that many levels; use the bullet or mock backend, or a shallower tree");
-    }
-    // A hint only where MuJoCo's own words point at the inertia.
-    const bool inertia = text.find("inertia") != std::string::npos || text.find("mass") != std::string::npos;
-    throw ConfigError(source_name + ": MuJoCo refused the model generated from the URDF: " + text +
-                      (inertia ? " (check the link's <inertial>: MuJoCo needs principal moments with A + B >= C)" : ""));
-  }
-  return model;
-}
 
 }  // namespace
 
@@ -61,15 +32,26 @@ void MujocoPhysics::ModelDeleter::operator()(mjModel_* model) const noexcept { m
 void MujocoPhysics::DataDeleter::operator()(mjData_* data) const noexcept { mj_deleteData(data); }
 
 MujocoPhysics::MujocoPhysics() = default;
-MujocoPhysics::~MujocoPhysics() = default;
+MujocoPhysics::~MujocoPhysics() {
+  if (world_ != nullptr && m_ != nullptr) world_->remove(*this);
+}
+
+void MujocoPhysics::joinWorld(hardware_interface::SimulatedWorld& world) {
+  auto* shared = dynamic_cast<MujocoWorld*>(&world);
+  if (shared == nullptr) {
+    sim_common::PhysicsEngine::joinWorld(world);  // robots apart: a model of its own
+    return;
+  }
+  world_ = shared;
+}
 
 // MuJoCo's free joint: qpos = position, quaternion (w, x, y, z) of the body
 // frame; qvel = linear velocity of its origin in world axes, then angular
 // velocity in the body's own axes.
 bool MujocoPhysics::readBaseState(sim_common::EngineBaseState& out) const noexcept {
-  if (base_qpos_address_ < 0 || !data_) return false;
-  const double* q = data_->qpos + base_qpos_address_;
-  const double* v = data_->qvel + base_dof_address_;
+  if (base_qpos_address_ < 0 || !d_) return false;
+  const double* q = d_->qpos + base_qpos_address_;
+  const double* v = d_->qvel + base_dof_address_;
   out.position = Eigen::Vector3d(q[0], q[1], q[2]);
   out.orientation = Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized();
   out.linear_velocity = Eigen::Vector3d(v[0], v[1], v[2]);
@@ -78,9 +60,9 @@ bool MujocoPhysics::readBaseState(sim_common::EngineBaseState& out) const noexce
 }
 
 void MujocoPhysics::setBaseState(const sim_common::EngineBaseState& state) {
-  if (base_qpos_address_ < 0 || !data_) sim_common::PhysicsEngine::setBaseState(state);
-  double* q = data_->qpos + base_qpos_address_;
-  double* v = data_->qvel + base_dof_address_;
+  if (base_qpos_address_ < 0 || !d_) sim_common::PhysicsEngine::setBaseState(state);
+  double* q = d_->qpos + base_qpos_address_;
+  double* v = d_->qvel + base_dof_address_;
   const Eigen::Quaterniond orientation = state.orientation.normalized();
   const Eigen::Vector3d angular_in_body = orientation.conjugate() * state.angular_velocity;
   for (int i = 0; i < 3; ++i) {
@@ -92,46 +74,69 @@ void MujocoPhysics::setBaseState(const sim_common::EngineBaseState& state) {
   q[4] = orientation.x();
   q[5] = orientation.y();
   q[6] = orientation.z();
-  mj_forward(model_.get(), data_.get());
+  mj_forward(m_, d_);
 }
 
 void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                          const std::vector<sim_common::EngineJointConfig>& joints, const std::string& source_name) {
   std::map<std::string, double> armature;
   for (const auto& joint : joints) armature[joint.name] = joint.reflected_rotor_inertia;
-  mjcf_ = mjcfFromUrdf(model, settings, armature, source_name);
-  data_.reset();
-  model_.reset(compileMjcf(mjcf_, source_name));
-  data_.reset(mj_makeData(model_.get()));
-  if (!data_) throw Error(source_name + ": MuJoCo could not allocate its simulation data");
-
-  const mjModel& m = *model_;
-  base_qpos_address_ = base_dof_address_ = -1;
-  for (int j = 0; j < m.njnt; ++j) {
-    if (m.jnt_type[j] == mjJNT_FREE) {
-      base_qpos_address_ = m.jnt_qposadr[j];
-      base_dof_address_ = m.jnt_dofadr[j];
-      break;
-    }
-  }
-  joints_.clear();
+  joint_names_.clear();
+  for (const auto& joint : joints) joint_names_.push_back(joint.name);
   initial_positions_.clear();
+  for (const auto& joint : joints) initial_positions_.push_back(joint.initial_position);
+  motor_limits_.clear();
+  for (const auto& joint : joints) motor_limits_.push_back(sim_common::motorEffortBound(joint));
   resizeJointCommands(joints.size());
-  for (const auto& config : joints) {
-    const int id = mj_name2id(&m, mjOBJ_JOINT, config.name.c_str());
-    if (id < 0 || (m.jnt_type[id] != mjJNT_HINGE && m.jnt_type[id] != mjJNT_SLIDE)) {
-      throw ConfigError(source_name + ": joint '" + config.name +
+  position_motor_time_constant_s_ = std::max(kPositionMotorTimeConstant_s, settings.time_step_s);
+  if (world_ != nullptr) {
+    prefix_ = world_->newPrefix();
+    base_joint_name_ = prefix_ + model.getRoot()->name + "_floating_base";
+    world_->add(*this, mjcfPartsFromUrdf(model, settings, armature, source_name, prefix_), source_name);
+    mjcf_ = world_->mjcf();
+  } else {
+    base_joint_name_ = model.getRoot()->name + "_floating_base";
+    mjcf_ = mjcfFromUrdf(model, settings, armature, source_name);
+    data_.reset();
+    model_.reset(compileMjcf(mjcf_, source_name));
+    data_.reset(mj_makeData(model_.get()));
+    if (!data_) throw Error(source_name + ": MuJoCo could not allocate its simulation data");
+    bind(model_.get(), data_.get());
+  }
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    const int id = mj_name2id(m_, mjOBJ_JOINT, (prefix_ + joint_names_[j]).c_str());
+    if (id < 0 || (m_->jnt_type[id] != mjJNT_HINGE && m_->jnt_type[id] != mjJNT_SLIDE)) {
+      throw ConfigError(source_name + ": joint '" + joint_names_[j] +
                         "' is not a revolute, continuous or prismatic joint of the robot");
     }
-    Joint joint;
-    joint.qpos_address = m.jnt_qposadr[id];
-    joint.dof_address = m.jnt_dofadr[id];
-    joint.motor_effort_limit = sim_common::motorEffortBound(config);
-    joints_.push_back(joint);
-    initial_positions_.push_back(config.initial_position);
   }
-  position_motor_time_constant_s_ = std::max(kPositionMotorTimeConstant_s, settings.time_step_s);
+  reset();
+  warnOfGroundPenetration(model, settings, source_name);
+}
 
+void MujocoPhysics::bind(mjModel_* model, mjData_* data) {
+  m_ = model;
+  d_ = data;
+  const mjModel& m = *m_;
+  const int base = base_joint_name_.empty() ? -1 : mj_name2id(&m, mjOBJ_JOINT, base_joint_name_.c_str());
+  base_qpos_address_ = base >= 0 ? m.jnt_qposadr[base] : -1;
+  base_dof_address_ = base >= 0 ? m.jnt_dofadr[base] : -1;
+  joints_.assign(joint_names_.size(), Joint{});
+  for (std::size_t j = 0; j < joint_names_.size(); ++j) {
+    const int id = mj_name2id(&m, mjOBJ_JOINT, (prefix_ + joint_names_[j]).c_str());
+    if (id < 0) continue;  // init() names it
+    joints_[j].qpos_address = m.jnt_qposadr[id];
+    joints_[j].dof_address = m.jnt_dofadr[id];
+    joints_[j].motor_effort_limit = motor_limits_[j];
+  }
+  own_joints_.clear();
+  for (int j = 0; j < m.njnt; ++j) {
+    const char* name = mj_id2name(&m, mjOBJ_JOINT, j);
+    if (name == nullptr || std::string_view(name).substr(0, prefix_.size()) != prefix_) continue;
+    const int qpos_count = m.jnt_type[j] == mjJNT_FREE ? 7 : m.jnt_type[j] == mjJNT_BALL ? 4 : 1;
+    const int dof_count = m.jnt_type[j] == mjJNT_FREE ? 6 : m.jnt_type[j] == mjJNT_BALL ? 3 : 1;
+    own_joints_.push_back(OwnJoint{m.jnt_qposadr[j], qpos_count, m.jnt_dofadr[j], dof_count});
+  }
   const std::size_t count = joints_.size();
   const std::size_t nv = static_cast<std::size_t>(m.nv);
   motor_joints_.assign(count, 0);
@@ -139,8 +144,6 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   inverse_inertia_.assign(count * nv, 0.0);
   wanted_accel_.assign(count, 0.0);
   motor_efforts_.assign(count, 0.0);
-  reset();
-  warnOfGroundPenetration(model, settings, source_name);
 }
 
 // After reset()'s mj_forward the contacts of the start pose are known: the
@@ -148,8 +151,8 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
 void MujocoPhysics::warnOfGroundPenetration(const urdf::ModelInterface& model,
                                            const sim_common::SimSettings& settings,
                                            const std::string& source_name) const {
-  const mjModel& m = *model_;
-  const mjData& d = *data_;
+  const mjModel& m = *m_;
+  const mjData& d = *d_;
   const int ground = mj_name2id(&m, mjOBJ_GEOM, "servoloop_ground_plane");
   if (ground < 0) return;
   double depth_m = 0.0;
@@ -158,6 +161,8 @@ void MujocoPhysics::warnOfGroundPenetration(const urdf::ModelInterface& model,
     const mjContact& contact = d.contact[i];
     if (contact.geom1 != ground && contact.geom2 != ground) continue;
     const int other = contact.geom1 == ground ? contact.geom2 : contact.geom1;
+    const char* body = mj_id2name(&m, mjOBJ_BODY, m.geom_bodyid[other]);
+    if (body == nullptr || std::string_view(body).substr(0, prefix_.size()) != prefix_) continue;  // another robot's
     if (-contact.dist > depth_m) {
       depth_m = -contact.dist;
       deepest_body = m.geom_bodyid[other];
@@ -165,27 +170,28 @@ void MujocoPhysics::warnOfGroundPenetration(const urdf::ModelInterface& model,
   }
   if (deepest_body < 0) return;
   const char* link = mj_id2name(&m, mjOBJ_BODY, deepest_body);
-  sim_common::warnIfStartsBelowGround(model, settings, source_name, link != nullptr ? link : "?", depth_m);
+  const std::string link_name = link != nullptr ? std::string(link).substr(prefix_.size()) : "?";
+  sim_common::warnIfStartsBelowGround(model, settings, source_name, link_name, depth_m);
 }
 
 void MujocoPhysics::placeAtInitialPositions() {
   for (std::size_t j = 0; j < joints_.size(); ++j) {
-    data_->qpos[joints_[j].qpos_address] = initial_positions_[j];
-    data_->qvel[joints_[j].dof_address] = 0.0;
+    d_->qpos[joints_[j].qpos_address] = initial_positions_[j];
+    d_->qvel[joints_[j].dof_address] = 0.0;
   }
-  mj_forward(model_.get(), data_.get());
+  mj_forward(m_, d_);
 }
 
 double MujocoPhysics::jointPosition(std::size_t joint) const noexcept {
-  return data_->qpos[joints_[joint].qpos_address];
+  return d_->qpos[joints_[joint].qpos_address];
 }
 
 double MujocoPhysics::jointVelocity(std::size_t joint) const noexcept {
-  return data_->qvel[joints_[joint].dof_address];
+  return d_->qvel[joints_[joint].dof_address];
 }
 
 void MujocoPhysics::step() noexcept {
-  mjData& d = *data_;
+  mjData& d = *d_;
   // Efforts for this step; the motors' are solved below.
   std::size_t motors = 0;
   for (std::size_t j = 0; j < joints_.size(); ++j) {
@@ -198,7 +204,8 @@ void MujocoPhysics::step() noexcept {
   }
   if (motors > 0) solveMotorEfforts(motors);
 
-  mj_step(model_.get(), &d);
+  // Alone, the robot steps its model; in a world, the world steps it.
+  if (world_ == nullptr) mj_step(m_, &d);
 
   endEffortCommands();
 }
@@ -209,8 +216,8 @@ void MujocoPhysics::step() noexcept {
 // other force (gravity, Coriolis, damping, stops, contacts, effort
 // commands) at the start of the step.
 void MujocoPhysics::solveMotorEfforts(std::size_t motors) noexcept {
-  const mjModel& m = *model_;
-  mjData& d = *data_;
+  const mjModel& m = *m_;
+  mjData& d = *d_;
   const std::size_t nv = static_cast<std::size_t>(m.nv);
   const double dt = m.opt.timestep;
 
@@ -262,27 +269,38 @@ void MujocoPhysics::solveMotorEfforts(std::size_t motors) noexcept {
 }
 
 void MujocoPhysics::reset() {
-  mj_resetData(model_.get(), data_.get());
+  if (world_ == nullptr) {
+    mj_resetData(m_, d_);
+  } else {
+    // Only this robot's share of the world: its joints at their model
+    // positions (a free joint at the spawn pose), at rest.
+    for (const OwnJoint& joint : own_joints_) {
+      std::copy_n(m_->qpos0 + joint.qpos_address, joint.qpos_count, d_->qpos + joint.qpos_address);
+      std::fill_n(d_->qvel + joint.dof_address, joint.dof_count, 0.0);
+      std::fill_n(d_->qacc_warmstart + joint.dof_address, joint.dof_count, 0.0);
+      std::fill_n(d_->qfrc_applied + joint.dof_address, joint.dof_count, 0.0);
+    }
+  }
   clearJointCommands();
   for (Joint& joint : joints_) joint.applied_effort = 0.0;
   placeAtInitialPositions();
 }
 
 void MujocoPhysics::setJointState(std::size_t joint, double position, double velocity) {
-  data_->qpos[joints_.at(joint).qpos_address] = position;
-  data_->qvel[joints_.at(joint).dof_address] = velocity;
-  mj_forward(model_.get(), data_.get());
+  d_->qpos[joints_.at(joint).qpos_address] = position;
+  d_->qvel[joints_.at(joint).dof_address] = velocity;
+  mj_forward(m_, d_);
 }
 
 std::array<double, 3> MujocoPhysics::linkWorldPosition(const std::string& link_name) const {
-  const int body = link_name == "world" ? 0 : mj_name2id(model_.get(), mjOBJ_BODY, link_name.c_str());
+  const int body = link_name == "world" ? 0 : mj_name2id(m_, mjOBJ_BODY, (prefix_ + link_name).c_str());
   if (body < 0) throw Error("MuJoCo world: no link '" + link_name + "' in the robot");
-  const mjtNum* position = data_->xpos + 3 * body;
+  const mjtNum* position = d_->xpos + 3 * body;
   return {position[0], position[1], position[2]};
 }
 
-int MujocoPhysics::contactCount() const noexcept { return data_ ? data_->ncon : 0; }
+int MujocoPhysics::contactCount() const noexcept { return d_ != nullptr ? d_->ncon : 0; }
 
-double MujocoPhysics::time() const noexcept { return data_ ? data_->time : 0.0; }
+double MujocoPhysics::time() const noexcept { return d_ != nullptr ? d_->time : 0.0; }
 
 }  // namespace servoloop::sim_mujoco

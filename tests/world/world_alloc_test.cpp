@@ -1,12 +1,15 @@
-// The world loop's cycles allocate nothing with several robots in one bullet
-// world, touching: the wheeled base pushing a row of three 0.3 kg boxes (its diff
+// The world loop's cycles allocate nothing with several robots in one world,
+// touching, on bullet and on mujoco: the wheeled base pushing a row of three 0.3 kg boxes (its diff
 // drive and joint state controllers publishing, timed cmd_vel publications
 // between segments), and the seed arm swinging under its position
 // controller. Counted on the world's thread, over its segments of cycles
-// (the real-time part), through operator new and Bullet's own allocator hook.
+// (the real-time part), through operator new and the engine's own allocator
+// hook (Bullet's, MuJoCo's mju_user_malloc).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -20,14 +23,45 @@
 #include "wait_until.hpp"
 #include "world_test_support.hpp"
 
+#ifdef SERVOLOOP_TEST_MUJOCO
+#include <mujoco/mujoco.h>
+#endif
+
 namespace servoloop::world_test {
 namespace {
 
 namespace bullet_alloc = servoloop::testing::bullet_alloc;
 
-TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
+// MuJoCo's allocations, all and those while counting (as bullet_alloc's).
+namespace mujoco_alloc {
+std::atomic<std::size_t> all{0};
+std::atomic<std::size_t> counted{0};
+std::atomic<bool> counting{false};
+#ifdef SERVOLOOP_TEST_MUJOCO
+void* countingAlloc(std::size_t size) {
+  all.fetch_add(1, std::memory_order_relaxed);
+  if (counting.load(std::memory_order_relaxed)) counted.fetch_add(1, std::memory_order_relaxed);
+  return std::aligned_alloc(64, (size + 63) / 64 * 64);  // MuJoCo's own alignment
+}
+void release(void* p) { std::free(p); }
+// Installed before any MuJoCo object exists (the plugin shares libmujoco's hook).
+const bool kInstalled = [] {
+  mju_user_malloc = countingAlloc;
+  mju_user_free = release;
+  return true;
+}();
+#endif
+}  // namespace mujoco_alloc
+
+class WorldAllocation : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
+  const std::string backend = GetParam();
+#ifndef SERVOLOOP_TEST_MUJOCO
+  if (backend == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
+#endif
   ASSERT_TRUE(bullet_alloc::kInstalled);
-  servoloop::testing::TempDir dir("servoloop-world-alloc");
+  servoloop::testing::TempDir dir("servoloop-world-alloc-" + backend);
   servoloop::testing::writeFile(dir.path() / "box.urdf", boxUrdf(0.2, 0.3, 0.5));
   const fs::path source(SERVOLOOP_SOURCE_DIR);
   // The base and the boxes drive along y = kLane, clear of the seed arm,
@@ -39,7 +73,7 @@ TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   store.loadFile((source / "robots/diff_bot/control_config/diff_bot_controllers.yaml").string(), "/");
   store.loadFile((source / "robots/one_dof/control_config/one_dof_ctl_params.yaml").string(), "/");
 
-  auto world = plugins->create<hardware_interface::SimulatedWorld>("bullet/world");
+  auto world = plugins->create<hardware_interface::SimulatedWorld>(backend + "/world");
   world->init({0.001, {0.0, 0.0, -9.81}, true});
   ASSERT_TRUE(world->robotsTouch());
 
@@ -55,10 +89,12 @@ TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
     if (loop_ptr->steps() < kCountFromStep) return;
     counter.emplace();  // this (the world's) thread
     bullet_alloc::counting = true;
+    mujoco_alloc::counting = true;
   };
   options.after_segment = [&] {
     if (!counter) return;
     bullet_alloc::counting = false;
+    mujoco_alloc::counting = false;
     allocations += counter->allocations();
     if (counter->allocations() != 0) servoloop::testing::AllocationCounter::printFirstCountedStack();
     counter.reset();
@@ -70,7 +106,7 @@ TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   node::RobotWorld robot_world;
   robot_world.plugins = plugins;
   robot_world.parameters = &store;
-  robot_world.world.backend = "bullet";
+  robot_world.world.backend = backend;
   robot_world.world.ground_plane = true;
   robot_world.update_rate_hz = 1000.0;
   robot_world.simulated_world = world.get();
@@ -118,8 +154,13 @@ TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   loop.stop();
 
   EXPECT_EQ(allocations, 0u);
-  ASSERT_GT(bullet_alloc::all.load(), 0u) << "the hook must see Bullet's allocations";
-  EXPECT_EQ(bullet_alloc::counted.load(), 0u) << "Bullet allocated during the world's cycles";
+  if (backend == "bullet") {
+    ASSERT_GT(bullet_alloc::all.load(), 0u) << "the hook must see Bullet's allocations";
+    EXPECT_EQ(bullet_alloc::counted.load(), 0u) << "Bullet allocated during the world's cycles";
+  } else {
+    ASSERT_GT(mujoco_alloc::all.load(), 0u) << "the hook must see MuJoCo's allocations";
+    EXPECT_EQ(mujoco_alloc::counted.load(), 0u) << "MuJoCo allocated during the world's cycles";
+  }
   EXPECT_GT(counted_segments, 100u);
   // The cycles counted were the real thing: the base pushed the row of boxes.
   hardware_interface::BaseGroundTruth first_box;
@@ -130,6 +171,8 @@ TEST(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
 
   for (const auto& robot : robots) EXPECT_NEAR(robot->simTime(), 6.0, 1e-9) << robot->robotNamespace();
 }
+
+INSTANTIATE_TEST_SUITE_P(Engines, WorldAllocation, ::testing::Values("bullet", "mujoco"));
 
 }  // namespace
 }  // namespace servoloop::world_test

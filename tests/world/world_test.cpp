@@ -1,5 +1,5 @@
 // One world per node, through the whole node: robots and objects of a launch
-// file touch each other (bullet), a robot spawned into a running world
+// file touch each other (bullet and mujoco), a robot spawned into a running world
 // touches the others, reruns of a world of several robots are bit-identical,
 // and a robot whose hardware stops leaves the others running.
 #include <gtest/gtest.h>
@@ -49,12 +49,22 @@ void runRecorded(const fs::path& launch_file, const fs::path& dir, double durati
   node.shutdown();
 }
 
+// Each case on both engines: each builds every robot of a node into one world.
+class World : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+#ifndef SERVOLOOP_TEST_MUJOCO
+    if (GetParam() == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
+#endif
+  }
+};
+
 // The issue's own case: a wheeled base driving straight at a free box. With
 // both in one world the base pushes the box ahead of it along its path.
-TEST(World, WheeledBasePushesAFreeBoxAlongItsPath) {
-  TempDir dir("servoloop-world-push");
+TEST_P(World, WheeledBasePushesAFreeBoxAlongItsPath) {
+  TempDir dir("servoloop-world-push-" + GetParam());
   const double speed = 0.3;
-  runRecorded(writePushWorld(dir.path(), "bullet", speed, 8.0, 0.8), dir.path(), 8.0);
+  runRecorded(writePushWorld(dir.path(), GetParam(), speed, 8.0, 0.8), dir.path(), 8.0);
   auto box = readCsvColumns(dir.path() / "box.csv");
   auto base = readCsvColumns(dir.path() / "base.csv");
   ASSERT_GT(box["pose.position.x"].size(), 300u);
@@ -64,17 +74,21 @@ TEST(World, WheeledBasePushesAFreeBoxAlongItsPath) {
   EXPECT_NEAR(box_start, 0.8, 1e-3);
   // Driven 7.5 s at 0.3 m/s (less its ramp at 1 m/s²): 2.2 m; the box in
   // front of it from 0.8 − 0.25 = 0.55 m on, so pushed ~1.65 m.
-  EXPECT_NEAR(base_end, speed * 7.5 - speed * speed / 2.0, 0.02);
+  // On mujoco the wheels creep under the push (its soft contacts slip in
+  // proportion to the tangential force they carry): the base falls up to
+  // 10 % behind its odometry there, against 0.02 m on bullet.
+  const double driven = speed * 7.5 - speed * speed / 2.0;
+  EXPECT_NEAR(base_end, driven, GetParam() == "mujoco" ? 0.1 * driven : 0.02);
   EXPECT_GT(box_end - box_start, 1.0) << "the box must be pushed along, not driven through";
   EXPECT_NEAR(box_end - base_end, kContactGap, 0.01) << "the box stays on the base's front";
   EXPECT_NEAR(box["pose.position.y"].back(), 0.0, 0.02) << "pushed straight along the path";
   EXPECT_NEAR(box["pose.position.z"].back(), 0.1, 2e-3) << "the box slides on the ground";
 }
 
-TEST(World, RerunsOfAWorldOfSeveralRobotsAreBitIdentical) {
-  TempDir first("servoloop-world-rerun-a");
-  TempDir second("servoloop-world-rerun-b");
-  const fs::path launch = writePushWorld(first.path(), "bullet", 0.4, 4.0, 0.6);
+TEST_P(World, RerunsOfAWorldOfSeveralRobotsAreBitIdentical) {
+  TempDir first("servoloop-world-rerun-a-" + GetParam());
+  TempDir second("servoloop-world-rerun-b-" + GetParam());
+  const fs::path launch = writePushWorld(first.path(), GetParam(), 0.4, 4.0, 0.6);
   runRecorded(launch, first.path(), 4.0);
   runRecorded(launch, second.path(), 4.0);
   for (const char* file : {"box.csv", "base.csv", "joints.csv"}) {
@@ -89,9 +103,9 @@ TEST(World, RerunsOfAWorldOfSeveralRobotsAreBitIdentical) {
 
 // A box spawned (model.spawn) into the world while the base drives: the base
 // reaches it and pushes it.
-TEST(World, ARobotSpawnedIntoARunningWorldTouchesTheOthers) {
-  TempDir dir("servoloop-world-spawn");
-  const fs::path launch = writePushWorld(dir.path(), "bullet", 0.5, 60.0, 0.0);  // the base alone
+TEST_P(World, ARobotSpawnedIntoARunningWorldTouchesTheOthers) {
+  TempDir dir("servoloop-world-spawn-" + GetParam());
+  const fs::path launch = writePushWorld(dir.path(), GetParam(), 0.5, 60.0, 0.0);  // the base alone
   writeFile(dir.path() / "box.urdf", boxUrdf(0.2, 1.0, 1.0));
   NodeOptions options;
   options.serve_ipc = false;
@@ -132,6 +146,8 @@ TEST(World, ARobotSpawnedIntoARunningWorldTouchesTheOthers) {
   node.requestShutdown();
   node.shutdown();
 }
+
+INSTANTIATE_TEST_SUITE_P(Engines, World, ::testing::Values("bullet", "mujoco"));
 
 // Two arms on a backend whose hardware of /a asks to stop at its 500th
 // physics step: /a stands in fault, /b runs on in the same world loop; once

@@ -30,9 +30,11 @@
 //    a plane z = 0 in <worldbody> when settings.ground_plane.
 #include <map>
 #include <string>
+#include <vector>
 
 #include <urdf_model/model.h>
 
+#include "servoloop/hardware_interface/simulated_world.hpp"
 #include "servoloop/sim_common/sim_settings.hpp"
 
 namespace servoloop::sim_mujoco {
@@ -44,5 +46,32 @@ namespace servoloop::sim_mujoco {
 // unreadable or flat collision meshes), naming the joint or link.
 std::string mjcfFromUrdf(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                          const std::map<std::string, double>& joint_armature, const std::string& source_name);
+
+// A robot's share of a world holding several (MujocoWorld): the MJCF of its
+// bodies with every name prefixed, without the world's <option>, defaults and
+// ground. Its bodies touch other robots' (MuJoCo's default contype and
+// conaffinity); without self-collision, <exclude> pairs keep them from
+// touching each other.
+struct MjcfParts {
+  std::string assets;     // <asset> content
+  std::string worldbody;  // <worldbody> content
+  std::string contact;    // <contact> content
+  std::string equality;   // <equality> content
+  int contacts = 0;          // contact capacity it needs
+  int constraint_rows = 0;   // constraint rows it needs
+  bool balance_inertia = false;
+};
+
+// Non-real-time. As mjcfFromUrdf, for a robot of a shared world; `prefix`
+// comes before every name (bodies, joints, meshes).
+MjcfParts mjcfPartsFromUrdf(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
+                            const std::map<std::string, double>& joint_armature, const std::string& source_name,
+                            const std::string& prefix);
+
+// Non-real-time. The MJCF of a world holding `robots`: the world's <option>
+// (time step, gravity, RK4), joint defaults, capacity for every robot's
+// contacts, the ground plane, and each robot's share.
+std::string mjcfOfWorld(const hardware_interface::SimulatedWorldSettings& settings,
+                        const std::vector<const MjcfParts*>& robots);
 
 }  // namespace servoloop::sim_mujoco

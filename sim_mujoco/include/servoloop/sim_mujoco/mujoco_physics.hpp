@@ -32,6 +32,10 @@
 //
 // Rotor inertia: the reflected n²·J is MuJoCo's joint armature, exact.
 //
+// In a node's world (MujocoWorld) every robot is built into one MuJoCo model
+// with its names prefixed; step() then solves this robot's motors on the
+// shared state and the world's step() integrates, so robots touch.
+//
 // Threading: init() and reset() and setJointState() are non-real-time. The
 // getters, setters and step() run on the real-time thread: MuJoCo steps in
 // the mjData arena allocated at init, and every scratch buffer is sized there.
@@ -47,6 +51,8 @@ struct mjData_;
 
 namespace servoloop::sim_mujoco {
 
+class MujocoWorld;
+
 class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
  public:
   MujocoPhysics();
@@ -58,6 +64,11 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   static constexpr double kPositionMotorTimeConstant_s = 0.02;
 
   const char* name() const noexcept override { return "mujoco"; }
+
+  // Non-real-time, before init(): a MujocoWorld is joined (this robot is
+  // built into its model and touches the others); any other world that
+  // simulates robots apart gets a model of this robot's own.
+  void joinWorld(hardware_interface::SimulatedWorld& world) override;
 
   // Non-real-time. Throws ConfigError naming `source_name` when the URDF
   // cannot be mapped or MuJoCo refuses the generated model (its message is
@@ -89,9 +100,13 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   int contactCount() const noexcept;
   // The MJCF text MuJoCo compiled (empty before init).
   const std::string& mjcf() const noexcept { return mjcf_; }
-  // MuJoCo's model and data (null before init).
-  const mjModel_* mujocoModel() const noexcept { return model_.get(); }
-  const mjData_* mujocoData() const noexcept { return data_.get(); }
+  // MuJoCo's model and data (null before init): the world's in a shared world.
+  const mjModel_* mujocoModel() const noexcept { return m_; }
+  const mjData_* mujocoData() const noexcept { return d_; }
+
+  // Non-real-time, no step running (MujocoWorld, after it compiled a model):
+  // this robot's joints found again in `model`, whose `data` holds its state.
+  void bind(mjModel_* model, mjData_* data);
 
  private:
   struct ModelDeleter {
@@ -113,13 +128,30 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   // Sets the efforts of the first `motors` entries of motor_joints_.
   void solveMotorEfforts(std::size_t motors) noexcept;
 
+  // A joint of the robot in the model: where its state lies.
+  struct OwnJoint {
+    int qpos_address;
+    int qpos_count;
+    int dof_address;
+    int dof_count;
+  };
+
+  // A robot alone owns its model and data; in a world they are the world's.
   std::unique_ptr<mjModel_, ModelDeleter> model_;
   std::unique_ptr<mjData_, DataDeleter> data_;
+  mjModel_* m_ = nullptr;
+  mjData_* d_ = nullptr;
+  MujocoWorld* world_ = nullptr;
+  std::string prefix_;                    // before the robot's names in a shared world
+  std::vector<std::string> joint_names_;  // init()'s joints, in order
+  std::string base_joint_name_;           // the root's free joint, if it floats
+  std::vector<OwnJoint> own_joints_;      // every joint of the robot (free joint too)
   std::string mjcf_;
   int base_qpos_address_ = -1;  // the root's free joint; -1 for a fixed base
   int base_dof_address_ = -1;
   std::vector<Joint> joints_;
   std::vector<double> initial_positions_;
+  std::vector<double> motor_limits_;      // per joint of init()
   double position_motor_time_constant_s_ = kPositionMotorTimeConstant_s;
 
   // Motor solve scratch, sized at init for every joint being a motor.
