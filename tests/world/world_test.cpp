@@ -4,6 +4,8 @@
 // and a robot whose hardware stops leaves the others running.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -145,6 +147,82 @@ TEST_P(World, ARobotSpawnedIntoARunningWorldTouchesTheOthers) {
       << "the world stopped after the refused spawn";
   node.requestShutdown();
   node.shutdown();
+}
+
+// Two seed arms face each other 1.4 m apart and are both commanded to swing
+// to 1.5 rad, towards each other: their links (cylinders of radius 0.1 m,
+// 1 m long from the 1 m high joint) would cross at about 0.8 rad. In one
+// world they stop in contact instead: the two link axes end 0.2 m apart (the
+// sum of the radii), neither arm reaches its command, and they stand mirrored.
+TEST_P(World, TwoArmsSweptIntoEachOtherStopInContact) {
+  TempDir dir("servoloop-world-arms-" + GetParam());
+  const fs::path seed = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
+  // The seed without its gazebo_ros_control block (which names its namespace).
+  std::string urdf = readFile(seed / "minimal_robot_description_w_jnt_ctl.urdf");
+  const std::size_t gazebo = urdf.find("<gazebo>");
+  ASSERT_NE(gazebo, std::string::npos);
+  urdf.erase(gazebo, urdf.find("</gazebo>", gazebo) + 9 - gazebo);
+  writeFile(dir.path() / "arm.urdf", urdf);
+  std::string params;
+  for (const char* arm : {"arm_a", "arm_b"}) {
+    params += std::string(arm) +
+              ":\n  joint_state_controller: {type: joint_state_controller/JointStateController, publish_rate: 50}\n"
+              "  joint1_position_controller:\n    type: effort_controllers/JointPositionController\n"
+              "    joint: joint1\n    pid: {p: 10.0, i: 10.0, d: 10.0, i_clamp_min: -10.0, i_clamp_max: 10.0}\n";
+  }
+  writeFile(dir.path() / "arms.yaml", params);
+  writeFile(dir.path() / "arms.launch.yaml",
+            "world: {backend: " + GetParam() + ", time_step: 0.001, ground_plane: true}\n"
+            "controller_manager: {update_rate: 1000}\nrobots:\n"
+            "  - {urdf: arm.urdf, model: arm_a, namespace: /arm_a, params: [arms.yaml], pose: [0, 0, 0, 0, 0, 0],\n"
+            "     controllers: [joint_state_controller, joint1_position_controller]}\n"
+            "  - {urdf: arm.urdf, model: arm_b, namespace: /arm_b, pose: [1.4, 0, 0, 0, 0, 3.141592653589793],\n"
+            "     controllers: [joint_state_controller, joint1_position_controller]}\n"
+            "publish:\n"
+            "  - {topic: /arm_a/joint1_position_controller/command, type: std_msgs/Float64, time: 0.1, value: 1.5}\n"
+            "  - {topic: /arm_b/joint1_position_controller/command, type: std_msgs/Float64, time: 0.1, value: 1.5}\n");
+  NodeOptions options;
+  options.serve_ipc = false;
+  options.real_time_factor = 0.0;
+  options.start_paused = true;
+  Node node(node::loadLaunchFile(dir.path() / "arms.launch.yaml"), options);
+  node.start();
+  ASSERT_EQ(node.stepWorld(10000), 10000u);
+  const double a = node.findRobot("/arm_a")->joints().front().position;
+  const double b = node.findRobot("/arm_b")->joints().front().position;
+  EXPECT_LT(a, 1.2) << "arm_a swung through arm_b";
+  EXPECT_LT(b, 1.2) << "arm_b swung through arm_a";
+  EXPECT_GT(a, 0.5);
+  EXPECT_NEAR(a, b, 0.05) << "two equal arms pushing each other stand mirrored";
+  // Each link, cut by the plane of both axes (world x-z, where they touch by
+  // symmetry), is a 1 m x 0.2 m rectangle from its joint at height 1 m. In
+  // contact, the two rectangles touch: neither a gap nor an overlap beyond
+  // 1 cm.
+  struct Rect {
+    double ox, oz, dx, dz;  // joint, unit axis
+    double along(double px, double pz) const { return (px - ox) * dx + (pz - oz) * dz; }
+    double across(double px, double pz) const { return (px - ox) * dz - (pz - oz) * dx; }
+    // How far inside (> 0) or outside (< 0) a point is.
+    double depth(double px, double pz) const {
+      const double u = along(px, pz), v = std::abs(across(px, pz));
+      if (u >= 0 && u <= 1 && v <= 0.1) return std::min({u, 1 - u, 0.1 - v});
+      const double cu = std::clamp(u, 0.0, 1.0), cv = std::min(v, 0.1);
+      return -std::hypot(u - cu, v - cv);
+    }
+    std::array<std::array<double, 2>, 4> corners() const {
+      return {{{ox + 0.1 * dz, oz - 0.1 * dx}, {ox - 0.1 * dz, oz + 0.1 * dx},
+               {ox + dx + 0.1 * dz, oz + dz - 0.1 * dx}, {ox + dx - 0.1 * dz, oz + dz + 0.1 * dx}}};
+    }
+  };
+  const Rect link_a{0.0, 1.0, std::sin(a), std::cos(a)};
+  const Rect link_b{1.4, 1.0, -std::sin(b), std::cos(b)};
+  // The deepest corner of either in the other: > 0 overlap, < 0 a gap (the
+  // corners are where two such rectangles meet first when they close in).
+  double deepest = -1.0;
+  for (const auto& [one, other] : {std::pair{link_a, link_b}, std::pair{link_b, link_a}}) {
+    for (const auto& corner : one.corners()) deepest = std::max(deepest, other.depth(corner[0], corner[1]));
+  }
+  EXPECT_LT(std::abs(deepest), 0.01) << "the links end touching (overlap > 0, gap < 0): " << deepest << " m";
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, World, ::testing::Values("bullet", "mujoco"));
