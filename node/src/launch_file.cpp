@@ -176,6 +176,7 @@ class Parser {
                                                  "(0 runs as fast as possible)");
     }
     if (node["file"]) world_file_ = existingFile(node["file"], "world.file", "world file");
+    if (node["shared"]) world.shared = boolean(node["shared"], "world.shared");
     return world;
   }
 

@@ -35,6 +35,7 @@ const Schema& world() {
           {"real_time_factor", ValueType::number, "pacing against the wall clock; 0 runs as fast as possible", {.min = 0.0}},
           {"clock", ValueType::text, "sim (lockstep with the physics) or wall (paced by the wall clock)"},
           {"file", ValueType::text, "an SDFormat world file (.world, .sdf): its models and settings"},
+          {"shared", ValueType::boolean, "true: one physics world for all robots (they touch); false: one each"},
       },
       UnknownKeys::error);
   return schema;

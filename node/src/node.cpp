@@ -83,7 +83,7 @@ void Node::createWorld() {
   settings.time_step_s = launch_.world.time_step_s;
   settings.gravity = launch_.world.gravity;
   settings.ground_plane = launch_.world.ground_plane;
-  if (plugins_->hasType(world_type)) {
+  if (launch_.world.shared && plugins_->hasType(world_type)) {
     try {
       world_plugin_ = plugins_->create<hardware_interface::SimulatedWorld>(world_type);
       world_plugin_->init(settings);

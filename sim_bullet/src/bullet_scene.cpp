@@ -1,6 +1,7 @@
 #include "servoloop/sim_bullet/bullet_scene.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -45,12 +46,26 @@ bool smallerFriction(btManifoldPoint& point, const btCollisionObjectWrapper* obj
 
 }  // namespace
 
+namespace {
+
+// Bullet's contact callback is one process-wide pointer, and a process may
+// hold two copies of this code (a program linking the engine beside the
+// bullet plugin it loads, then unloads): each scene makes sure, before it
+// steps, that the pointer is this copy's, never one left behind by an
+// unloaded plugin. Atomic, as scenes step on several threads (Bullet reads it
+// from inside its step only).
+void ensureSceneFriction() noexcept {
+  std::atomic_ref<ContactAddedCallback> callback(gContactAddedCallback);
+  if (callback.load(std::memory_order_relaxed) != &smallerFriction) {
+    callback.store(&smallerFriction, std::memory_order_relaxed);
+  }
+}
+
+}  // namespace
+
 void useSceneFriction(btCollisionObject& collider) {
   collider.setCollisionFlags(collider.getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
-  // Process-wide in Bullet (it acts on flagged colliders only): set once, as
-  // other scenes may be stepping on other threads.
-  static std::once_flag installed;
-  std::call_once(installed, [] { gContactAddedCallback = &smallerFriction; });
+  ensureSceneFriction();
 }
 
 SceneCore::SceneCore(const SceneSettings& scene_settings) : settings(scene_settings) {
@@ -158,6 +173,7 @@ BulletScene::~BulletScene() = default;
 
 void BulletScene::step() {
   detail::SceneCore& scene = *core_;
+  detail::ensureSceneFriction();
   for (detail::SceneMember* member : scene.members) member->beforeSceneStep();
   // maxSubSteps = 0: exactly one step of time_step_s, no interpolation.
   scene.world->stepSimulation(scene.settings.time_step_s, 0, scene.settings.time_step_s);

@@ -213,7 +213,7 @@ TEST(SdfWorld, LaunchFilesNameAWorldFile) {
   const fs::path world = writeWorld(dir.path(), boxModel("crate", 0, 0, 0.1, 0.5) + boxModel("pallet", 1, 0, 0.1, 0.5));
   const fs::path seed = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "one_dof";
   const fs::path yaml = dir.path() / "with_world.launch.yaml";
-  writeFile(yaml, "world: {file: test.world, time_step: 0.002}\nrobots:\n  - urdf: " +
+  writeFile(yaml, "world: {file: test.world, time_step: 0.002, shared: false}\nrobots:\n  - urdf: " +
                       (seed / "minimal_robot_description_w_jnt_ctl.urdf").string() + "\n");
   const node::LaunchFile launch = node::loadLaunchFile(yaml);
   ASSERT_EQ(launch.robots.size(), 3u);
@@ -221,6 +221,7 @@ TEST(SdfWorld, LaunchFilesNameAWorldFile) {
   EXPECT_EQ(launch.robots[1].model, "pallet");
   EXPECT_EQ(launch.world.time_step_s, 0.002) << "the launch file's own key wins";
   EXPECT_TRUE(launch.world.ground_plane);
+  EXPECT_FALSE(launch.world.shared);
 
   const fs::path ros = dir.path() / "gazebo.launch";
   writeFile(ros, "<launch><include file=\"$(find gazebo_ros)/launch/empty_world.launch\">"

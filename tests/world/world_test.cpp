@@ -225,6 +225,27 @@ TEST_P(World, TwoArmsSweptIntoEachOtherStopInContact) {
   EXPECT_LT(std::abs(deepest), 0.01) << "the links end touching (overlap > 0, gap < 0): " << deepest << " m";
 }
 
+// world: {shared: false}: each robot in a physics world of its own, as a
+// launch file may ask for robots that never touch: the base drives through
+// the box's place and the box stays where it was.
+TEST_P(World, SeparateWorldsDoNotTouch) {
+  TempDir dir("servoloop-world-separate-" + GetParam());
+  LaunchFile launch = withRecordings(writePushWorld(dir.path(), GetParam(), 0.4, 4.0, 0.6), dir.path());
+  launch.world.shared = false;
+  NodeOptions options;
+  options.duration_s = 4.0;
+  options.serve_ipc = false;
+  Node node(launch, options);
+  node.start();
+  node.waitUntilDone({}, std::chrono::milliseconds(10));
+  node.shutdown();
+  auto box = readCsvColumns(dir.path() / "box.csv");
+  auto base = readCsvColumns(dir.path() / "base.csv");
+  ASSERT_GT(base["pose.position.x"].size(), 100u);
+  EXPECT_GT(base["pose.position.x"].back(), 0.6 + 0.5) << "the base drove through the box's place";
+  EXPECT_NEAR(box["pose.position.x"].back(), 0.6, 1e-3) << "a box in a world of its own is not pushed";
+}
+
 INSTANTIATE_TEST_SUITE_P(Engines, World, ::testing::Values("bullet", "mujoco"));
 
 // Two arms on a backend whose hardware of /a asks to stop at its 500th

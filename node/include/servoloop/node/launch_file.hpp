@@ -43,6 +43,10 @@ struct WorldSettings {
   // wall clock like hardware (WallClockLoop, stepped once per cycle); sim
   // (default): in lockstep with their physics (SimulationLoop).
   bool wall_clock = false;
+  // world.shared: false simulates each robot in a world of its own (they do
+  // not touch), as a backend without a shared world does; for robots that
+  // never touch, when that is faster (docs/benchmarks.md).
+  bool shared = true;
 };
 
 struct ControllerManagerSettings {

@@ -1,0 +1,198 @@
+// The shared world's loop against the raw engine stepping the same world:
+// 1, 4 and 16 seed arms (each under its position controller, commanded to
+// 1 rad) beside 16 free boxes resting on the ground, 5 s of 1 ms steps.
+//
+//   raw bullet:  one BulletScene with every arm and box; per step, each arm's
+//                position law written out by hand (HandWrittenPositionLaw,
+//                the servoloop controller's law and limits) and one scene step
+//   servoloop:   a node (node::Node, as `servoloop launch` builds and runs it)
+//                of the same robots, free-running: every robot's cycle
+//                (read, controllers, write) and the world's step, its topics
+//                delivered, in one world (world.shared: true)
+//   separate:    the same node with world.shared: false (each robot in a
+//                physics world of its own; nothing touches)
+//
+// Wall time of the run (the node's construction — URDFs, plugins — is not
+// counted, as the raw world's building is not), alternating the three, median
+// of 5; the ratios are of medians measured in this one run. The node runs its
+// loop on one thread and delivers its topics on others; the raw loop is one
+// thread.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench_support.hpp"
+#include "loop_fixtures.hpp"
+#include "servoloop/description/robot_model.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/node.hpp"
+#include "servoloop/sim_bullet/bullet_scene.hpp"
+#include "servoloop/sim_bullet/bullet_world.hpp"
+
+namespace servoloop::bench {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr std::uint64_t kSteps = 5000;
+constexpr int kBoxes = 16;
+constexpr int kRepetitions = 5;
+
+const char* const kBoxUrdf = R"(<robot name="box"><link name="box">
+<inertial><mass value="1"/><inertia ixx="0.0067" ixy="0" ixz="0" iyy="0.0067" iyz="0" izz="0.0067"/></inertial>
+<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>)";
+
+double boxX(int k) { return 0.5 * (k % 4); }
+double boxY(int k) { return -2.0 - 0.5 * (k / 4); }
+double armX(int k) { return 1.5 * k; }
+
+// The folder with the seed arm (its gazebo_ros_control block, which names its
+// namespace, left out), the box, and every arm's controllers.
+struct Files {
+  fs::path dir;
+  explicit Files(int arms) : dir(fs::temp_directory_path() / ("servoloop-world-bench-" + std::to_string(::getpid()))) {
+    fs::create_directories(dir);
+    std::ifstream in(sourcePath("robots/one_dof/minimal_robot_description_w_jnt_ctl.urdf"));
+    std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t gazebo = urdf.find("<gazebo>");
+    urdf.erase(gazebo, urdf.find("</gazebo>", gazebo) + 9 - gazebo);
+    std::ofstream(dir / "arm.urdf") << urdf;
+    std::ofstream(dir / "box.urdf") << kBoxUrdf;
+    std::ofstream params(dir / "arms.yaml");
+    for (int k = 0; k < arms; ++k) {
+      params << "arm" << k
+             << ":\n  joint_state_controller: {type: joint_state_controller/JointStateController, publish_rate: 50}\n"
+                "  joint1_position_controller:\n    type: effort_controllers/JointPositionController\n"
+                "    joint: joint1\n    pid: {p: 10.0, i: 10.0, d: 10.0, i_clamp_min: -10.0, i_clamp_max: 10.0}\n";
+    }
+  }
+  ~Files() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+std::string launchText(int arms, bool shared) {
+  std::string yaml = "world: {backend: bullet, time_step: 0.001, ground_plane: true, shared: " +
+                     std::string(shared ? "true" : "false") + "}\ncontroller_manager: {update_rate: 1000}\nrobots:\n";
+  for (int k = 0; k < arms; ++k) {
+    yaml += "  - {urdf: arm.urdf, model: arm" + std::to_string(k) + ", namespace: /arm" + std::to_string(k) +
+            ", params: [arms.yaml], pose: [" + std::to_string(armX(k)) +
+            ", 0, 0, 0, 0, 0], controllers: [joint_state_controller, joint1_position_controller]}\n";
+  }
+  for (int k = 0; k < kBoxes; ++k) {
+    yaml += "  - {urdf: box.urdf, model: box" + std::to_string(k) + ", namespace: /box" + std::to_string(k) +
+            ", pose: [" + std::to_string(boxX(k)) + ", " + std::to_string(boxY(k)) + ", 0.1, 0, 0, 0]}\n";
+  }
+  yaml += "publish:\n";
+  for (int k = 0; k < arms; ++k) {
+    yaml += "  - {topic: /arm" + std::to_string(k) +
+            "/joint1_position_controller/command, type: std_msgs/Float64, time: 0.0, value: 1.0}\n";
+  }
+  return yaml;
+}
+
+// Seconds of wall time for kSteps of the node (built beforehand).
+double runNode(const Files& files, int arms, bool shared) {
+  node::NodeOptions options;
+  options.serve_ipc = false;
+  options.real_time_factor = 0.0;
+  options.duration_s = static_cast<double>(kSteps) * kTimeStepS;
+  node::Node node(node::parseLaunchFile(launchText(arms, shared), "world_bench", files.dir), options);
+  const auto start = std::chrono::steady_clock::now();
+  node.start();
+  node.waitUntilDone({}, std::chrono::milliseconds(5));
+  const auto end = std::chrono::steady_clock::now();
+  node.shutdown();
+  return std::chrono::duration<double>(end - start).count();
+}
+
+// Seconds of wall time for kSteps of the same world stepped by hand.
+double runRaw(const Files& files, int arms) {
+  const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
+  const auto box_model = parseRobotModel(kBoxUrdf, "box");
+  sim_bullet::SceneSettings scene_settings;
+  scene_settings.time_step_s = kTimeStepS;
+  scene_settings.ground_plane = true;
+  sim_bullet::BulletScene scene(scene_settings);
+  std::vector<std::unique_ptr<sim_bullet::BulletWorld>> bodies;
+  struct Arm {
+    sim_bullet::BulletWorld* world;
+    std::size_t joint;
+    HandWrittenPositionLaw law;
+  };
+  std::vector<Arm> laws;
+  const RobotCase seed = seedRobot();
+  const YAML::Node params = seed.namespaceParams();
+  for (int k = 0; k < arms; ++k) {
+    sim_bullet::WorldSettings settings;
+    settings.time_step_s = kTimeStepS;
+    settings.ground_plane = true;
+    settings.fixed_base = sim_bullet::FixedBase::fixed;
+    settings.initial_base_position = Eigen::Vector3d(armX(k), 0.0, 0.0);
+    bodies.push_back(std::make_unique<sim_bullet::BulletWorld>(*arm_model, settings, scene));
+    HandWrittenPositionLaw law = HandWrittenPositionLaw::forJoint(seed, params, 0, *arm_model);
+    law.setpoint_rad = 1.0;
+    laws.push_back({bodies.back().get(), bodies.back()->jointIndex("joint1"), law});
+  }
+  for (int k = 0; k < kBoxes; ++k) {
+    sim_bullet::WorldSettings settings;
+    settings.time_step_s = kTimeStepS;
+    settings.ground_plane = true;
+    settings.fixed_base = sim_bullet::FixedBase::floating;
+    settings.initial_base_position = Eigen::Vector3d(boxX(k), boxY(k), 0.1);
+    bodies.push_back(std::make_unique<sim_bullet::BulletWorld>(*box_model, settings, scene));
+  }
+  scene.restart();
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t n = 0; n < kSteps; ++n) {
+    for (Arm& arm : laws) {
+      arm.world->setJointEffort(
+          arm.joint, arm.law.effort(arm.world->jointPosition(arm.joint), arm.world->jointVelocity(arm.joint)));
+    }
+    scene.step();
+  }
+  const auto end = std::chrono::steady_clock::now();
+  // The seed's gains take about 20 s to settle; in 5 s the arm is well on its way.
+  if (!(laws.front().world->jointPosition(laws.front().joint) > 0.5)) {
+    std::fprintf(stderr, "raw bullet: the first arm did not swing towards its setpoint\n");
+  }
+  bodies.clear();  // before the scene
+  return std::chrono::duration<double>(end - start).count();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
+}  // namespace servoloop::bench
+
+int main() {
+  using namespace servoloop::bench;
+  std::printf("=== The shared world: %llu steps of 1 ms, 16 boxes beside N seed arms; wall time, median of %d ===\n",
+              static_cast<unsigned long long>(kSteps), kRepetitions);
+  std::printf("%-8s %12s %14s %14s %12s %18s\n", "arms", "raw (ms)", "shared (ms)", "separate (ms)",
+              "shared/raw", "separate/shared");
+  for (const int arms : {1, 4, 16}) {
+    const Files files(arms);
+    std::vector<double> raw, shared, separate;
+    for (int r = 0; r < kRepetitions; ++r) {
+      raw.push_back(runRaw(files, arms));
+      shared.push_back(runNode(files, arms, true));
+      separate.push_back(runNode(files, arms, false));
+    }
+    const double raw_s = median(raw), shared_s = median(shared), separate_s = median(separate);
+    std::printf("%-8d %12.1f %14.1f %14.1f %12.3f %18.3f\n", arms, raw_s * 1e3, shared_s * 1e3, separate_s * 1e3,
+                shared_s / raw_s, separate_s / shared_s);
+  }
+  return 0;
+}
