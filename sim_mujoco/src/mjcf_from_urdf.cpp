@@ -32,6 +32,11 @@ constexpr const char* kStopImpedance = "0.95 0.99 0.001";
 constexpr int kContactsPerBody = 16;
 constexpr int kMinContacts = 100;
 constexpr int kConstraintRowsPerContact = 6;
+// MuJoCo's contacts are soft: a held object creeps out of a grip, a pushing
+// wheel slips. Its noslip solver, run after the main one, takes the slip out
+// of the friction constraints (in a world of several bodies, where objects
+// are held and pushed).
+constexpr int kNoslipIterations = 10;
 // Friction coefficients ranked for geom priorities (frictionAttributes): in
 // steps of 0.001 up to 1000.
 constexpr double kFrictionRanksPerUnit = 1000.0;
@@ -525,7 +530,8 @@ std::string mjcfOfWorld(const hardware_interface::SimulatedWorldSettings& settin
       << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"" << (balance ? " balanceinertia=\"true\"" : "")
       << "/>\n"
       << "  <option timestep=\"" << number(dt) << "\" gravity=\""
-      << vec3(settings.gravity[0], settings.gravity[1], settings.gravity[2]) << "\" integrator=\"RK4\"/>\n"
+      << vec3(settings.gravity[0], settings.gravity[1], settings.gravity[2]) << "\" integrator=\"RK4\" noslip_iterations=\""
+      << kNoslipIterations << "\"/>\n"
       << "  <size nconmax=\"" << contacts << "\" njmax=\"" << rows << "\"/>\n"
       << "  <default>\n"
       << "    <joint solreflimit=\"" << number(kStopTimeConstantInSteps * dt) << " 1\" solimplimit=\""
