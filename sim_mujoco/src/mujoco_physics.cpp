@@ -11,6 +11,7 @@
 #include <mujoco/mujoco.h>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/sim_common/ground_penetration.hpp"
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
 #include "servoloop/sim_mujoco/mujoco_world.hpp"
@@ -92,7 +93,8 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   if (world_ != nullptr) {
     prefix_ = world_->newPrefix();
     base_joint_name_ = prefix_ + model.getRoot()->name + "_floating_base";
-    world_->add(*this, mjcfPartsFromUrdf(model, settings, armature, source_name, prefix_), source_name);
+    world_->add(*this, mjcfPartsFromUrdf(model, settings, armature, source_name, prefix_), source_name,
+                model.getName());
     mjcf_ = world_->mjcf();
   } else {
     base_joint_name_ = model.getRoot()->name + "_floating_base";
@@ -112,6 +114,43 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   }
   reset();
   warnOfGroundPenetration(model, settings, source_name);
+  if (world_ != nullptr) warnOfOverlap(source_name);
+}
+
+// After reset()'s mj_forward the contacts of the spawn pose are known: the
+// deepest between one of this robot's bodies and another robot's.
+void MujocoPhysics::warnOfOverlap(const std::string& source_name) const {
+  const mjModel& m = *m_;
+  const mjData& d = *d_;
+  const auto prefixOf = [](std::string_view body) {
+    const std::size_t slash = body.find('/');
+    return slash == std::string_view::npos ? std::string() : std::string(body.substr(0, slash + 1));
+  };
+  double depth_m = 0.0;
+  std::string link;
+  std::string other;
+  for (int i = 0; i < d.ncon; ++i) {
+    const mjContact& contact = d.contact[i];
+    const char* first = mj_id2name(&m, mjOBJ_BODY, m.geom_bodyid[contact.geom1]);
+    const char* second = mj_id2name(&m, mjOBJ_BODY, m.geom_bodyid[contact.geom2]);
+    if (first == nullptr || second == nullptr) continue;
+    std::string own = first;
+    std::string foreign = second;
+    if (prefixOf(own) != prefix_) std::swap(own, foreign);
+    const std::string foreign_prefix = prefixOf(foreign);
+    if (prefixOf(own) != prefix_ || foreign_prefix.empty() || foreign_prefix == prefix_) continue;
+    if (-contact.dist > depth_m) {
+      depth_m = -contact.dist;
+      link = own.substr(prefix_.size());
+      other = "robot '" + world_->robotName(foreign_prefix) + "' link '" + foreign.substr(foreign_prefix.size()) + "'";
+    }
+  }
+  if (depth_m > sim_common::kGroundPenetrationWarningDepth_m) {
+    logger().warn(
+        "{}: link '{}' starts {:.3f} m inside {} at its spawn pose; the contact pushes the two apart with a jolt at "
+        "the first step. Spawn it elsewhere (launch file: pose: [x, y, z]; spawn-model: -x -y -z)",
+        source_name, link, depth_m, other);
+  }
 }
 
 void MujocoPhysics::bind(mjModel_* model, mjData_* data) {

@@ -41,12 +41,20 @@ void MujocoWorld::restart() {
   mj_forward(model_.get(), data_.get());
 }
 
+std::string MujocoWorld::robotName(const std::string& prefix) const {
+  for (const Member& member : members_) {
+    if (member.prefix == prefix) return member.name;
+  }
+  return "";
+}
+
 std::string MujocoWorld::newPrefix() { return "r" + std::to_string(next_prefix_++) + "/"; }
 
-void MujocoWorld::add(MujocoPhysics& robot, MjcfParts parts, const std::string& source_name) {
+void MujocoWorld::add(MujocoPhysics& robot, MjcfParts parts, const std::string& source_name,
+                      const std::string& robot_name) {
   if (!initialised_) throw Error("mujoco world: a robot joined a world that was not initialised");
   std::vector<Member> members = members_;
-  members.push_back(Member{&robot, std::move(parts)});
+  members.push_back(Member{&robot, std::move(parts), robot.namePrefix(), robot_name});
   rebuild(std::move(members), source_name);
 }
 

@@ -3,8 +3,8 @@
 // thrown with set_model_state flies the ballistic path of the closed-form
 // solution on bullet and mujoco, a pose set is the pose read back, bad
 // requests change nothing, and a model deleted while the world runs leaves
-// the others running — on bullet, with a trajectory bit-identical to a world
-// that never had it.
+// the others running, with a trajectory bit-identical to a world that never
+// had it (on both engines).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/logging.hpp"
 #include "servoloop/hardware_interface/simulated_robot_hw.hpp"
 #include "servoloop/node/node.hpp"
 #include "servoloop/realtime/messages.hpp"
@@ -249,14 +250,51 @@ TEST_P(ModelServices, ModelStatesListEveryModelAtFiftyHertz) {
   EXPECT_EQ(last.twist[2].linear.z, 0.0);
 }
 
+// A model spawned 0.1 m into another (two 0.2 m boxes 0.1 m apart): one
+// warning naming the link, the depth and the other model, on both engines.
+TEST_P(ModelServices, ASpawnIntoAnotherModelIsOneWarningWithTheDepth) {
+  const std::string backend = GetParam();
+#ifndef SERVOLOOP_TEST_MUJOCO
+  if (backend == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
+#endif
+  TempDir dir("servoloop-model-overlap-" + backend);
+  Node world(node::loadLaunchFile(writeBoxWorld(dir.path(), backend, 1)), pausedOptions());
+  world.start();
+  node::RobotSpec inside;
+  inside.urdf = dir.path() / "box.urdf";
+  inside.model = "intruder";
+  inside.robot_namespace = "/intruder";
+  inside.pose = std::array<double, 6>{0.1, 0.0, 0.1, 0.0, 0.0, 0.0};
+  std::vector<std::string> warnings;
+  {
+    const ThreadLogCapture capture;
+    world.spawnRobot(inside);
+    warnings = capture.warnings();
+  }
+  // The depth as the engine's contacts give it: bullet's the overlap, 0.1 m;
+  // MuJoCo's box-box collider puts its contact points half way, 0.05 m.
+  const std::string depth = backend == "mujoco" ? "0.050" : "0.100";
+  int overlaps = 0;
+  for (const std::string& warning : warnings) {
+    if (warning.find("link 'box' starts " + depth + " m inside robot 'box' link 'box'") != std::string::npos) {
+      ++overlaps;
+    }
+  }
+  EXPECT_EQ(overlaps, 1) << ::testing::PrintToString(warnings);
+}
+
 INSTANTIATE_TEST_SUITE_P(Engines, ModelServices, ::testing::Values("bullet", "mujoco"));
 
 // Two boxes thrown at the same moment; one deleted in flight while the world
 // runs. The other flies on, bit for bit as in a world that only ever had it
 // (the two never touch), and the deleted one is gone from every list.
-TEST(ModelServicesDelete, ADeletedModelLeavesTheOthersRunningUnchanged) {
-  TempDir dir("servoloop-model-delete");
-  const fs::path launch = writeBoxWorld(dir.path(), "bullet", 2);
+TEST_P(ModelServices, ADeletedModelLeavesTheOthersRunningUnchanged) {
+  const std::string backend = GetParam();
+#ifndef SERVOLOOP_TEST_MUJOCO
+  if (backend == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
+#endif
+  TempDir dir("servoloop-model-delete-" + backend);
+  const fs::path launch = writeBoxWorld(dir.path(), backend, 2);
 
   const auto throwBoxes = [](Node& world, bool two) {
     world.setModelState("box0", poseAt(0.0, 0.0, 2.0), twistOf(0.5, 0.0, 2.0, 1.0));

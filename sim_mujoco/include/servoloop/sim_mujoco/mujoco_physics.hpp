@@ -107,6 +107,8 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   // Non-real-time, no step running (MujocoWorld, after it compiled a model):
   // this robot's joints found again in `model`, whose `data` holds its state.
   void bind(mjModel_* model, mjData_* data);
+  // Before every name of the robot in a shared world's model ("" alone).
+  const std::string& namePrefix() const noexcept { return prefix_; }
 
  private:
   struct ModelDeleter {
@@ -125,6 +127,8 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   void warnOfGroundPenetration(const urdf::ModelInterface& model, const sim_common::SimSettings& settings,
                                const std::string& source_name) const;
   void placeAtInitialPositions();
+  // In a shared world: one warning when the robot starts inside another's body.
+  void warnOfOverlap(const std::string& source_name) const;
   // Sets the efforts of the first `motors` entries of motor_joints_.
   void solveMotorEfforts(std::size_t motors) noexcept;
 

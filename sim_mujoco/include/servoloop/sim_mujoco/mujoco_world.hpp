@@ -40,14 +40,17 @@ class MujocoWorld final : public hardware_interface::SimulatedWorld {
 
   // Non-real-time, no step running: a name prefix no robot of this world had.
   std::string newPrefix();
+  // (add's `robot_name` is the robot's model name, for messages.)
   // Non-real-time, no step running: `robot`'s share built into the world
   // (recompiled, the others' state carried over), then every robot bound to
   // the new model. Throws servoloop::ConfigError naming `source_name` when
   // MuJoCo refuses the model; the world is then as it was.
-  void add(MujocoPhysics& robot, MjcfParts parts, const std::string& source_name);
+  void add(MujocoPhysics& robot, MjcfParts parts, const std::string& source_name, const std::string& robot_name);
   // Non-real-time, no step running: `robot` taken out, the others carried over.
   void remove(MujocoPhysics& robot) noexcept;
 
+  // The name of the robot whose names start with `prefix` ("" for none).
+  std::string robotName(const std::string& prefix) const;
   // The MJCF the world compiled last ("" with no robot).
   const std::string& mjcf() const noexcept { return mjcf_; }
 
@@ -55,6 +58,8 @@ class MujocoWorld final : public hardware_interface::SimulatedWorld {
   struct Member {
     MujocoPhysics* robot;
     MjcfParts parts;
+    std::string prefix;
+    std::string name;
   };
   struct ModelDeleter {
     void operator()(mjModel_* model) const noexcept;
