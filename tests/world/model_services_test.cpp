@@ -41,14 +41,6 @@ using servoloop::testing::writeFile;
 
 constexpr double kGravity = 9.81;
 
-NodeOptions pausedOptions() {
-  NodeOptions options;
-  options.serve_ipc = false;
-  options.real_time_factor = 0.0;
-  options.start_paused = true;
-  return options;
-}
-
 // A world on `backend` with the ground plane, a 1 ms step and, for each of
 // `boxes`, a free 0.2 m, 1 kg box resting at x = 0.6 k (namespaces /box0 ...).
 fs::path writeBoxWorld(const fs::path& dir, const std::string& backend, int boxes) {
@@ -101,16 +93,31 @@ bool stepsPass(Node& world, std::uint64_t steps) {
   return true;
 }
 
-class ModelServices : public ::testing::TestWithParam<std::string> {};
+class ModelServices : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+#ifndef SERVOLOOP_TEST_MUJOCO
+    if (GetParam() == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
+#endif
+  }
+};
+
+// The box of writeBoxWorld welded to the world at (3, 0, 0.5), model "welded".
+node::RobotSpec weldedBox(const fs::path& dir) {
+  node::RobotSpec fixed;
+  fixed.urdf = dir / "box.urdf";
+  fixed.model = "welded";
+  fixed.robot_namespace = "/welded";
+  fixed.fixed_base = true;
+  fixed.pose = std::array<double, 6>{3.0, 0.0, 0.5, 0.0, 0.0, 0.0};
+  return fixed;
+}
 
 // Thrown from 5 m up at (1, 0.5, 3) m/s spinning at 2 rad/s about z: free
 // flight, x = x0 + vx t, z = z0 + vz t - g t^2 / 2, vz = vz0 - g t, and a
 // cube's spin about its axis of symmetry stays (yaw = 2 t).
 TEST_P(ModelServices, AThrownBoxFliesTheBallisticPath) {
   const std::string backend = GetParam();
-#ifndef SERVOLOOP_TEST_MUJOCO
-  if (backend == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
-#endif
   TempDir dir("servoloop-model-throw-" + backend);
   Node world(node::loadLaunchFile(writeBoxWorld(dir.path(), backend, 1)), pausedOptions());
   world.start();
@@ -141,17 +148,9 @@ TEST_P(ModelServices, AThrownBoxFliesTheBallisticPath) {
 // value, and nothing in the world moved.
 TEST_P(ModelServices, BadRequestsAreRefusedAndMoveNothing) {
   const std::string backend = GetParam();
-#ifndef SERVOLOOP_TEST_MUJOCO
-  if (backend == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
-#endif
   TempDir dir("servoloop-model-bad-" + backend);
   Node world(node::loadLaunchFile(writeBoxWorld(dir.path(), backend, 2)), pausedOptions());
-  node::RobotSpec fixed;
-  fixed.urdf = dir.path() / "box.urdf";
-  fixed.model = "welded";
-  fixed.robot_namespace = "/welded";
-  fixed.fixed_base = true;
-  fixed.pose = std::array<double, 6>{3.0, 0.0, 0.5, 0.0, 0.0, 0.0};
+  const node::RobotSpec fixed = weldedBox(dir.path());
   world.spawnRobot(fixed);
   world.start();
   ASSERT_EQ(world.stepWorld(20), 20u);
@@ -205,17 +204,9 @@ TEST_P(ModelServices, BadRequestsAreRefusedAndMoveNothing) {
 // spawn pose.
 TEST_P(ModelServices, ModelStatesListEveryModelAtFiftyHertz) {
   const std::string backend = GetParam();
-#ifndef SERVOLOOP_TEST_MUJOCO
-  if (backend == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
-#endif
   TempDir dir("servoloop-model-states-" + backend);
   Node world(node::loadLaunchFile(writeBoxWorld(dir.path(), backend, 2)), pausedOptions());
-  node::RobotSpec fixed;
-  fixed.urdf = dir.path() / "box.urdf";
-  fixed.model = "welded";
-  fixed.robot_namespace = "/welded";
-  fixed.fixed_base = true;
-  fixed.pose = std::array<double, 6>{3.0, 0.0, 0.5, 0.0, 0.0, 0.0};
+  const node::RobotSpec fixed = weldedBox(dir.path());
   world.spawnRobot(fixed);
   std::mutex mutex;
   std::vector<gazebo_msgs::ModelStates> received;
@@ -254,9 +245,6 @@ TEST_P(ModelServices, ModelStatesListEveryModelAtFiftyHertz) {
 // warning naming the link, the depth and the other model, on both engines.
 TEST_P(ModelServices, ASpawnIntoAnotherModelIsOneWarningWithTheDepth) {
   const std::string backend = GetParam();
-#ifndef SERVOLOOP_TEST_MUJOCO
-  if (backend == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
-#endif
   TempDir dir("servoloop-model-overlap-" + backend);
   Node world(node::loadLaunchFile(writeBoxWorld(dir.path(), backend, 1)), pausedOptions());
   world.start();
@@ -290,9 +278,6 @@ INSTANTIATE_TEST_SUITE_P(Engines, ModelServices, ::testing::Values("bullet", "mu
 // (the two never touch), and the deleted one is gone from every list.
 TEST_P(ModelServices, ADeletedModelLeavesTheOthersRunningUnchanged) {
   const std::string backend = GetParam();
-#ifndef SERVOLOOP_TEST_MUJOCO
-  if (backend == "mujoco") GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
-#endif
   TempDir dir("servoloop-model-delete-" + backend);
   const fs::path launch = writeBoxWorld(dir.path(), backend, 2);
 

@@ -15,6 +15,7 @@
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/node.hpp"
 #include "temp_dir.hpp"
+#include "world_test_support.hpp"
 
 namespace servoloop::world_test {
 namespace {
@@ -28,14 +29,6 @@ using servoloop::testing::TempDir;
 using servoloop::testing::writeFile;
 
 constexpr double kGravity = 9.81;
-
-NodeOptions pausedOptions() {
-  NodeOptions options;
-  options.serve_ipc = false;
-  options.real_time_factor = 0.0;
-  options.start_paused = true;
-  return options;
-}
 
 // A 0.2 m, 1 kg box model with friction mu at (x, y, z).
 std::string boxModel(const std::string& name, double x, double y, double z, double mu, bool is_static = false) {

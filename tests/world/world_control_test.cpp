@@ -28,14 +28,6 @@ using node::NodeOptions;
 using servoloop::testing::TempDir;
 using servoloop::testing::writeFile;
 
-NodeOptions pausedOptions() {
-  NodeOptions options;
-  options.serve_ipc = false;
-  options.real_time_factor = 0.0;
-  options.start_paused = true;
-  return options;
-}
-
 // Every robot's joints and base ground truth, exact while the world is paused.
 std::vector<double> snapshot(Node& node) {
   std::vector<double> values;

@@ -51,6 +51,14 @@ robots:
   return launch;
 }
 
+node::NodeOptions pausedOptions() {
+  node::NodeOptions options;
+  options.serve_ipc = false;
+  options.real_time_factor = 0.0;
+  options.start_paused = true;
+  return options;
+}
+
 GroundTruthWatch::GroundTruthWatch(realtime::TopicBus& bus, const std::string& robot_namespace)
     : subscription_(bus.subscribe<nav_msgs::Odometry>(robot_namespace + "/ground_truth/odom",
                                                       [this](const nav_msgs::Odometry& message) {

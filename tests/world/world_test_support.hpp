@@ -7,6 +7,7 @@
 #include <string>
 
 #include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/node.hpp"
 #include "servoloop/realtime/messages.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
 
@@ -25,6 +26,10 @@ std::string boxUrdf(double side, double mass, double mu);
 // with its files into `dir`; returns the launch file's path.
 fs::path writePushWorld(const fs::path& dir, const std::string& backend, double speed, double drive_until_s,
                         double box_x);
+
+// A node for in-process tests: no sockets, free-running, starting paused
+// (the test steps it).
+node::NodeOptions pausedOptions();
 
 // The latest message of a robot's <ns>/ground_truth/odom, as delivered.
 class GroundTruthWatch {
