@@ -37,7 +37,7 @@ layout() {
   work=$(mktemp -d /tmp/servoloop-abi.XXXXXX)
   local includes=()
   [[ -n "$extra" ]] && includes+=(-I"$extra")
-  for module in core plugin realtime params hardware_interface transmissions controller_manager \
+  for module in core plugin realtime params description hardware_interface transmissions controller_manager \
                 sim_common controllers/common controllers/pid; do
     includes+=(-I"$source_dir/$module/include")
   done

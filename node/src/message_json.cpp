@@ -324,6 +324,9 @@ void withMessageFromJson(std::string_view type_name, const json& value, Fn&& fn)
   if (type_name == geometry_msgs::Twist::kTypeName) return decode(geometry_msgs::Twist{});
   if (type_name == tf2_msgs::TFMessage::kTypeName) return decode(tf2_msgs::TFMessage{});
   if (type_name == gazebo_msgs::ModelStates::kTypeName) return decode(gazebo_msgs::ModelStates{});
+  if (type_name == geometry_msgs::WrenchStamped::kTypeName) return decode(geometry_msgs::WrenchStamped{});
+  if (type_name == sensor_msgs::Imu::kTypeName) return decode(sensor_msgs::Imu{});
+  if (type_name == gazebo_msgs::ContactsState::kTypeName) return decode(gazebo_msgs::ContactsState{});
   std::string known;
   for (const std::string& type : knownMessageTypes()) known += (known.empty() ? "" : ", ") + type;
   throw Error("unknown message type '" + std::string(type_name) + "'; known types: " + known);
@@ -352,6 +355,9 @@ json toJson(const realtime::MessageView& msg) {
   if (const auto* m = msg.as<geometry_msgs::Twist>()) return toJson(*m);
   if (const auto* m = msg.as<tf2_msgs::TFMessage>()) return toJson(*m);
   if (const auto* m = msg.as<gazebo_msgs::ModelStates>()) return toJson(*m);
+  if (const auto* m = msg.as<geometry_msgs::WrenchStamped>()) return toJson(*m);
+  if (const auto* m = msg.as<sensor_msgs::Imu>()) return toJson(*m);
+  if (const auto* m = msg.as<gazebo_msgs::ContactsState>()) return toJson(*m);
   throw Error("message type '" + std::string(msg.type) + "' has no JSON form");
 }
 

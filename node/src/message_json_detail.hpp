@@ -42,6 +42,11 @@ inline const std::map<std::string_view, std::vector<std::string_view>>& fieldTab
       {geometry_msgs::Twist::kTypeName, {"linear", "angular"}},
       {tf2_msgs::TFMessage::kTypeName, {"transforms"}},
       {gazebo_msgs::ModelStates::kTypeName, {"name", "pose", "twist"}},
+      {geometry_msgs::WrenchStamped::kTypeName, {"stamp", "frame_id", "wrench"}},
+      {sensor_msgs::Imu::kTypeName,
+       {"stamp", "frame_id", "orientation", "orientation_covariance", "angular_velocity",
+        "angular_velocity_covariance", "linear_acceleration", "linear_acceleration_covariance"}},
+      {gazebo_msgs::ContactsState::kTypeName, {"stamp", "frame_id", "states"}},
   };
   return table;
 }

@@ -1,4 +1,5 @@
 // Each message type's JSON form, both ways (message_json.hpp).
+#include <array>
 #include <string>
 
 #include "message_json_detail.hpp"
@@ -92,6 +93,57 @@ json toJson(const gazebo_msgs::ModelStates& msg) {
   }
   for (const geometry_msgs::Twist& t : msg.twist) twists.push_back(toJson(t));
   return json{{"name", msg.name}, {"pose", poses}, {"twist", twists}};
+}
+
+namespace {
+
+json vector3Json(const geometry_msgs::Vector3& v) { return json{{"x", v.x}, {"y", v.y}, {"z", v.z}}; }
+
+json wrenchJson(const geometry_msgs::Wrench& w) {
+  return json{{"force", vector3Json(w.force)}, {"torque", vector3Json(w.torque)}};
+}
+
+json covarianceJson(const std::array<double, 9>& covariance) {
+  return numberList({covariance.begin(), covariance.end()});
+}
+
+}  // namespace
+
+json toJson(const geometry_msgs::WrenchStamped& msg) {
+  return json{{"stamp", msg.stamp}, {"frame_id", msg.frame_id}, {"wrench", wrenchJson(msg.wrench)}};
+}
+
+json toJson(const sensor_msgs::Imu& msg) {
+  const geometry_msgs::Quaternion& q = msg.orientation;
+  return json{{"stamp", msg.stamp},
+              {"frame_id", msg.frame_id},
+              {"orientation", {{"x", q.x}, {"y", q.y}, {"z", q.z}, {"w", q.w}}},
+              {"orientation_covariance", covarianceJson(msg.orientation_covariance)},
+              {"angular_velocity", vector3Json(msg.angular_velocity)},
+              {"angular_velocity_covariance", covarianceJson(msg.angular_velocity_covariance)},
+              {"linear_acceleration", vector3Json(msg.linear_acceleration)},
+              {"linear_acceleration_covariance", covarianceJson(msg.linear_acceleration_covariance)}};
+}
+
+json toJson(const gazebo_msgs::ContactsState& msg) {
+  json states = json::array();
+  for (const gazebo_msgs::ContactState& c : msg.states) {
+    json wrenches = json::array();
+    for (const geometry_msgs::Wrench& w : c.wrenches) wrenches.push_back(wrenchJson(w));
+    json positions = json::array();
+    for (const geometry_msgs::Vector3& p : c.contact_positions) positions.push_back(vector3Json(p));
+    json normals = json::array();
+    for (const geometry_msgs::Vector3& n : c.contact_normals) normals.push_back(vector3Json(n));
+    states.push_back({{"info", c.info},
+                      {"collision1_name", c.collision1_name},
+                      {"collision2_name", c.collision2_name},
+                      {"wrenches", std::move(wrenches)},
+                      {"total_wrench", wrenchJson(c.total_wrench)},
+                      {"contact_positions", std::move(positions)},
+                      {"contact_normals", std::move(normals)},
+                      {"depths", numberList(c.depths)}});
+  }
+  return json{{"stamp", msg.stamp}, {"frame_id", msg.frame_id}, {"states", std::move(states)}};
 }
 
 namespace {
@@ -314,6 +366,102 @@ void fromJson(const json& value, gazebo_msgs::ModelStates& out) {
     throw Error(std::string(type) + ": " + std::to_string(out.name.size()) + " names, " +
                 std::to_string(out.pose.size()) + " poses and " + std::to_string(out.twist.size()) +
                 " twists; give one pose and one twist per name");
+  }
+}
+
+namespace {
+
+// A geometry_msgs/Wrench {force, torque} nested in a message of `type`; where
+// names it in errors ("states[0].total_wrench").
+void wrenchFromJson(std::string_view type, const json& value, const std::string& where, geometry_msgs::Wrench& out) {
+  static const std::vector<std::string_view> fields = {"force", "torque"};
+  FieldReader reader(type, value, fields, where);
+  reader.numberObject("force", reader.field("force"), {"x", "y", "z"}, {&out.force.x, &out.force.y, &out.force.z});
+  reader.numberObject("torque", reader.field("torque"), {"x", "y", "z"},
+                      {&out.torque.x, &out.torque.y, &out.torque.z});
+}
+
+// A list of geometry_msgs/Vector3 {x, y, z}, field `field` of reader's object.
+void vector3ListFromJson(const FieldReader& reader, const char* field, std::vector<geometry_msgs::Vector3>& out) {
+  const json* list = reader.field(field);
+  if (list == nullptr) return;
+  if (!list->is_array()) reader.fail(field, "a list of {x, y, z}", *list);
+  out.assign(list->size(), {});
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    reader.numberObject(std::string(field) + "[" + std::to_string(i) + "]", &(*list)[i], {"x", "y", "z"},
+                        {&out[i].x, &out[i].y, &out[i].z});
+  }
+}
+
+}  // namespace
+
+void fromJson(const json& value, geometry_msgs::WrenchStamped& out) {
+  constexpr std::string_view type = geometry_msgs::WrenchStamped::kTypeName;
+  FieldReader reader(type, value);
+  reader.number("stamp", out.stamp);
+  reader.text("frame_id", out.frame_id);
+  if (const json* wrench = reader.field("wrench")) wrenchFromJson(type, *wrench, "wrench", out.wrench);
+}
+
+void fromJson(const json& value, sensor_msgs::Imu& out) {
+  FieldReader reader(sensor_msgs::Imu::kTypeName, value);
+  reader.number("stamp", out.stamp);
+  reader.text("frame_id", out.frame_id);
+  geometry_msgs::Quaternion& q = out.orientation;
+  reader.numberObject("orientation", reader.field("orientation"), {"x", "y", "z", "w"}, {&q.x, &q.y, &q.z, &q.w});
+  reader.fixedNumbers("orientation_covariance", reader.field("orientation_covariance"),
+                      out.orientation_covariance.data(), out.orientation_covariance.size());
+  geometry_msgs::Vector3& w = out.angular_velocity;
+  reader.numberObject("angular_velocity", reader.field("angular_velocity"), {"x", "y", "z"}, {&w.x, &w.y, &w.z});
+  reader.fixedNumbers("angular_velocity_covariance", reader.field("angular_velocity_covariance"),
+                      out.angular_velocity_covariance.data(), out.angular_velocity_covariance.size());
+  geometry_msgs::Vector3& a = out.linear_acceleration;
+  reader.numberObject("linear_acceleration", reader.field("linear_acceleration"), {"x", "y", "z"},
+                      {&a.x, &a.y, &a.z});
+  reader.fixedNumbers("linear_acceleration_covariance", reader.field("linear_acceleration_covariance"),
+                      out.linear_acceleration_covariance.data(), out.linear_acceleration_covariance.size());
+}
+
+void fromJson(const json& value, gazebo_msgs::ContactsState& out) {
+  constexpr std::string_view type = gazebo_msgs::ContactsState::kTypeName;
+  FieldReader reader(type, value);
+  reader.number("stamp", out.stamp);
+  reader.text("frame_id", out.frame_id);
+  const json* states = reader.field("states");
+  if (states == nullptr) return;
+  if (!states->is_array()) reader.fail("states", "a list of contact states", *states);
+  static const std::vector<std::string_view> fields = {"info", "collision1_name", "collision2_name", "wrenches",
+                                                       "total_wrench", "contact_positions", "contact_normals",
+                                                       "depths"};
+  out.states.assign(states->size(), {});
+  for (std::size_t i = 0; i < states->size(); ++i) {
+    const std::string where = "states[" + std::to_string(i) + "]";
+    FieldReader item(type, (*states)[i], fields, where);
+    gazebo_msgs::ContactState& c = out.states[i];
+    item.text("info", c.info);
+    item.text("collision1_name", c.collision1_name);
+    item.text("collision2_name", c.collision2_name);
+    if (const json* wrenches = item.field("wrenches")) {
+      if (!wrenches->is_array()) item.fail("wrenches", "a list of {force, torque}", *wrenches);
+      c.wrenches.assign(wrenches->size(), {});
+      for (std::size_t k = 0; k < wrenches->size(); ++k) {
+        wrenchFromJson(type, (*wrenches)[k], where + ".wrenches[" + std::to_string(k) + "]", c.wrenches[k]);
+      }
+    }
+    if (const json* total = item.field("total_wrench")) {
+      wrenchFromJson(type, *total, where + ".total_wrench", c.total_wrench);
+    }
+    vector3ListFromJson(item, "contact_positions", c.contact_positions);
+    vector3ListFromJson(item, "contact_normals", c.contact_normals);
+    item.numbers("depths", c.depths);
+    // Gazebo gives each contact point a wrench, a position, a normal and a depth.
+    const std::size_t points = c.contact_positions.size();
+    if (c.wrenches.size() != points || c.contact_normals.size() != points || c.depths.size() != points) {
+      throw Error(std::string(type) + ": " + where + ": " + std::to_string(c.wrenches.size()) + " wrenches, " +
+                  std::to_string(points) + " contact_positions, " + std::to_string(c.contact_normals.size()) +
+                  " contact_normals and " + std::to_string(c.depths.size()) +
+                  " depths; give one of each per contact point");
+    }
   }
 }
 

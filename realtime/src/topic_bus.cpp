@@ -40,7 +40,9 @@ std::string knownTypesText() {
                                 sensor_msgs::JointState::kTypeName, control_msgs::JointControllerState::kTypeName,
                                 nav_msgs::Odometry::kTypeName, trajectory_msgs::JointTrajectory::kTypeName,
                                 control_msgs::JointTrajectoryControllerState::kTypeName,
-                                geometry_msgs::Twist::kTypeName, tf2_msgs::TFMessage::kTypeName}) {
+                                geometry_msgs::Twist::kTypeName, tf2_msgs::TFMessage::kTypeName,
+                                gazebo_msgs::ModelStates::kTypeName, geometry_msgs::WrenchStamped::kTypeName,
+                                sensor_msgs::Imu::kTypeName, gazebo_msgs::ContactsState::kTypeName}) {
     text += (text.empty() ? "" : ", ") + std::string(type);
   }
   return text;
@@ -87,6 +89,12 @@ TopicBase& BusCore::topicForTypeLocked(const std::string& name, std::string_view
   }
   if (type_name == geometry_msgs::Twist::kTypeName) return typedTopicLocked<geometry_msgs::Twist>(name);
   if (type_name == tf2_msgs::TFMessage::kTypeName) return typedTopicLocked<tf2_msgs::TFMessage>(name);
+  if (type_name == gazebo_msgs::ModelStates::kTypeName) return typedTopicLocked<gazebo_msgs::ModelStates>(name);
+  if (type_name == geometry_msgs::WrenchStamped::kTypeName) {
+    return typedTopicLocked<geometry_msgs::WrenchStamped>(name);
+  }
+  if (type_name == sensor_msgs::Imu::kTypeName) return typedTopicLocked<sensor_msgs::Imu>(name);
+  if (type_name == gazebo_msgs::ContactsState::kTypeName) return typedTopicLocked<gazebo_msgs::ContactsState>(name);
   // A type only a plugin knows can still be used once that plugin typed the topic.
   auto it = topics.find(name);
   if (it != topics.end() && it->second->type() == type_name) return *it->second;
@@ -279,6 +287,9 @@ SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::JointState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointControllerState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(nav_msgs::Odometry, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(gazebo_msgs::ModelStates, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(geometry_msgs::WrenchStamped, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(sensor_msgs::Imu, )
+SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(gazebo_msgs::ContactsState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(trajectory_msgs::JointTrajectory, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(control_msgs::JointTrajectoryControllerState, )
 SERVOLOOP_TOPIC_BUS_EXTERN_TEMPLATES(geometry_msgs::Twist, )

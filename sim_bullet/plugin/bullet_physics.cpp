@@ -165,6 +165,32 @@ void BulletPhysics::applyJointCommands(std::span<const sim_common::AppliedJointC
 
 void BulletPhysics::step() noexcept { world_->step(); }
 
+std::size_t BulletPhysics::trackLink(const std::string& link) {
+  try {
+    return world_->trackLink(link);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const Error& e) {
+    throw ConfigError(e.what());
+  }
+}
+
+void BulletPhysics::readLinkState(std::size_t tracked, sim_common::EngineLinkState& out) const noexcept {
+  const LinkState state = world_->linkState(tracked);
+  out.position = state.position;
+  out.orientation = state.orientation;
+  out.linear_velocity = state.linear_velocity;
+  out.angular_velocity = state.angular_velocity;
+}
+
+std::size_t BulletPhysics::trackJointWrench(const std::string& joint) { return world_->trackJointWrench(joint); }
+
+void BulletPhysics::readJointWrench(std::size_t tracked, sim_common::EngineJointWrench& out) const noexcept {
+  const JointWrench wrench = world_->jointWrench(tracked);
+  out.force = wrench.force;
+  out.torque = wrench.torque;
+}
+
 void BulletPhysics::reset() {
   world_->reset();
   placeAtInitialPositions();

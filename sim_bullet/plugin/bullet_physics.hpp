@@ -54,6 +54,14 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
   void applyJointCommands(std::span<const sim_common::AppliedJointCommand> commands) noexcept override;
   void step() noexcept override;
 
+  // Sensors: any URDF link's frame; the wrench of a movable joint (a fixed
+  // joint's links are one body in Bullet: ConfigError).
+  bool simulatesSensors() const noexcept override { return true; }
+  std::size_t trackLink(const std::string& link) override;
+  void readLinkState(std::size_t tracked, sim_common::EngineLinkState& out) const noexcept override;
+  std::size_t trackJointWrench(const std::string& joint) override;
+  void readJointWrench(std::size_t tracked, sim_common::EngineJointWrench& out) const noexcept override;
+
   void reset() override;
   void setJointState(std::size_t joint, double position, double velocity) override;
 

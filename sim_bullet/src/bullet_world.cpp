@@ -24,6 +24,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <btBulletCollisionCommon.h>
 
+#include "body_sensors.hpp"
 #include "body_tree.hpp"
 #include "bullet_scene_core.hpp"
 #include "servoloop/core/errors.hpp"
@@ -116,6 +117,8 @@ struct BulletWorld::Impl final : detail::SceneMember {
   // Per-child friction of colliders whose merged links differ (shapeFriction).
   std::vector<std::unique_ptr<std::vector<double>>> child_friction;
 
+  detail::BodySensors sensors;
+
   // Scratch for forward kinematics after a teleport, sized once.
   btAlignedObjectArray<btQuaternion> scratch_rotations;
   btAlignedObjectArray<btVector3> scratch_origins;
@@ -158,6 +161,7 @@ struct BulletWorld::Impl final : detail::SceneMember {
       }
       joint.pending_effort = 0.0;
     }
+    sensors.afterStep(*body, *world->getDispatcher(), settings.time_step_s, world->getGravity());
     ++steps;
   }
 
@@ -467,9 +471,11 @@ struct BulletWorld::Impl final : detail::SceneMember {
   // --- state --------------------------------------------------------------
 
   // After a teleport: link transforms and collider poses follow at once.
+  // After a teleport (and a reset): the sensors' next accelerations are unknown.
   void updateKinematics() {
     body->forwardKinematics(scratch_rotations, scratch_origins);
     body->updateCollisionObjectWorldTransforms(scratch_rotations, scratch_origins);
+    sensors.forgetMotion();
   }
 
   double motorImpulse(const JointData& joint) const {
@@ -683,6 +689,18 @@ Eigen::Vector3d BulletWorld::linkWorldPosition(const std::string& link_name) con
   const Eigen::Vector3d in_com = b.principal_in_link.inverse() * it->second.link_in_body_link.translation();
   return toEigen(w.body->localPosToWorld(it->second.body - 1, toBt(in_com)));
 }
+
+std::size_t BulletWorld::trackLink(const std::string& link_name) {
+  impl_->sensors.reserve(*impl_->body);
+  return impl_->sensors.trackLink(impl_->tree, link_name);
+}
+
+std::size_t BulletWorld::trackJointWrench(const std::string& joint_name) {
+  return impl_->sensors.trackJointWrench(impl_->tree, *impl_->body, joint_name);
+}
+
+LinkState BulletWorld::linkState(std::size_t tracked) const { return impl_->sensors.linkState(*impl_->body, tracked); }
+JointWrench BulletWorld::jointWrench(std::size_t tracked) const { return impl_->sensors.jointWrench(tracked); }
 
 BodyMassProperties BulletWorld::bodyMassProperties(const std::string& link_name) const {
   const Impl& w = *impl_;

@@ -1,5 +1,5 @@
-// PhysicsEngine's defaults: batch access through the per-joint methods, and
-// joining a world whose robots are simulated apart.
+// PhysicsEngine's defaults: batch access through the per-joint methods,
+// joining a world whose robots are simulated apart, and no sensors.
 #include "servoloop/sim_common/physics_engine.hpp"
 
 #include <string>
@@ -18,6 +18,16 @@ void PhysicsEngine::joinWorld(hardware_interface::SimulatedWorld& world) {
 
 void PhysicsEngine::setBaseState(const EngineBaseState& /*state*/) {
   throw Error(std::string("the ") + name() + " engine has no floating base to move");
+}
+
+std::size_t PhysicsEngine::trackLink(const std::string& link) {
+  throw ConfigError(std::string("the ") + name() + " engine does not simulate sensors (link '" + link +
+                    "'); use the bullet or mujoco backend for a robot with sensors");
+}
+
+std::size_t PhysicsEngine::trackJointWrench(const std::string& joint) {
+  throw ConfigError(std::string("the ") + name() + " engine does not simulate force-torque sensors (joint '" + joint +
+                    "'); use the bullet or mujoco backend for a robot with sensors");
 }
 
 void PhysicsEngine::readJointStates(std::span<EngineJointState> states) const noexcept {

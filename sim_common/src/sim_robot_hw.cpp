@@ -112,6 +112,7 @@ void SimRobotHW::init(const hi::HardwareInfo& info) {
   engine_->init(*model_, settings_, engine_joints_, source_name_);
   transmissions_->registerInterfaces(*this);
   readEngineState();
+  initSensors();
   logger().info("{}: '{}' simulation of robot '{}' ready: {} joint(s), {} actuator(s), time step {} s",
                 source_name_, engine_->name(), model_->getName(), joint_count,
                 transmissions_->numActuators(), settings_.time_step_s);
@@ -147,11 +148,26 @@ void SimRobotHW::loadModel(const hi::HardwareInfo& info) {
   urdf_self_collide_ = urdfRequestsSelfCollision(xml);
   model_ = parseRobotModel(xml, source_name_);
   urdf_link_friction_ = urdfLinkFriction(xml, *model_, source_name_);
+  sensor_descriptions_ = readGazeboSensors(xml, *model_, source_name_);
   transmissions::RobotTransmissions::Options options;
   options.implicit_simple_transmissions = true;
   options.source_name = source_name_;
   transmissions_ = std::make_unique<transmissions::RobotTransmissions>(
       *model_, transmissions::parseTransmissions(xml, source_name_), options);
+}
+
+void SimRobotHW::initSensors() {
+  std::size_t simulated = 0;
+  for (const SensorDescription& sensor : sensor_descriptions_) simulated += sensor.type != SensorType::contact;
+  if (simulated == 0) return;
+  if (!engine_->simulatesSensors()) {
+    logger().warn("{}: the {} engine does not simulate sensors; the robot's {} IMU and force-torque sensor(s) are "
+                  "left out (the bullet and mujoco backends simulate them)",
+                  source_name_, engine_->name(), simulated);
+    return;
+  }
+  sensors_.init(sensor_descriptions_, *model_, *engine_, settings_.gravity, source_name_);
+  sensors_.registerInterfaces(*this);
 }
 
 void SimRobotHW::configureActuators(const std::string& ns, const YAML::Node& parameters) {
@@ -292,6 +308,7 @@ void SimRobotHW::readEngineState() noexcept {
 
 ReturnType SimRobotHW::read(Time /*time*/, Duration /*period*/) {
   readEngineState();
+  sensors_.update(simTime().seconds);
   return ReturnType::ok;
 }
 
@@ -477,6 +494,7 @@ void SimRobotHW::reset() {
   for (JointCommandLimiter& limiter : limiters_) limiter.reset();
   steps_ = 0;
   readEngineState();
+  sensors_.reset(0.0);
   if (estop_active_) {
     for (std::size_t j = 0; j < applied_.size(); ++j) {
       estop_positions_[j] = transmissions_->joint(JointIndex(j)).position;

@@ -16,6 +16,7 @@
 #include "servoloop/sim_mujoco/mjcf_from_urdf.hpp"
 #include "servoloop/sim_mujoco/mujoco_world.hpp"
 #include "mjcf_compile.hpp"
+#include "model_step.hpp"
 
 namespace servoloop::sim_mujoco {
 namespace {
@@ -89,6 +90,8 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   motor_limits_.clear();
   for (const auto& joint : joints) motor_limits_.push_back(sim_common::motorEffortBound(joint));
   resizeJointCommands(joints.size());
+  joint_child_links_.clear();
+  for (const auto& [name, joint] : model.joints_) joint_child_links_[name] = joint->child_link_name;
   position_motor_time_constant_s_ = std::max(kPositionMotorTimeConstant_s, settings.time_step_s);
   if (world_ != nullptr) {
     prefix_ = world_->newPrefix();
@@ -183,6 +186,7 @@ void MujocoPhysics::bind(mjModel_* model, mjData_* data) {
   inverse_inertia_.assign(count * nv, 0.0);
   wanted_accel_.assign(count, 0.0);
   motor_efforts_.assign(count, 0.0);
+  bindSensors();
 }
 
 // After reset()'s mj_forward the contacts of the start pose are known: the
@@ -244,7 +248,13 @@ void MujocoPhysics::step() noexcept {
   if (motors > 0) solveMotorEfforts(motors);
 
   // Alone, the robot steps its model; in a world, the world steps it.
-  if (world_ == nullptr) mj_step(m_, &d);
+  if (world_ == nullptr) {
+    if (hasSensors()) {
+      stepModel(m_, &d, [this]() noexcept { captureJointWrenches(); });
+    } else {
+      mj_step(m_, &d);
+    }
+  }
 
   endEffortCommands();
 }
@@ -322,6 +332,7 @@ void MujocoPhysics::reset() {
   }
   clearJointCommands();
   for (Joint& joint : joints_) joint.applied_effort = 0.0;
+  for (sim_common::EngineJointWrench& wrench : joint_wrenches_) wrench = {};
   placeAtInitialPositions();
 }
 

@@ -7,6 +7,7 @@
 #include <mujoco/mujoco.h>
 
 #include "mjcf_compile.hpp"
+#include "model_step.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/sim_mujoco/mujoco_physics.hpp"
@@ -26,7 +27,16 @@ void MujocoWorld::init(const hardware_interface::SimulatedWorldSettings& setting
 }
 
 ReturnType MujocoWorld::step() noexcept {
-  if (model_) mj_step(model_.get(), data_.get());
+  if (!model_) return ReturnType::ok;
+  const bool sensors =
+      std::any_of(members_.begin(), members_.end(), [](const Member& member) { return member.robot->hasSensors(); });
+  if (sensors) {
+    stepModel(model_.get(), data_.get(), [this]() noexcept {
+      for (const Member& member : members_) member.robot->captureJointWrenches();
+    });
+  } else {
+    mj_step(model_.get(), data_.get());
+  }
   return ReturnType::ok;
 }
 

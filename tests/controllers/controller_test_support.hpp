@@ -1,8 +1,11 @@
 #pragma once
 // Test hardware and helpers for the controller tests: a RobotHW with plain
-// joint storage that offers every joint interface, robot models built from
-// inline URDF, and a ControllerContext maker.
+// joint storage that offers every joint interface, one with IMU and
+// force-torque sensors, robot models built from inline URDF, and a
+// ControllerContext maker.
+#include <array>
 #include <cstddef>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +16,8 @@
 #include "servoloop/controller_manager/controller_base.hpp"
 #include "servoloop/controller_manager/controller_context.hpp"
 #include "servoloop/realtime/topic_bus.hpp"
+#include "servoloop/hardware_interface/force_torque_sensor_interface.hpp"
+#include "servoloop/hardware_interface/imu_sensor_interface.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/description/robot_model.hpp"
@@ -67,6 +72,63 @@ class TestJointsHW : public hi::RobotHW {
   hi::EffortJointInterface effort_interface;
   hi::VelocityJointInterface velocity_interface;
   hi::PositionJointInterface position_interface;
+};
+
+// IMUs and force-torque sensors whose readings the test writes into plain
+// storage. Storage never moves after it is added.
+class TestSensorsHW : public hi::RobotHW {
+ public:
+  struct ImuStorage {
+    std::array<double, 4> orientation{0.0, 0.0, 0.0, 1.0};  // x, y, z, w
+    std::array<double, 9> orientation_covariance{};
+    std::array<double, 3> angular_velocity{};  // rad/s
+    std::array<double, 9> angular_velocity_covariance{};
+    std::array<double, 3> linear_acceleration{};  // m/s²
+    std::array<double, 9> linear_acceleration_covariance{};
+  };
+  struct ForceTorqueStorage {
+    std::array<double, 3> force{};   // N
+    std::array<double, 3> torque{};  // N·m
+  };
+
+  TestSensorsHW() {
+    registerInterface(&imu_interface);
+    registerInterface(&force_torque_interface);
+  }
+
+  // An IMU that measures everything, covariances included.
+  ImuStorage& addImu(const std::string& name, const std::string& frame_id) {
+    ImuStorage& storage = imus.emplace_back();
+    hi::ImuSensorHandle::Data data;
+    data.name = name;
+    data.frame_id = frame_id;
+    data.orientation = storage.orientation.data();
+    data.orientation_covariance = storage.orientation_covariance.data();
+    data.angular_velocity = storage.angular_velocity.data();
+    data.angular_velocity_covariance = storage.angular_velocity_covariance.data();
+    data.linear_acceleration = storage.linear_acceleration.data();
+    data.linear_acceleration_covariance = storage.linear_acceleration_covariance.data();
+    imu_interface.registerHandle(hi::ImuSensorHandle(data));
+    return storage;
+  }
+  // An IMU that gives only what `data` points to (e.g. a gyro: angular velocity only).
+  void addImu(const hi::ImuSensorHandle::Data& data) { imu_interface.registerHandle(hi::ImuSensorHandle(data)); }
+
+  ForceTorqueStorage& addForceTorque(const std::string& name, const std::string& frame_id) {
+    ForceTorqueStorage& storage = force_torques.emplace_back();
+    force_torque_interface.registerHandle(
+        hi::ForceTorqueSensorHandle(name, frame_id, storage.force.data(), storage.torque.data()));
+    return storage;
+  }
+
+  void init(const hi::HardwareInfo&) override {}
+  ReturnType read(Time, Duration) override { return ReturnType::ok; }
+  ReturnType write(Time, Duration) override { return ReturnType::ok; }
+
+  std::deque<ImuStorage> imus;
+  std::deque<ForceTorqueStorage> force_torques;
+  hi::ImuSensorInterface imu_interface;
+  hi::ForceTorqueSensorInterface force_torque_interface;
 };
 
 // A URDF with one joint of each kind the controllers handle:

@@ -4,7 +4,8 @@
 // receiving a new setpoint from another thread every 100 cycles, with the
 // bus's delivery thread running. Also the raw PD and a group controller, and
 // a 6-joint trajectory controller taking trajectories, goals, cancels and
-// stops while it publishes its state.
+// stops while it publishes its state. The IMU and force-torque sensor
+// controllers publishing at 500 Hz.
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -20,6 +21,8 @@
 #include "servoloop/controllers/effort_controllers/joint_position_controller.hpp"
 #include "servoloop/controllers/joint_state_controller/joint_state_controller.hpp"
 #include "servoloop/controllers/diff_drive_controller/diff_drive_controller.hpp"
+#include "servoloop/controllers/force_torque_sensor_controller/force_torque_sensor_controller.hpp"
+#include "servoloop/controllers/imu_sensor_controller/imu_sensor_controller.hpp"
 #include "servoloop/controllers/gripper_action_controller/gripper_action_controller.hpp"
 #include "servoloop/controllers/joint_trajectory_controller/joint_trajectory_controller.hpp"
 #include "servoloop/realtime/action_registry.hpp"
@@ -337,6 +340,56 @@ TEST(ControllersAllocation, DiffDriveControllerWithoutAllocating) {
   EXPECT_EQ(allocations, 0u);
   EXPECT_GT(odom_messages, 0u);
   EXPECT_TRUE(std::isfinite(base.odometry().x()));
+}
+
+// The sensor controllers publishing every other cycle (500 Hz in a 1 kHz
+// loop), frames longer than a short string, with the delivery thread running
+// and every topic listened to, while the readings change every cycle.
+TEST(ControllersAllocation, SensorControllersPublishWithoutAllocating) {
+  servoloop::realtime::TopicBus bus;
+  testing::TestSensorsHW hw;
+  testing::TestSensorsHW::ImuStorage& imu = hw.addImu("imu", "an_imu_frame_longer_than_sso");
+  const double gyro_rate[3] = {0.0, 0.0, 0.5};
+  hardware_interface::ImuSensorHandle::Data gyro;
+  gyro.name = "gyro";
+  gyro.frame_id = "gyro_link";
+  gyro.angular_velocity = gyro_rate;
+  hw.addImu(gyro);
+  testing::TestSensorsHW::ForceTorqueStorage& wrist = hw.addForceTorque("wrist_ft", "a_force_torque_frame_this_long");
+  hw.addForceTorque("ankle_ft", "foot");
+  ImuSensorController imus;
+  ForceTorqueSensorController force_torques;
+  initController(imus, hw, makeContext("imu_sensor_controller", "{publish_rate: 500}", &bus));
+  initController(force_torques, hw, makeContext("ft_sensor_controller", "{publish_rate: 500}", &bus));
+  std::uint64_t imu_messages = 0;
+  auto subscription = bus.subscribe<servoloop::sensor_msgs::Imu>("/robot/imu", [&](const auto& msg) {
+    if (msg.frame_id == "an_imu_frame_longer_than_sso") ++imu_messages;
+  });
+  const auto listeners = listenToEveryTopic(bus);
+  bus.start();
+  std::size_t allocations = 0;
+  std::thread control([&] {
+    const Duration period(0.001);
+    imus.startRequest(Time(0.0));
+    force_torques.startRequest(Time(0.0));
+    servoloop::testing::AllocationCounter counter;
+    for (int k = 1; k <= kCycles; ++k) {
+      const Time now(0.001 * k);
+      bus.setTime(now);
+      imu.angular_velocity[2] = std::sin(0.001 * k);
+      wrist.force[2] = 10.0 * std::cos(0.001 * k);
+      imus.update(now, period);
+      force_torques.update(now, period);
+    }
+    allocations = counter.allocations();
+  });
+  control.join();
+  bus.stop();
+  EXPECT_EQ(allocations, 0u);
+  // Two sensors each, every other cycle.
+  EXPECT_EQ(imus.publishedCount(), static_cast<std::uint64_t>(kCycles));
+  EXPECT_EQ(force_torques.publishedCount(), static_cast<std::uint64_t>(kCycles));
+  EXPECT_GT(imu_messages, 0u);
 }
 
 }  // namespace

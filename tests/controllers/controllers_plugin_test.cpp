@@ -70,6 +70,8 @@ TEST(ControllerPlugins, OneLibraryPerPackageProvidesEveryType) {
       {"position_controllers/GripperActionController", "libgripper_action_controller.so"},
       {"effort_controllers/GripperActionController", "libgripper_action_controller.so"},
       {"diff_drive_controller/DiffDriveController", "libdiff_drive_controller.so"},
+      {"imu_sensor_controller/ImuSensorController", "libimu_sensor_controller.so"},
+      {"force_torque_sensor_controller/ForceTorqueSensorController", "libforce_torque_sensor_controller.so"},
   };
   for (const auto& [type, library] : expected) {
     ASSERT_TRUE(library_of_type.count(type)) << type;
@@ -171,6 +173,47 @@ TEST_F(SeedThroughManager, RawPdRunsAtItsOwnRateWithOrWithoutTheManagersHelp) {
   bus.flush();
   EXPECT_EQ(effort_messages["pd_default"], 10);
   EXPECT_EQ(effort_messages["pd_rate"], 10);
+}
+
+// The sensor controllers from the plugin loader, run by the manager: two
+// controllers reading the same IMU start together (sensors are never claimed).
+TEST(SensorControllerPlugins, PublishEverySensorThroughTheManager) {
+  const YAML::Node params = YAML::Load(R"(
+imu_sensor_controller: {type: imu_sensor_controller/ImuSensorController, publish_rate: 100}
+imu_logger: {type: imu_sensor_controller/ImuSensorController, publish_rate: 10}
+force_torque_sensor_controller: {type: force_torque_sensor_controller/ForceTorqueSensorController, publish_rate: 50}
+)");
+  servoloop::realtime::TopicBus bus;
+  testing::TestSensorsHW hw;
+  hw.addImu("imu", "imu_link").angular_velocity = {0.0, 0.0, 0.5};
+  hw.addForceTorque("wrist_ft", "wrist_ft_link").force = {0.0, 0.0, -9.81};
+  std::vector<servoloop::sensor_msgs::Imu> imu;
+  std::vector<servoloop::geometry_msgs::WrenchStamped> wrist;
+  auto imu_sub = bus.subscribe<servoloop::sensor_msgs::Imu>("/robot/imu", [&](const auto& m) { imu.push_back(m); });
+  auto wrist_sub = bus.subscribe<servoloop::geometry_msgs::WrenchStamped>(
+      "/robot/wrist_ft", [&](const auto& m) { wrist.push_back(m); });
+  cm::ControllerContext context;
+  context.robot_namespace = "/robot";
+  context.topics = &bus;
+  cm::ControllerManager manager(&hw, std::make_shared<LoaderFactory>(), cm::ControllerManager::lookupIn(params),
+                                context, 1000.0);
+  cm::SwitchRequest request;
+  for (const char* name : {"imu_sensor_controller", "imu_logger", "force_torque_sensor_controller"}) {
+    ASSERT_TRUE(manager.loadController(name)) << name;
+    request.start_controllers.push_back(name);
+  }
+  ASSERT_TRUE(manager.requestSwitch(request));
+  for (int k = 1; k <= 100; ++k) manager.update(Time(0.001 * k), Duration(0.001));
+  ASSERT_FALSE(manager.switchPending());
+  bus.flush();
+  // Started in the first cycle, first published in the second: 10 at 100 Hz
+  // and 1 at 10 Hz in the 99 updates; 5 wrenches at 50 Hz.
+  EXPECT_EQ(imu.size(), 11u);
+  ASSERT_EQ(wrist.size(), 5u);
+  EXPECT_EQ(imu.front().frame_id, "imu_link");
+  EXPECT_EQ(imu.front().angular_velocity.z, 0.5);
+  EXPECT_EQ(wrist.front().frame_id, "wrist_ft_link");
+  EXPECT_EQ(wrist.front().wrench.force.z, -9.81);
 }
 
 // A 6-joint arm's controller YAML written the way arm vendors write theirs

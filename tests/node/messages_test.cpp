@@ -2,7 +2,10 @@
 // errors that name the field at fault. Expected strings are written by hand.
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -45,12 +48,16 @@ TEST(Messages, TypeNames) {
   EXPECT_EQ(control_msgs::JointControllerState::kTypeName, "control_msgs/JointControllerState");
   EXPECT_EQ(trajectory_msgs::JointTrajectory::kTypeName, "trajectory_msgs/JointTrajectory");
   EXPECT_EQ(control_msgs::JointTrajectoryControllerState::kTypeName, "control_msgs/JointTrajectoryControllerState");
+  EXPECT_EQ(geometry_msgs::WrenchStamped::kTypeName, "geometry_msgs/WrenchStamped");
+  EXPECT_EQ(sensor_msgs::Imu::kTypeName, "sensor_msgs/Imu");
+  EXPECT_EQ(gazebo_msgs::ContactsState::kTypeName, "gazebo_msgs/ContactsState");
   EXPECT_EQ(knownMessageTypes(),
             (std::vector<std::string>{"control_msgs/JointControllerState",
                                       "control_msgs/JointTrajectoryControllerState", "diagnostic_msgs/DiagnosticArray",
-                                      "gazebo_msgs/ModelStates", "geometry_msgs/Twist",
-                                      "nav_msgs/Odometry", "sensor_msgs/JointState", "std_msgs/Bool",
-                                      "std_msgs/Float64", "std_msgs/Float64MultiArray", "tf2_msgs/TFMessage",
+                                      "gazebo_msgs/ContactsState", "gazebo_msgs/ModelStates", "geometry_msgs/Twist",
+                                      "geometry_msgs/WrenchStamped", "nav_msgs/Odometry", "sensor_msgs/Imu",
+                                      "sensor_msgs/JointState", "std_msgs/Bool", "std_msgs/Float64",
+                                      "std_msgs/Float64MultiArray", "tf2_msgs/TFMessage",
                                       "trajectory_msgs/JointTrajectory"}));
   EXPECT_TRUE(isKnownMessageType("std_msgs/Float64"));
   EXPECT_FALSE(isKnownMessageType("std_msgs/Float32"));
@@ -85,6 +92,188 @@ TEST(Messages, ModelStatesJsonRoundTripAndOnePoseAndTwistPerName) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("2 names, 2 poses and 1 twists"), std::string::npos) << e.what();
   }
+}
+
+// geometry_msgs/WrenchStamped with ROS's field names, header flattened into
+// stamp and frame_id as for the other stamped types.
+TEST(Messages, WrenchStampedJsonRoundTripTextAndCsv) {
+  geometry_msgs::WrenchStamped msg;
+  msg.stamp = 0.25;
+  msg.frame_id = "wrist_ft";
+  msg.wrench.force = {1.5, -2.0, 9.81};
+  msg.wrench.torque = {0.0, 0.125, -0.5};
+  const json j = toJson(msg);
+  EXPECT_EQ(j, json::parse(R"({"stamp": 0.25, "frame_id": "wrist_ft",
+                               "wrench": {"force": {"x": 1.5, "y": -2.0, "z": 9.81},
+                                          "torque": {"x": 0.0, "y": 0.125, "z": -0.5}}})"));
+  const auto back = messageFromJson<geometry_msgs::WrenchStamped>(json::parse(j.dump()));
+  EXPECT_EQ(back.stamp, 0.25);
+  EXPECT_EQ(back.frame_id, "wrist_ft");
+  EXPECT_EQ(back.wrench.force.z, 9.81);
+  EXPECT_EQ(back.wrench.torque.y, 0.125);
+  EXPECT_EQ(toJson(back), j);
+
+  // As a user writes it for `topic pub`: fields left out stay zero.
+  const auto typed = messageFromJson<geometry_msgs::WrenchStamped>(parseMessageText("{wrench: {force: {z: 2}}}"));
+  EXPECT_EQ(typed.wrench.force.z, 2.0);
+  EXPECT_EQ(typed.wrench.torque.x, 0.0);
+  EXPECT_EQ(typed.frame_id, "");
+
+  EXPECT_EQ(toText(msg),
+            "stamp: 0.25\nframe_id: \"wrist_ft\"\nwrench:\n"
+            "  force:\n    x: 1.5\n    y: -2.0\n    z: 9.81\n"
+            "  torque:\n    x: 0.0\n    y: 0.125\n    z: -0.5\n");
+  EXPECT_EQ(csvHeader(msg), "time,frame_id,wrench.force.x,wrench.force.y,wrench.force.z,wrench.torque.x,"
+                            "wrench.torque.y,wrench.torque.z");
+  EXPECT_EQ(csvRow(msg, Time(0.25)), "0.25,wrist_ft,1.5,-2.0,9.81,0.0,0.125,-0.5");
+
+  EXPECT_EQ(thrownMessage([] {
+              messageFromJson<geometry_msgs::WrenchStamped>(json::parse(R"({"wrench": {"force": {"q": 1}}})"));
+            }),
+            "geometry_msgs/WrenchStamped: field 'wrench.force.q': expected one of the fields of force, got 1");
+  EXPECT_EQ(thrownMessage([] { messageFromJson<geometry_msgs::WrenchStamped>(json::parse(R"({"wrench": 3})")); }),
+            "geometry_msgs/WrenchStamped: field 'wrench': expected an object with fields force, torque, got 3");
+  EXPECT_EQ(thrownMessage([] { messageFromJson<geometry_msgs::WrenchStamped>(json::parse(R"({"force": {}})")); }),
+            "geometry_msgs/WrenchStamped: unknown field 'force'; the fields are: stamp, frame_id, wrench");
+}
+
+// sensor_msgs/Imu: three values with their 3×3 covariances; -1 in a
+// covariance's first element ("not measured") survives, as does NaN.
+TEST(Messages, ImuJsonRoundTripAndCovarianceSizes) {
+  sensor_msgs::Imu msg;
+  msg.stamp = 1.5;
+  msg.frame_id = "imu_link";
+  msg.orientation = {0.0, 0.0, 0.6, 0.8};
+  msg.orientation_covariance[0] = -1.0;
+  msg.angular_velocity = {0.1, -0.2, 0.3};
+  msg.angular_velocity_covariance = {1e-4, 0, 0, 0, 1e-4, 0, 0, 0, 1e-4};
+  msg.linear_acceleration = {0.0, 0.0, 9.81};
+  msg.linear_acceleration_covariance[8] = std::numeric_limits<double>::quiet_NaN();
+  const json j = toJson(msg);
+  EXPECT_EQ(j["frame_id"], "imu_link");
+  EXPECT_EQ(j["orientation"], json::parse(R"({"x": 0.0, "y": 0.0, "z": 0.6, "w": 0.8})"));
+  EXPECT_EQ(j["orientation_covariance"], json::parse("[-1.0, 0, 0, 0, 0, 0, 0, 0, 0]"));
+  EXPECT_EQ(j["angular_velocity"], json::parse(R"({"x": 0.1, "y": -0.2, "z": 0.3})"));
+  EXPECT_EQ(j["angular_velocity_covariance"][4], 1e-4);
+  EXPECT_EQ(j["linear_acceleration"]["z"], 9.81);
+  EXPECT_EQ(j.size(), 8u);
+  const auto back = messageFromJson<sensor_msgs::Imu>(json::parse(j.dump()));  // NaN travels as null
+  EXPECT_EQ(back.stamp, 1.5);
+  EXPECT_EQ(back.frame_id, "imu_link");
+  EXPECT_EQ(back.orientation.w, 0.8);
+  EXPECT_EQ(back.orientation_covariance[0], -1.0);
+  EXPECT_EQ(back.angular_velocity.y, -0.2);
+  EXPECT_EQ(back.angular_velocity_covariance, msg.angular_velocity_covariance);
+  EXPECT_EQ(back.linear_acceleration.z, 9.81);
+  EXPECT_TRUE(std::isnan(back.linear_acceleration_covariance[8]));
+  // A left-out orientation is the identity.
+  EXPECT_EQ(messageFromJson<sensor_msgs::Imu>(json::object()).orientation.w, 1.0);
+
+  EXPECT_EQ(thrownMessage([] {
+              messageFromJson<sensor_msgs::Imu>(json::parse(R"({"angular_velocity_covariance": [1, 2, 3]})"));
+            }),
+            "sensor_msgs/Imu: field 'angular_velocity_covariance': expected a list of 9 numbers, got a list");
+  EXPECT_EQ(thrownMessage([] { messageFromJson<sensor_msgs::Imu>(json::parse(R"({"orientation": {"x": "a"}})")); }),
+            "sensor_msgs/Imu: field 'orientation.x': expected a number, got string \"a\"");
+  EXPECT_THAT(thrownMessage([] { messageFromJson<sensor_msgs::Imu>(json::parse(R"({"header": {}})")); }),
+              HasSubstr("unknown field 'header'; the fields are: stamp, frame_id, orientation"));
+}
+
+// gazebo_msgs/ContactsState as gazebo_ros_bumper publishes it: per contact
+// point a wrench, a position, a normal and a depth.
+TEST(Messages, ContactsStateJsonRoundTripAndOneOfEachPerContactPoint) {
+  gazebo_msgs::ContactsState msg;
+  msg.stamp = 3.0;
+  msg.frame_id = "world";
+  msg.states.resize(2);
+  msg.states[1].collision1_name = "box::link::collision";  // a state with no points
+  gazebo_msgs::ContactState& c = msg.states[0];
+  c.info = "Debug:  i:(0/1)     my geom:box::link::collision   other geom:ground_plane::link::collision";
+  c.collision1_name = "box::link::collision";
+  c.collision2_name = "ground_plane::link::collision";
+  c.wrenches.resize(2);
+  c.wrenches[0].force = {0.0, 0.0, 4.9};
+  c.wrenches[1].force = {0.0, 0.0, 4.9};
+  c.wrenches[1].torque = {0.1, 0.0, 0.0};
+  c.total_wrench.force = {0.0, 0.0, 9.8};
+  c.total_wrench.torque = {0.1, 0.0, 0.0};
+  c.contact_positions = {{0.05, 0.05, 0.0}, {-0.05, -0.05, 0.0}};
+  c.contact_normals = {{0.0, 0.0, 1.0}, {0.0, 0.0, 1.0}};
+  c.depths = {1e-4, 2e-4};
+  const json j = toJson(msg);
+  EXPECT_EQ(j["stamp"], 3.0);
+  EXPECT_EQ(j["frame_id"], "world");
+  ASSERT_EQ(j["states"].size(), 2u);
+  const json& state = j["states"][0];
+  EXPECT_EQ(state["collision2_name"], "ground_plane::link::collision");
+  EXPECT_EQ(state["wrenches"][1]["torque"], json::parse(R"({"x": 0.1, "y": 0.0, "z": 0.0})"));
+  EXPECT_EQ(state["total_wrench"]["force"]["z"], 9.8);
+  EXPECT_EQ(state["contact_positions"][1], json::parse(R"({"x": -0.05, "y": -0.05, "z": 0.0})"));
+  EXPECT_EQ(state["contact_normals"][0]["z"], 1.0);
+  EXPECT_EQ(state["depths"], json::parse("[1e-4, 2e-4]"));
+  EXPECT_EQ(state.size(), 8u);
+
+  const auto back = messageFromJson<gazebo_msgs::ContactsState>(json::parse(j.dump()));
+  EXPECT_EQ(back.stamp, 3.0);
+  ASSERT_EQ(back.states.size(), 2u);
+  EXPECT_EQ(back.states[0].info, c.info);
+  EXPECT_EQ(back.states[0].collision1_name, c.collision1_name);
+  ASSERT_EQ(back.states[0].wrenches.size(), 2u);
+  EXPECT_EQ(back.states[0].wrenches[1].torque.x, 0.1);
+  EXPECT_EQ(back.states[0].total_wrench.force.z, 9.8);
+  EXPECT_EQ(back.states[0].contact_positions[1].x, -0.05);
+  EXPECT_EQ(back.states[0].contact_normals[1].z, 1.0);
+  EXPECT_EQ(back.states[0].depths, c.depths);
+  EXPECT_TRUE(back.states[1].wrenches.empty());
+  EXPECT_EQ(toJson(back), j);
+
+  json ragged = j;
+  ragged["states"][0]["depths"].erase(1);
+  EXPECT_EQ(thrownMessage([&] { messageFromJson<gazebo_msgs::ContactsState>(ragged); }),
+            "gazebo_msgs/ContactsState: states[0]: 2 wrenches, 2 contact_positions, 2 contact_normals and 1 depths; "
+            "give one of each per contact point");
+  json bad = j;
+  bad["states"][0]["wrenches"][1]["force"]["z"] = "heavy";
+  EXPECT_EQ(thrownMessage([&] { messageFromJson<gazebo_msgs::ContactsState>(bad); }),
+            "gazebo_msgs/ContactsState: field 'states[0].wrenches[1].force.z': expected a number, got string "
+            "\"heavy\"");
+  bad = j;
+  bad["states"][0]["contact_normals"][0] = 1.0;
+  EXPECT_EQ(thrownMessage([&] { messageFromJson<gazebo_msgs::ContactsState>(bad); }),
+            "gazebo_msgs/ContactsState: field 'states[0].contact_normals[0]': expected an object, got 1.0");
+  bad = j;
+  bad["states"][1]["position"] = json::array();
+  EXPECT_THAT(thrownMessage([&] { messageFromJson<gazebo_msgs::ContactsState>(bad); }),
+              HasSubstr("unknown field 'states[1].position'; the fields are: info, collision1_name"));
+}
+
+// `topic pub` creates a topic of each new type and `topic echo` reads it back.
+TEST(Messages, SensorTypesTravelTheBusAsJson) {
+  realtime::TopicBus bus;
+  std::map<std::string, json> received;  // type → message
+  std::vector<realtime::Subscription> subscriptions;
+  const json wrench = json::parse(R"({"stamp": 0.5, "frame_id": "ft", "wrench": {"force": {"x": 1.0, "y": 2.0,
+      "z": 3.0}, "torque": {"x": 0.0, "y": 0.0, "z": -1.0}}})");
+  const json imu = toJson(sensor_msgs::Imu{});
+  const json contacts = json::parse(R"({"stamp": 0.0, "frame_id": "world", "states": []})");
+  const std::pair<const char*, const json*> cases[] = {
+      {"geometry_msgs/WrenchStamped", &wrench}, {"sensor_msgs/Imu", &imu}, {"gazebo_msgs/ContactsState", &contacts}};
+  for (const auto& entry : cases) {
+    const std::string type = entry.first;
+    const std::string topic = "/robot/" + type;
+    subscriptions.push_back(
+        subscribeJson(bus, topic, [&received, type](Time, const json& m) { received[type] = m; }));
+    publishJson(bus, topic, *entry.second, type);
+    EXPECT_EQ(bus.typeOf(topic), type);
+  }
+  bus.flush();
+  ASSERT_EQ(received.size(), 3u);
+  for (const auto& entry : cases) {
+    const auto it = received.find(entry.first);
+    ASSERT_NE(it, received.end()) << entry.first;
+    EXPECT_EQ(it->second, *entry.second) << entry.first;
+  }
+  EXPECT_EQ(normalizeMessage("geometry_msgs/WrenchStamped", json::object())["wrench"]["torque"]["z"], 0.0);
 }
 
 TEST(Messages, Float64JsonRoundTrip) {

@@ -16,6 +16,8 @@
 #include <controller_manager_msgs/ListControllers.h>
 #include <controller_manager_msgs/SwitchController.h>
 #include <gazebo_msgs/ApplyJointEffort.h>
+#include <gazebo_msgs/ContactState.h>
+#include <gazebo_msgs/ContactsState.h>
 #include <gazebo_msgs/DeleteModel.h>
 #include <gazebo_msgs/GetJointProperties.h>
 #include <gazebo_msgs/GetModelState.h>
@@ -70,6 +72,11 @@ TEST(Ros1Messages, GeneratedPackagesHaveRosMd5sums) {
             "9330fd35f2fcd82d457e54bd54e10593");
   EXPECT_EQ(std::string(ros::message_traits::MD5Sum<gazebo_msgs::ModelStates>::value()),
             "48c080191eb15c41858319b4d8a609c2");
+  // gazebo_ros_bumper's contact sensor messages.
+  EXPECT_EQ(std::string(ros::message_traits::MD5Sum<gazebo_msgs::ContactState>::value()),
+            "48c0ffb054b8c444f870cecea1ee50d9");
+  EXPECT_EQ(std::string(ros::message_traits::MD5Sum<gazebo_msgs::ContactsState>::value()),
+            "acbcb1601a8e525bf72509f18e6f668d");
 }
 
 TEST(Ros1Messages, EveryBridgedTypeRoundTripsThroughRosSerialisation) {
@@ -112,6 +119,33 @@ TEST(Ros1Messages, EveryBridgedTypeRoundTripsThroughRosSerialisation) {
                    {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.6}, {"w", 0.8}}}}}},
         {"twist", {{{"linear", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}, {"angular", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}},
                    {{"linear", {{"x", 0.1}, {"y", 0.0}, {"z", -2.0}}}, {"angular", {{"x", 0.0}, {"y", 0.0}, {"z", 2.0}}}}}}}},
+      {"geometry_msgs/WrenchStamped",
+       {{"stamp", 0.25}, {"frame_id", "wrist_ft"},
+        {"wrench", {{"force", {{"x", 1.5}, {"y", -2.0}, {"z", 9.81}}}, {"torque", {{"x", 0.0}, {"y", nullptr}, {"z", -0.5}}}}}}},
+      // An IMU without orientation: covariance[0] = -1, as ROS says for "not measured".
+      {"sensor_msgs/Imu",
+       {{"stamp", 1.5}, {"frame_id", "imu_link"},
+        {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"w", 0.0}}},
+        {"orientation_covariance", {-1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}},
+        {"angular_velocity", {{"x", 0.1}, {"y", -0.2}, {"z", 0.3}}},
+        {"angular_velocity_covariance", {1e-4, 0.0, 0.0, 0.0, 1e-4, 0.0, 0.0, 0.0, 1e-4}},
+        {"linear_acceleration", {{"x", 0.0}, {"y", 0.0}, {"z", 9.81}}},
+        {"linear_acceleration_covariance", {0.01, 0.0, 0.0, 0.0, 0.01, 0.0, 0.0, 0.0, nullptr}}}},
+      {"gazebo_msgs/ContactsState",
+       {{"stamp", 3.0}, {"frame_id", "world"},
+        {"states",
+         {{{"info", "box on the ground"}, {"collision1_name", "box::link::collision"},
+           {"collision2_name", "ground_plane::link::collision"},
+           {"wrenches", {{{"force", {{"x", 0.0}, {"y", 0.0}, {"z", 4.9}}}, {"torque", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}},
+                         {{"force", {{"x", 0.0}, {"y", 0.0}, {"z", 4.9}}}, {"torque", {{"x", 0.1}, {"y", 0.0}, {"z", 0.0}}}}}},
+           {"total_wrench", {{"force", {{"x", 0.0}, {"y", 0.0}, {"z", 9.8}}}, {"torque", {{"x", 0.1}, {"y", 0.0}, {"z", 0.0}}}}},
+           {"contact_positions", {{{"x", 0.05}, {"y", 0.05}, {"z", 0.0}}, {{"x", -0.05}, {"y", -0.05}, {"z", 0.0}}}},
+           {"contact_normals", {{{"x", 0.0}, {"y", 0.0}, {"z", 1.0}}, {{"x", 0.0}, {"y", 0.0}, {"z", 1.0}}}},
+           {"depths", {1e-4, 2e-4}}},
+          {{"info", ""}, {"collision1_name", "box::link::collision"}, {"collision2_name", "wall::link::collision"},
+           {"wrenches", json::array()},
+           {"total_wrench", {{"force", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}, {"torque", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}}},
+           {"contact_positions", json::array()}, {"contact_normals", json::array()}, {"depths", json::array()}}}}}},
   };
   for (const auto& [type, msg] : cases.items()) {
     SCOPED_TRACE(type);
@@ -135,7 +169,8 @@ TEST(Ros1Messages, CommandsGoToTheNodeAndStatesComeFromIt) {
     EXPECT_TRUE(servoloop::ros1::findBridgedType(command)->command) << command;
   }
   for (const char* state : {"sensor_msgs/JointState", "control_msgs/JointControllerState", "nav_msgs/Odometry",
-                            "tf2_msgs/TFMessage", "diagnostic_msgs/DiagnosticArray", "gazebo_msgs/ModelStates"}) {
+                            "tf2_msgs/TFMessage", "diagnostic_msgs/DiagnosticArray", "gazebo_msgs/ModelStates",
+                            "sensor_msgs/Imu", "geometry_msgs/WrenchStamped", "gazebo_msgs/ContactsState"}) {
     ASSERT_NE(servoloop::ros1::findBridgedType(state), nullptr) << state;
     EXPECT_FALSE(servoloop::ros1::findBridgedType(state)->command) << state;
   }

@@ -8,11 +8,14 @@
 #include <control_msgs/JointControllerState.h>
 #include <control_msgs/JointTrajectoryControllerState.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <gazebo_msgs/ContactsState.h>
 #include <gazebo_msgs/ModelStates.h>
 #include <geometry_msgs/Twist.h>
+#include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/console.h>
 #include <ros/serialization.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/Bool.h>
 #include <std_msgs/Float64.h>
@@ -166,8 +169,8 @@ json toJson(const geometry_msgs::Quaternion& q) {
 }
 
 template <std::size_t N>
-void covarianceFrom(const json& j, boost::array<double, N>& out) {
-  const std::vector<double> xs = numbers(j, "covariance");
+void covarianceFrom(const json& j, boost::array<double, N>& out, const char* key = "covariance") {
+  const std::vector<double> xs = numbers(j, key);
   for (std::size_t i = 0; i < N; ++i) out[i] = i < xs.size() ? xs[i] : 0.0;
 }
 template <std::size_t N>
@@ -250,6 +253,95 @@ json toJson(const gazebo_msgs::ModelStates& m) {
   return {{"name", m.name}, {"pose", std::move(poses)}, {"twist", std::move(twists)}};
 }
 
+// Declared ahead of listFrom/listOf, which find them by ordinary lookup only
+// (argument-dependent lookup searches ROS's namespaces, not this one).
+void fromJson(const json& j, geometry_msgs::Wrench& m);
+json toJson(const geometry_msgs::Wrench& m);
+void fromJson(const json& j, gazebo_msgs::ContactState& m);
+json toJson(const gazebo_msgs::ContactState& m);
+
+// A list of messages under key (missing or not a list: empty), and back.
+template <class Vector>
+void listFrom(const json& j, const char* key, Vector& out) {
+  out.clear();
+  if (const auto it = j.find(key); it != j.end() && it->is_array()) {
+    for (const json& item : *it) fromJson(item, out.emplace_back());
+  }
+}
+template <class Vector>
+json listOf(const Vector& items) {
+  json out = json::array();
+  for (const auto& item : items) out.push_back(toJson(item));
+  return out;
+}
+
+void fromJson(const json& j, geometry_msgs::Wrench& m) {
+  fromJson(child(j, "force"), m.force);
+  fromJson(child(j, "torque"), m.torque);
+}
+json toJson(const geometry_msgs::Wrench& m) { return {{"force", toJson(m.force)}, {"torque", toJson(m.torque)}}; }
+
+void fromJson(const json& j, geometry_msgs::WrenchStamped& m) {
+  m.header.stamp = stampFrom(j);
+  m.header.frame_id = text(j, "frame_id");
+  fromJson(child(j, "wrench"), m.wrench);
+}
+json toJson(const geometry_msgs::WrenchStamped& m) {
+  return {{"stamp", seconds(m.header.stamp)}, {"frame_id", m.header.frame_id}, {"wrench", toJson(m.wrench)}};
+}
+
+// The covariances keep ROS's "-1 in element 0: not measured" as they are.
+void fromJson(const json& j, sensor_msgs::Imu& m) {
+  m.header.stamp = stampFrom(j);
+  m.header.frame_id = text(j, "frame_id");
+  fromJson(child(j, "orientation"), m.orientation);
+  covarianceFrom(j, m.orientation_covariance, "orientation_covariance");
+  fromJson(child(j, "angular_velocity"), m.angular_velocity);
+  covarianceFrom(j, m.angular_velocity_covariance, "angular_velocity_covariance");
+  fromJson(child(j, "linear_acceleration"), m.linear_acceleration);
+  covarianceFrom(j, m.linear_acceleration_covariance, "linear_acceleration_covariance");
+}
+json toJson(const sensor_msgs::Imu& m) {
+  return {{"stamp", seconds(m.header.stamp)},
+          {"frame_id", m.header.frame_id},
+          {"orientation", toJson(m.orientation)},
+          {"orientation_covariance", covarianceOf(m.orientation_covariance)},
+          {"angular_velocity", toJson(m.angular_velocity)},
+          {"angular_velocity_covariance", covarianceOf(m.angular_velocity_covariance)},
+          {"linear_acceleration", toJson(m.linear_acceleration)},
+          {"linear_acceleration_covariance", covarianceOf(m.linear_acceleration_covariance)}};
+}
+
+void fromJson(const json& j, gazebo_msgs::ContactState& m) {
+  m.info = text(j, "info");
+  m.collision1_name = text(j, "collision1_name");
+  m.collision2_name = text(j, "collision2_name");
+  listFrom(j, "wrenches", m.wrenches);
+  fromJson(child(j, "total_wrench"), m.total_wrench);
+  listFrom(j, "contact_positions", m.contact_positions);
+  listFrom(j, "contact_normals", m.contact_normals);
+  m.depths = numbers(j, "depths");
+}
+json toJson(const gazebo_msgs::ContactState& m) {
+  return {{"info", m.info},
+          {"collision1_name", m.collision1_name},
+          {"collision2_name", m.collision2_name},
+          {"wrenches", listOf(m.wrenches)},
+          {"total_wrench", toJson(m.total_wrench)},
+          {"contact_positions", listOf(m.contact_positions)},
+          {"contact_normals", listOf(m.contact_normals)},
+          {"depths", values(m.depths)}};
+}
+
+void fromJson(const json& j, gazebo_msgs::ContactsState& m) {
+  m.header.stamp = stampFrom(j);
+  m.header.frame_id = text(j, "frame_id");
+  listFrom(j, "states", m.states);
+}
+json toJson(const gazebo_msgs::ContactsState& m) {
+  return {{"stamp", seconds(m.header.stamp)}, {"frame_id", m.header.frame_id}, {"states", listOf(m.states)}};
+}
+
 template <class Msg>
 json serialiseAndBack(const json& msg) {
   Msg original;
@@ -307,7 +399,9 @@ const std::map<std::string, BridgedType, std::less<>>& registry() {
                              bridged<control_msgs::JointTrajectoryControllerState>(false),
                              bridged<nav_msgs::Odometry>(false), bridged<tf2_msgs::TFMessage>(false),
                              bridged<diagnostic_msgs::DiagnosticArray>(false),
-                             bridged<gazebo_msgs::ModelStates>(false)}) {
+                             bridged<gazebo_msgs::ModelStates>(false),
+                             bridged<geometry_msgs::WrenchStamped>(false), bridged<sensor_msgs::Imu>(false),
+                             bridged<gazebo_msgs::ContactsState>(false)}) {
       out.emplace(type.name, std::move(type));
     }
     return out;

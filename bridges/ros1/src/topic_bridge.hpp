@@ -5,9 +5,11 @@
 // trajectory_msgs/JointTrajectory) go from ROS to the node; states
 // (sensor_msgs/JointState, control_msgs/*, nav_msgs/Odometry, tf2_msgs/TFMessage,
 // diagnostic_msgs/DiagnosticArray, gazebo_msgs/ModelStates: the world's
-// /gazebo/model_states, carried on the first robot's bus) go from the node to
-// ROS. Topics are found with `topic.list` once a second, so controllers
-// spawned later are bridged too. /clock follows the node's simulated time.
+// /gazebo/model_states, carried on the first robot's bus; the sensors'
+// sensor_msgs/Imu, geometry_msgs/WrenchStamped and gazebo_msgs/ContactsState)
+// go from the node to ROS. Topics are found with `topic.list` once a second,
+// so controllers spawned later are bridged too. /clock follows the node's
+// simulated time.
 #include <atomic>
 #include <map>
 #include <set>

@@ -5,6 +5,7 @@
 
 #include "servoloop/realtime/topic_bus.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/number_text.hpp"
 
 namespace servoloop::controllers {
 
@@ -116,6 +117,15 @@ double optionalNumber(const ControllerContext& context, const std::string& key, 
   } catch (const ConfigError& e) {
     throw ConfigError("controller '" + context.name + "': " + e.what());
   }
+}
+
+double requirePublishRate(const ControllerContext& context) {
+  const double rate = requireNumber(context, "publish_rate", "publish_rate: 50");
+  if (rate < 0.0) {
+    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, "publish_rate") +
+                      "' is " + formatDouble(rate) + "; a rate is > 0 in Hz (0: never publish), e.g. publish_rate: 50");
+  }
+  return rate;
 }
 
 double optionalNonNegative(const ControllerContext& context, const std::string& key, double fallback) {

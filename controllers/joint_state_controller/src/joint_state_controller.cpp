@@ -8,7 +8,6 @@
 #include "servoloop/controllers/common/controller_params.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
-#include "servoloop/core/number_text.hpp"
 
 namespace servoloop::controllers {
 
@@ -19,11 +18,7 @@ bool JointStateController::init(hardware_interface::JointStateInterface* hw,
   // ros_controllers loads a rate of 0 and never publishes (kept, with a
   // warning below: a ROS YAML may say so on purpose); a negative rate is no
   // rate at all and is refused.
-  const double rate = requireNumber(context, "publish_rate", "publish_rate: 50");
-  if (rate < 0.0) {
-    throw ConfigError("controller '" + context.name + "': parameter '" + parameterPath(context, "publish_rate") +
-                      "' is " + formatDouble(rate) + "; a rate is > 0 in Hz (0: never publish), e.g. publish_rate: 50");
-  }
+  const double rate = requirePublishRate(context);
   gate_.setRate(rate);
 
   std::vector<std::string> names = hw->getNames();

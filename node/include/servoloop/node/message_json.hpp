@@ -39,6 +39,9 @@ nlohmann::json toJson(const control_msgs::JointTrajectoryControllerState& msg);
 nlohmann::json toJson(const geometry_msgs::Twist& msg);
 nlohmann::json toJson(const tf2_msgs::TFMessage& msg);
 nlohmann::json toJson(const gazebo_msgs::ModelStates& msg);
+nlohmann::json toJson(const geometry_msgs::WrenchStamped& msg);
+nlohmann::json toJson(const sensor_msgs::Imu& msg);
+nlohmann::json toJson(const gazebo_msgs::ContactsState& msg);
 
 void fromJson(const nlohmann::json& json, std_msgs::Float64& out);
 void fromJson(const nlohmann::json& json, std_msgs::Bool& out);
@@ -52,6 +55,9 @@ void fromJson(const nlohmann::json& json, control_msgs::JointTrajectoryControlle
 void fromJson(const nlohmann::json& json, geometry_msgs::Twist& out);
 void fromJson(const nlohmann::json& json, tf2_msgs::TFMessage& out);
 void fromJson(const nlohmann::json& json, gazebo_msgs::ModelStates& out);
+void fromJson(const nlohmann::json& json, geometry_msgs::WrenchStamped& out);
+void fromJson(const nlohmann::json& json, sensor_msgs::Imu& out);
+void fromJson(const nlohmann::json& json, gazebo_msgs::ContactsState& out);
 
 template <class Msg>
 Msg messageFromJson(const nlohmann::json& json) {

@@ -148,7 +148,42 @@ struct TransformStamped {
   Quaternion rotation;
 };
 
+// A force (N) and a torque (N·m).
+struct Wrench {
+  Vector3 force;
+  Vector3 torque;
+};
+
+// A wrench measured in frame_id, the torque about that frame's origin (a
+// force-torque sensor's reading).
+struct WrenchStamped {
+  static constexpr std::string_view kTypeName = "geometry_msgs/WrenchStamped";
+  double stamp = 0.0;  // control time, s
+  std::string frame_id;
+  Wrench wrench;
+};
+
 }  // namespace geometry_msgs
+
+namespace sensor_msgs {
+
+// An IMU's reading in frame_id: orientation, angular velocity (rad/s) and
+// linear acceleration (m/s², specific force: +9.81 upwards at rest), each with
+// its row-major 3×3 covariance; covariance[0] = -1 says the value is not
+// measured, as in ROS.
+struct Imu {
+  static constexpr std::string_view kTypeName = "sensor_msgs/Imu";
+  double stamp = 0.0;  // control time, s
+  std::string frame_id;
+  geometry_msgs::Quaternion orientation;
+  std::array<double, 9> orientation_covariance{};
+  geometry_msgs::Vector3 angular_velocity;
+  std::array<double, 9> angular_velocity_covariance{};
+  geometry_msgs::Vector3 linear_acceleration;
+  std::array<double, 9> linear_acceleration_covariance{};
+};
+
+}  // namespace sensor_msgs
 
 namespace tf2_msgs {
 
@@ -170,6 +205,29 @@ struct ModelStates {
   std::vector<std::string> name;
   std::vector<geometry_msgs::Pose> pose;
   std::vector<geometry_msgs::Twist> twist;
+};
+
+// The contacts between one collision of the sensor and one other collision,
+// Gazebo's scoped names ("model::link::collision"): per contact point its
+// wrench on collision1, position and normal (frame of the ContactsState),
+// and depth (m); total_wrench is their sum.
+struct ContactState {
+  std::string info;
+  std::string collision1_name;
+  std::string collision2_name;
+  std::vector<geometry_msgs::Wrench> wrenches;
+  geometry_msgs::Wrench total_wrench;
+  std::vector<geometry_msgs::Vector3> contact_positions;
+  std::vector<geometry_msgs::Vector3> contact_normals;
+  std::vector<double> depths;
+};
+
+// A contact sensor's reading, as gazebo_ros_bumper publishes it.
+struct ContactsState {
+  static constexpr std::string_view kTypeName = "gazebo_msgs/ContactsState";
+  double stamp = 0.0;  // control time, s
+  std::string frame_id;
+  std::vector<ContactState> states;
 };
 
 }  // namespace gazebo_msgs

@@ -58,6 +58,18 @@ struct BaseState {
   Eigen::Vector3d angular_velocity{Eigen::Vector3d::Zero()};      // rad/s
 };
 
+// A URDF link frame: its pose, the velocity of its origin and its angular
+// velocity, world frame and axes.
+using LinkState = BaseState;
+
+// What a joint transmits from the parent link to the child link (actuation
+// and constraint forces), the torque about the joint origin, both in the
+// child link frame's axes. N and N m.
+struct JointWrench {
+  Eigen::Vector3d force{Eigen::Vector3d::Zero()};
+  Eigen::Vector3d torque{Eigen::Vector3d::Zero()};
+};
+
 // The robot's collision geometry that reaches deepest below the ground plane.
 struct GroundPenetration {
   std::string link;    // the URDF link whose <collision> it is ("" when none is below)
@@ -176,6 +188,20 @@ class BulletWorld {
   // World position of a URDF link frame's origin (any link, merged or not);
   // throws servoloop::Error for an unknown link. Not for the real-time path.
   Eigen::Vector3d linkWorldPosition(const std::string& link_name) const;
+  // Sensors. Non-real-time: follow a URDF link frame (any link, merged or
+  // not); returns the index for linkState(). Throws servoloop::Error for an
+  // unknown link.
+  std::size_t trackLink(const std::string& link_name);
+  // Non-real-time: measure what a revolute, continuous or prismatic joint
+  // transmits (Bullet's joint feedback); returns the index for
+  // jointWrench(). Throws ConfigError for any other joint name (a fixed
+  // joint's links are merged into one body).
+  std::size_t trackJointWrench(const std::string& joint_name);
+  // Real-time: the tracked link's state now; the tracked joint's wrench
+  // during the last step (zero before the first).
+  LinkState linkState(std::size_t tracked) const;
+  JointWrench jointWrench(std::size_t tracked) const;
+
   // Mass properties of the body that `link_name` moves with, expressed in the
   // frame of that body's first link (the one its joint moves). The URDF's:
   // without the rotor inertia added for the body's joint.

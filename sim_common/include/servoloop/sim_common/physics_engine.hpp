@@ -75,6 +75,24 @@ struct EngineBaseState {
   Eigen::Vector3d angular_velocity{Eigen::Vector3d::Zero()};        // rad/s, world axes
 };
 
+// A URDF link frame's state in the world, ground truth: its pose, the
+// velocity of its origin and its angular velocity, both in world axes.
+struct EngineLinkState {
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};               // m
+  Eigen::Quaterniond orientation{Eigen::Quaterniond::Identity()};  // link -> world
+  Eigen::Vector3d linear_velocity{Eigen::Vector3d::Zero()};        // m/s, world axes
+  Eigen::Vector3d angular_velocity{Eigen::Vector3d::Zero()};       // rad/s, world axes
+};
+
+// The wrench a joint transmits: what the parent link applies to the child
+// link through the joint (constraint forces and the joint's actuation alike),
+// the torque about the joint origin (the child link frame's origin), both in
+// the child link frame's axes. N and N·m.
+struct EngineJointWrench {
+  Eigen::Vector3d force{Eigen::Vector3d::Zero()};
+  Eigen::Vector3d torque{Eigen::Vector3d::Zero()};
+};
+
 // Threading: init() and reset() are non-real-time (they may allocate and
 // throw). Every other method runs on the real-time thread: no allocation, no
 // locks, no logging, no exceptions. Joint indices are those of the `joints`
@@ -121,6 +139,24 @@ class PhysicsEngine {
   // quaternion); the joints keep their state. Throws servoloop::Error for a
   // fixed base or an engine that does not track one (the default).
   virtual void setBaseState(const EngineBaseState& state);
+
+  // Sensors. Non-real-time, after init(): whether the engine gives link
+  // states and joint wrenches (the methods below). The default: no.
+  virtual bool simulatesSensors() const noexcept { return false; }
+  // Non-real-time, after init(): follow URDF link `link` (any link of the
+  // model, also one fixed to another) for readLinkState; returns the index
+  // to read it with. Throws servoloop::ConfigError naming the link when the
+  // engine cannot (the default: no sensors).
+  virtual std::size_t trackLink(const std::string& link);
+  // Real-time. The state of a tracked link after the last step.
+  virtual void readLinkState(std::size_t /*tracked*/, EngineLinkState& /*out*/) const noexcept {}
+  // Non-real-time, after init(): measure the wrench of URDF joint `joint`
+  // (any joint, fixed ones too where the engine keeps them) for
+  // readJointWrench; returns the index to read it with. Throws
+  // servoloop::ConfigError naming the joint when the engine cannot.
+  virtual std::size_t trackJointWrench(const std::string& joint);
+  // Real-time. The wrench the tracked joint transmitted during the last step.
+  virtual void readJointWrench(std::size_t /*tracked*/, EngineJointWrench& /*out*/) const noexcept {}
 
   // Real-time. Every joint's state at once, `states[j]` for joint j, as the
   // getters above give it; `states` holds one entry per joint of init()'s

@@ -9,6 +9,9 @@
 //   write(): joint limits on the active command interfaces ─▶ emergency stop
 //            ─▶ jointCommandToActuatorCommand ─▶ motor limits (actuators/<name>/
 //            max_effort) ─▶ actuatorCommandToJointCommand ─▶ applied commands
+//            (read() also samples the URDF's IMUs and force-torque sensors,
+//            simulated_sensors.hpp, offered as ImuSensorInterface and
+//            ForceTorqueSensorInterface)
 //   step():  applied commands ─▶ engine, one physics step
 //
 // Every transmission map is linear and invertible, so the round trips
@@ -41,6 +44,7 @@
 #include "servoloop/sim_common/joint_command_limiter.hpp"
 #include "servoloop/sim_common/physics_engine.hpp"
 #include "servoloop/sim_common/sim_settings.hpp"
+#include "servoloop/sim_common/simulated_sensors.hpp"
 #include "servoloop/transmissions/robot_transmissions.hpp"
 
 namespace servoloop::sim_common {
@@ -118,6 +122,7 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
     return engine_joints_.at(joint.value());
   }
   const PhysicsEngine& engine() const noexcept { return *engine_; }
+  const std::vector<SensorDescription>& sensorDescriptions() const noexcept { return sensor_descriptions_; }
   // Real-time safe getters.
   JointCommandMode jointCommandMode(JointIndex joint) const noexcept;
   AppliedJointCommand appliedCommand(JointIndex joint) const noexcept;
@@ -130,6 +135,7 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   void loadModel(const hardware_interface::HardwareInfo& info);
   void configureActuators(const std::string& ns, const YAML::Node& parameters);
   void configureEngineJoints();
+  void initSensors();
   void readEngineState() noexcept;
   // write()'s rare paths, out of line.
   [[gnu::noinline]] void changeEmergencyStop(bool engaged) noexcept;
@@ -145,6 +151,8 @@ class SimRobotHW : public hardware_interface::SimulatedRobotHW {
   bool urdf_self_collide_ = false;  // <gazebo><self_collide> of the description
   std::map<std::string, double> urdf_link_friction_;  // <gazebo reference><mu1>/<mu2>, by link
   std::unique_ptr<transmissions::RobotTransmissions> transmissions_;
+  std::vector<SensorDescription> sensor_descriptions_;  // the URDF's <gazebo> sensors
+  SimulatedSensors sensors_;
   hardware_interface::RobotJointLimits joint_limits_;
   SimSettings settings_;
 

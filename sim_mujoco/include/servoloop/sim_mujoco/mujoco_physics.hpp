@@ -40,6 +40,7 @@
 // getters, setters and step() run on the real-time thread: MuJoCo steps in
 // the mjData arena allocated at init, and every scratch buffer is sized there.
 #include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -86,6 +87,20 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
 
   void step() noexcept override;
 
+  // Sensors: any URDF link's frame (bodies are link frames); the wrench of
+  // any joint, fixed ones too (MuJoCo keeps a body per link), from the
+  // step's own forward pass (mj_rnePostConstraint's interaction forces).
+  bool simulatesSensors() const noexcept override { return true; }
+  std::size_t trackLink(const std::string& link) override;
+  void readLinkState(std::size_t tracked, sim_common::EngineLinkState& out) const noexcept override;
+  std::size_t trackJointWrench(const std::string& joint) override;
+  void readJointWrench(std::size_t tracked, sim_common::EngineJointWrench& out) const noexcept override;
+  // Real-time: whether a step must give this robot's sensors their data
+  // (model_step.hpp), and the capture of its joint wrenches from the
+  // forward pass of the step being taken.
+  bool hasSensors() const noexcept { return !tracked_link_names_.empty() || !tracked_joint_links_.empty(); }
+  void captureJointWrenches() noexcept;
+
   void reset() override;
   void setJointState(std::size_t joint, double position, double velocity) override;
 
@@ -129,6 +144,8 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   void placeAtInitialPositions();
   // In a shared world: one warning when the robot starts inside another's body.
   void warnOfOverlap(const std::string& source_name) const;
+  // Body ids of the tracked links and joints' child links in the current model.
+  void bindSensors();
   // Sets the efforts of the first `motors` entries of motor_joints_.
   void solveMotorEfforts(std::size_t motors) noexcept;
 
@@ -157,6 +174,14 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   std::vector<double> initial_positions_;
   std::vector<double> motor_limits_;      // per joint of init()
   double position_motor_time_constant_s_ = kPositionMotorTimeConstant_s;
+
+  // Sensors, by URDF name (resolved again whenever the model is recompiled).
+  std::map<std::string, std::string> joint_child_links_;  // every URDF joint's child link
+  std::vector<std::string> tracked_link_names_;
+  std::vector<int> tracked_link_bodies_;
+  std::vector<std::string> tracked_joint_links_;  // child link of each tracked joint
+  std::vector<int> tracked_joint_bodies_;
+  std::vector<sim_common::EngineJointWrench> joint_wrenches_;
 
   // Motor solve scratch, sized at init for every joint being a motor.
   std::vector<std::size_t> motor_joints_;

@@ -40,6 +40,11 @@ double requireNumber(const ControllerContext& context, const std::string& key,
 // An optional finite number with a default.
 double optionalNumber(const ControllerContext& context, const std::string& key, double fallback);
 
+// The required `publish_rate` (Hz) of a state publisher (joint states, IMU,
+// force-torque): 0 is kept, as ros_controllers loads it and never publishes;
+// a negative rate is refused naming the parameter, its value and the fix.
+double requirePublishRate(const ControllerContext& context);
+
 // "a, b, c": names for messages.
 std::string joinNames(const std::vector<std::string>& names);
 

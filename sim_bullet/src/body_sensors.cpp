@@ -1,0 +1,214 @@
+#include "body_sensors.hpp"
+
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+
+#include "servoloop/core/errors.hpp"
+
+namespace servoloop::sim_bullet::detail {
+namespace {
+Eigen::Vector3d toEigen(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+Eigen::Matrix3d toEigen(const btMatrix3x3& m) {
+  Eigen::Matrix3d out;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out(r, c) = m[r][c];
+  }
+  return out;
+}
+}  // namespace
+
+std::size_t BodySensors::trackLink(const BodyTree& tree, const std::string& link_name) {
+  const auto it = tree.links.find(link_name);
+  if (it == tree.links.end()) throw Error("Bullet world: no link '" + link_name + "' in the robot");
+  const Body& body = tree.bodies[static_cast<std::size_t>(it->second.body)];
+  links_.push_back(TrackedLink{it->second.body, body.principal_in_link.inverse() * it->second.link_in_body_link});
+  return links_.size() - 1;
+}
+
+std::size_t BodySensors::trackJointWrench(const BodyTree& tree, const btMultiBody& body, const std::string& joint_name) {
+  for (std::size_t b = 1; b < tree.bodies.size(); ++b) {
+    const Body& child = tree.bodies[b];
+    if (child.joint == nullptr || child.joint->name != joint_name) continue;
+    for (std::size_t k = 0; k < joints_.size(); ++k) {
+      if (joints_[k].body == static_cast<int>(b)) return k;
+    }
+    TrackedJoint tracked;
+    tracked.body = static_cast<int>(b);
+    tracked.link_in_frame = child.principal_in_link.inverse();
+    // Bodies come depth-first, so the subtree is b and every later body whose
+    // chain of parents reaches b.
+    for (std::size_t k = b; k < tree.bodies.size(); ++k) {
+      int up = static_cast<int>(k);
+      while (up > static_cast<int>(b)) up = tree.bodies[static_cast<std::size_t>(up)].parent_body;
+      if (up == static_cast<int>(b)) tracked.subtree.push_back(static_cast<int>(k));
+    }
+    joints_.push_back(std::move(tracked));
+    reserve(body);
+    return joints_.size() - 1;
+  }
+  throw ConfigError("joint '" + joint_name +
+                    "' is not a movable joint: the bullet engine merges the links a fixed joint holds together into "
+                    "one body, so it has no wrench to measure; put the force-torque sensor on a movable joint, or "
+                    "simulate the robot with mujoco (which keeps fixed joints)");
+}
+
+void BodySensors::reserve(const btMultiBody& body) {
+  const std::size_t bodies = static_cast<std::size_t>(body.getNumLinks()) + 1;
+  omega_.assign(bodies, btVector3(0, 0, 0));
+  velocity_.assign(bodies, btVector3(0, 0, 0));
+  motion_.assign(bodies, BodyMotion{});
+  last_motion_.assign(bodies, BodyMotion{});
+  step_motion_.assign(bodies, BodyMotion{});
+  angular_acceleration_.assign(bodies, Eigen::Vector3d::Zero());
+  contact_force_.assign(bodies, Eigen::Vector3d::Zero());
+  contact_moment_.assign(bodies, Eigen::Vector3d::Zero());
+  has_last_motion_ = false;
+}
+
+void BodySensors::forgetMotion() noexcept {
+  has_last_motion_ = false;
+  for (TrackedJoint& joint : joints_) joint.wrench = JointWrench{};
+}
+
+void BodySensors::readMotion(const btMultiBody& body, std::vector<BodyMotion>& out) const noexcept {
+  body.compTreeLinkVelocities(omega_.data(), velocity_.data());
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    BodyMotion& motion = out[k];
+    if (k == 0) {
+      const btQuaternion& world_to_base = body.getWorldToBaseRot();
+      motion.rotation =
+          Eigen::Quaterniond(world_to_base.w(), world_to_base.x(), world_to_base.y(), world_to_base.z())
+              .conjugate()
+              .toRotationMatrix();
+      motion.com = toEigen(body.getBasePos());
+    } else {
+      const int link = static_cast<int>(k) - 1;
+      motion.rotation = toEigen(body.localFrameToWorld(link, btMatrix3x3::getIdentity()));
+      motion.com = toEigen(body.localPosToWorld(link, btVector3(0, 0, 0)));
+    }
+    motion.velocity = toEigen(velocity_[k]);
+    motion.omega = toEigen(omega_[k]);
+  }
+}
+
+// The contact impulses of the step's manifolds, as forces on this robot's
+// bodies: the normal impulse pushes body A along the normal on B, the
+// friction impulses along their directions; body B gets the opposite.
+void BodySensors::addContactForces(const btMultiBody& body, btDispatcher& dispatcher, double dt) noexcept {
+  for (std::size_t k = 0; k < contact_force_.size(); ++k) {
+    contact_force_[k].setZero();
+    contact_moment_[k].setZero();
+  }
+  const int manifolds = dispatcher.getNumManifolds();
+  for (int m = 0; m < manifolds; ++m) {
+    const btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
+    const auto* a = btMultiBodyLinkCollider::upcast(manifold->getBody0());
+    const auto* b = btMultiBodyLinkCollider::upcast(manifold->getBody1());
+    const bool on_a = a != nullptr && a->m_multiBody == &body;
+    const bool on_b = b != nullptr && b->m_multiBody == &body;
+    if (!on_a && !on_b) continue;
+    for (int p = 0; p < manifold->getNumContacts(); ++p) {
+      const btManifoldPoint& point = manifold->getContactPoint(p);
+      const btVector3 impulse = point.m_normalWorldOnB * point.getAppliedImpulse() +
+                                point.m_lateralFrictionDir1 * point.m_appliedImpulseLateral1 +
+                                point.m_lateralFrictionDir2 * point.m_appliedImpulseLateral2;
+      const Eigen::Vector3d force = toEigen(impulse) / dt;
+      if (on_a) {
+        const std::size_t k = static_cast<std::size_t>(a->m_link + 1);
+        contact_force_[k] += force;
+        contact_moment_[k] += toEigen(point.getPositionWorldOnA()).cross(force);
+      }
+      if (on_b) {
+        const std::size_t k = static_cast<std::size_t>(b->m_link + 1);
+        contact_force_[k] -= force;
+        contact_moment_[k] -= toEigen(point.getPositionWorldOnB()).cross(force);
+      }
+    }
+  }
+}
+
+void BodySensors::afterStep(const btMultiBody& body, btDispatcher& dispatcher, double dt,
+                            const btVector3& gravity_bt) noexcept {
+  if (joints_.empty()) return;
+  std::swap(motion_, last_motion_);
+  readMotion(body, motion_);
+  const bool accelerations_known = has_last_motion_;
+  has_last_motion_ = true;
+  addContactForces(body, dispatcher, dt);
+  const Eigen::Vector3d gravity = toEigen(gravity_bt);
+
+  // The step as Bullet's semi-implicit Euler takes it: the accelerations
+  // the forces of the step's start state gave, so each body is taken where
+  // the step started, with the change of its velocities over the step. The
+  // change is taken in the body's own axes, a = R (dv/dt + ω × v), so that
+  // a rotation alone does not show up as an acceleration.
+  for (std::size_t k = 0; k < motion_.size(); ++k) {
+    const BodyMotion& start = accelerations_known ? last_motion_[k] : motion_[k];
+    const BodyMotion& end = motion_[k];
+    BodyMotion& at = step_motion_[k];
+    at.com = start.com;
+    at.rotation = start.rotation;
+    at.omega = start.rotation * start.omega;
+    if (accelerations_known) {
+      at.velocity = start.rotation * ((end.velocity - start.velocity) / dt + start.omega.cross(start.velocity));
+      angular_acceleration_[k] = start.rotation * ((end.omega - start.omega) / dt);
+    } else {
+      at.velocity.setZero();
+      angular_acceleration_[k].setZero();
+    }
+  }
+  for (TrackedJoint& joint : joints_) {
+    const BodyMotion& child = step_motion_[static_cast<std::size_t>(joint.body)];
+    const Eigen::Vector3d pivot = child.com + child.rotation * joint.link_in_frame.translation();
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+    for (const int index : joint.subtree) {
+      const std::size_t k = static_cast<std::size_t>(index);
+      const BodyMotion& at = step_motion_[k];  // its velocity holds the acceleration
+      const double mass = k == 0 ? body.getBaseMass() : body.getLinkMass(index - 1);
+      const Eigen::Vector3d moments = toEigen(k == 0 ? body.getBaseInertia() : body.getLinkInertia(index - 1));
+      const Eigen::Matrix3d inertia = at.rotation * moments.asDiagonal() * at.rotation.transpose();
+      const Eigen::Vector3d inertial_force = mass * (at.velocity - gravity);
+      force += inertial_force;
+      torque += (at.com - pivot).cross(inertial_force) + inertia * angular_acceleration_[k] +
+                at.omega.cross(inertia * at.omega);
+      force -= contact_force_[k];
+      torque -= contact_moment_[k] - pivot.cross(contact_force_[k]);
+    }
+    // Into the child link's axes.
+    const Eigen::Matrix3d world_from_link = child.rotation * joint.link_in_frame.linear();
+    joint.wrench.force = world_from_link.transpose() * force;
+    joint.wrench.torque = world_from_link.transpose() * torque;
+  }
+}
+
+LinkState BodySensors::linkState(const btMultiBody& body, std::size_t tracked) const noexcept {
+  const TrackedLink& link = links_[tracked];
+  body.compTreeLinkVelocities(omega_.data(), velocity_.data());
+  // Bullet's frame of the body: its pose, and its velocities in its own axes.
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  if (link.body == 0) {
+    const btQuaternion& world_to_base = body.getWorldToBaseRot();
+    frame.linear() = Eigen::Quaterniond(world_to_base.w(), world_to_base.x(), world_to_base.y(), world_to_base.z())
+                         .conjugate()
+                         .toRotationMatrix();
+    frame.translation() = toEigen(body.getBasePos());
+  } else {
+    frame.linear() = toEigen(body.localFrameToWorld(link.body - 1, btMatrix3x3::getIdentity()));
+    frame.translation() = toEigen(body.localPosToWorld(link.body - 1, btVector3(0, 0, 0)));
+  }
+  const std::size_t k = static_cast<std::size_t>(link.body);
+  const Eigen::Vector3d omega = frame.linear() * toEigen(omega_[k]);
+  const Eigen::Vector3d frame_velocity = frame.linear() * toEigen(velocity_[k]);
+  const Eigen::Isometry3d pose = frame * link.link_in_frame;
+  LinkState state;
+  state.position = pose.translation();
+  state.orientation = Eigen::Quaterniond(pose.linear());
+  state.angular_velocity = omega;
+  state.linear_velocity = frame_velocity + omega.cross(state.position - frame.translation());
+  return state;
+}
+
+JointWrench BodySensors::jointWrench(std::size_t tracked) const noexcept { return joints_[tracked].wrench; }
+
+}  // namespace servoloop::sim_bullet::detail
