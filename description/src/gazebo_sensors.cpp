@@ -412,7 +412,8 @@ class SensorReader {
       if (!model_.getLink(reference)) {
         fail(element, "reference='" + reference + "': " + whyNoLink(reference, sensor.type));
       }
-      sensor.frame_id = reference;
+      // gazebo_ros_bumper's frameName defaults to the world frame.
+      sensor.frame_id = sensor.type == SensorType::contact ? "world" : reference;
     }
 
     // Gazebo before 1.0 spelt the common settings in camelCase.

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/hardware_interface/contact_sensor_interface.hpp"
 #include "servoloop/hardware_interface/force_torque_sensor_interface.hpp"
 #include "servoloop/hardware_interface/imu_sensor_interface.hpp"
 
@@ -21,10 +22,17 @@ ForceTorqueSensorHandle::ForceTorqueSensorHandle(std::string name, std::string f
   }
 }
 
+ContactSensorHandle::ContactSensorHandle(const Data& data) : data_(data) {
+  if (data_.name.empty()) throw Error("contact sensor handle: the name is empty");
+  if (data_.reading == nullptr) throw Error("contact sensor handle '" + data_.name + "': the reading pointer is null");
+}
+
 template class ResourceManager<ImuSensorHandle, false>;
+template class ResourceManager<ContactSensorHandle, false>;
 template class ResourceManager<ForceTorqueSensorHandle, false>;
 
 const char* ImuSensorInterface::name() const { return "ImuSensorInterface"; }
 const char* ForceTorqueSensorInterface::name() const { return "ForceTorqueSensorInterface"; }
+const char* ContactSensorInterface::name() const { return "ContactSensorInterface"; }
 
 }  // namespace servoloop::hardware_interface

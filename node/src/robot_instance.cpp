@@ -216,6 +216,18 @@ void RobotInstance::createLoop(bool hardware_robot, bool wall_clock, double upda
     logger().info("robot '{}': floating base; its ground truth is published on {} (nav_msgs/Odometry, {} Hz)",
                   namespace_, topic, GroundTruthPublisher::kDefaultRateHz);
   }
+  auto* contacts = sim_hw_ != nullptr ? sim_hw_->get<hardware_interface::ContactSensorInterface>() : nullptr;
+  if (contacts != nullptr && wall_clock) {
+    logger().warn("robot '{}': its contact sensors publish only in a simulated world's loop, not on the wall clock",
+                  namespace_);
+  } else if (contacts != nullptr) {
+    const double dt = sim_hw_->timeStep().seconds;
+    const auto steps_per_cycle = static_cast<std::uint64_t>(std::max(1.0, std::round(1.0 / (update_rate_hz * dt))));
+    contact_states_ = std::make_unique<ContactStatesPublisher>(*contacts, *bus_, namespace_, dt, steps_per_cycle);
+    for (const std::string& topic : contact_states_->topics()) {
+      logger().info("robot '{}': contact sensor on {} (gazebo_msgs/ContactsState)", namespace_, topic);
+    }
+  }
   try {
     if (wall_clock) {
       controller_manager::WallClockLoop::Options options;

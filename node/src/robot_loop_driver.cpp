@@ -219,11 +219,13 @@ std::uint64_t RobotInstance::betweenSegments() {
   }
   if (real_time_factor_ <= 0.0) bus_->flush();
   publishDue(taken);
+  std::uint64_t contacts_due = world_end_steps_;
+  if (contact_states_) contacts_due = taken + contact_states_->publishDue(taken);
   if (taken >= world_end_steps_) {
     finishRun();
     return 0;
   }
-  std::uint64_t target = world_end_steps_;
+  std::uint64_t target = std::min(world_end_steps_, contacts_due);
   if (next_publication_ < publications_.size()) {
     target = std::min(target, stepsAt(publications_[next_publication_].time_s));
   }
@@ -291,6 +293,7 @@ std::string RobotInstance::resetToStart(const std::vector<std::string>& changed_
   sim_hw_->reset();
   sim_loop_->rewind();
   if (ground_truth_) ground_truth_->restart();
+  if (contact_states_) contact_states_->restart();
   bus_->setTime(Time(0.0));
   next_publication_ = 0;
   startControllersAtStart(to_start, [&](const std::vector<std::string>& controllers, const std::string& why) {

@@ -1,6 +1,7 @@
 #include "bullet_physics.hpp"
 
 #include "bullet_simulated_world.hpp"
+#include <algorithm>
 #include <string>
 
 #include "servoloop/core/errors.hpp"
@@ -181,6 +182,27 @@ void BulletPhysics::readLinkState(std::size_t tracked, sim_common::EngineLinkSta
   out.orientation = state.orientation;
   out.linear_velocity = state.linear_velocity;
   out.angular_velocity = state.angular_velocity;
+}
+
+std::size_t BulletPhysics::trackContacts(const std::string& link) {
+  constexpr std::size_t kMostContacts = 256;
+  contacts_.resize(kMostContacts);
+  try {
+    return world_->trackContacts(link);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const Error& e) {
+    throw ConfigError(e.what());
+  }
+}
+
+std::size_t BulletPhysics::readContacts(std::size_t tracked, std::span<sim_common::EngineContact> out) const noexcept {
+  const std::size_t count = world_->readContacts(tracked, std::span<LinkContact>(contacts_.data(), std::min(out.size(), contacts_.size())));
+  for (std::size_t k = 0; k < std::min(count, out.size()); ++k) {
+    const LinkContact& contact = contacts_[k];
+    out[k] = sim_common::EngineContact{contact.other, contact.position, contact.normal, contact.force, contact.depth};
+  }
+  return count;
 }
 
 std::size_t BulletPhysics::trackJointWrench(const std::string& joint) { return world_->trackJointWrench(joint); }

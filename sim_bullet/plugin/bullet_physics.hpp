@@ -61,6 +61,8 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
   void readLinkState(std::size_t tracked, sim_common::EngineLinkState& out) const noexcept override;
   std::size_t trackJointWrench(const std::string& joint) override;
   void readJointWrench(std::size_t tracked, sim_common::EngineJointWrench& out) const noexcept override;
+  std::size_t trackContacts(const std::string& link) override;
+  std::size_t readContacts(std::size_t tracked, std::span<sim_common::EngineContact> out) const noexcept override;
 
   void reset() override;
   void setJointState(std::size_t joint, double position, double velocity) override;
@@ -77,6 +79,7 @@ class BulletPhysics final : public sim_common::PhysicsEngine {
   std::vector<std::size_t> world_index_;         // SimRobotHW joint → BulletWorld joint
   std::vector<double> initial_positions_;
   std::vector<double> motor_effort_limits_;      // per SimRobotHW joint, N·m or N (+inf: none)
+  mutable std::vector<LinkContact> contacts_;    // readContacts' scratch, sized by trackContacts
 };
 
 }  // namespace servoloop::sim_bullet

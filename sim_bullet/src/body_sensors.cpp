@@ -1,5 +1,7 @@
 #include "body_sensors.hpp"
 
+#include <algorithm>
+
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
@@ -50,6 +52,75 @@ std::size_t BodySensors::trackJointWrench(const BodyTree& tree, const btMultiBod
                     "' is not a movable joint: the bullet engine merges the links a fixed joint holds together into "
                     "one body, so it has no wrench to measure; put the force-torque sensor on a movable joint, or "
                     "simulate the robot with mujoco (which keeps fixed joints)");
+}
+
+std::size_t BodySensors::trackContacts(const BodyTree& tree,
+                                       const std::vector<std::vector<std::string>>& collider_child_links,
+                                       const std::string& link_name) {
+  const auto it = tree.links.find(link_name);
+  if (it == tree.links.end()) throw Error("Bullet world: no link '" + link_name + "' in the robot");
+  TrackedContacts tracked;
+  tracked.body = it->second.body;
+  const auto& children = collider_child_links.at(static_cast<std::size_t>(tracked.body));
+  for (std::size_t c = 0; c < children.size(); ++c) {
+    if (children[c] == link_name) tracked.children.push_back(static_cast<int>(c));
+  }
+  contacts_.push_back(std::move(tracked));
+  return contacts_.size() - 1;
+}
+
+std::size_t BodySensors::readContacts(const btMultiBody& body, btDispatcher& dispatcher,
+                                      const std::unordered_map<const btCollisionObject*, SceneCore::ColliderOwner>& owners,
+                                      const btCollisionObject* ground, double dt, std::size_t tracked,
+                                      std::span<LinkContact> out) const noexcept {
+  static const std::string kGround = "ground_plane::link::collision";
+  static const std::string kUnknown = "unknown::link::collision";
+  const TrackedContacts& sensor = contacts_[tracked];
+  const auto ours = [&](const btCollisionObject* object, int child) {
+    const auto* collider = btMultiBodyLinkCollider::upcast(object);
+    if (collider == nullptr || collider->m_multiBody != &body || collider->m_link + 1 != sensor.body) return false;
+    for (const int c : sensor.children) {
+      if (c == child) return true;
+    }
+    return false;
+  };
+  const auto name = [&](const btCollisionObject* object, int child) -> const std::string* {
+    if (object == ground) return &kGround;
+    const auto owner = owners.find(object);
+    if (owner == owners.end()) return &kUnknown;
+    const auto& names = owner->second.collision_names;
+    if (child >= 0 && child < static_cast<int>(names.size())) return &names[static_cast<std::size_t>(child)];
+    return names.size() == 1 ? &names.front() : &kUnknown;
+  };
+  std::size_t count = 0;
+  const int manifolds = dispatcher.getNumManifolds();
+  for (int m = 0; m < manifolds; ++m) {
+    const btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
+    const btCollisionObject* a = manifold->getBody0();
+    const btCollisionObject* b = manifold->getBody1();
+    for (int p = 0; p < manifold->getNumContacts(); ++p) {
+      const btManifoldPoint& point = manifold->getContactPoint(p);
+      const bool on_a = ours(a, point.m_index0);
+      const bool on_b = !on_a && ours(b, point.m_index1);
+      if (!on_a && !on_b) continue;
+      // Points Bullet keeps ahead of a touch (apart, no impulse) are not contacts yet.
+      if (point.getDistance() > 0.0 && point.getAppliedImpulse() <= 0.0) continue;
+      if (count < out.size()) {
+        const double side = on_a ? 1.0 : -1.0;  // the normal impulse pushes A along the normal on B
+        const btVector3 impulse = point.m_normalWorldOnB * point.getAppliedImpulse() +
+                                  point.m_lateralFrictionDir1 * point.m_appliedImpulseLateral1 +
+                                  point.m_lateralFrictionDir2 * point.m_appliedImpulseLateral2;
+        LinkContact& contact = out[count];
+        contact.other = on_a ? name(b, point.m_index1) : name(a, point.m_index0);
+        contact.position = toEigen(on_a ? point.getPositionWorldOnA() : point.getPositionWorldOnB());
+        contact.normal = side * toEigen(point.m_normalWorldOnB);
+        contact.force = side * toEigen(impulse) / dt;
+        contact.depth = std::max(0.0, -static_cast<double>(point.getDistance()));
+      }
+      ++count;
+    }
+  }
+  return count;
 }
 
 void BodySensors::reserve(const btMultiBody& body) {

@@ -15,7 +15,9 @@
 // about the joint origin p. Bullet's own joint feedback is not used: its
 // second (constraint) pass counts joint torques and velocity terms twice.
 #include <cstddef>
+#include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
@@ -24,6 +26,7 @@
 #include <Eigen/Geometry>
 
 #include "body_tree.hpp"
+#include "bullet_scene_core.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
 
 namespace servoloop::sim_bullet::detail {
@@ -40,6 +43,19 @@ class BodySensors {
   // Non-real-time: sizes the velocity scratch for `body` (call after the
   // multibody is built and before linkState).
   void reserve(const btMultiBody& body);
+
+  // Non-real-time. Contacts of the compound children that came from
+  // `link_name` (collider_child_links: per body, each child's URDF link).
+  // Throws servoloop::Error for an unknown link.
+  std::size_t trackContacts(const BodyTree& tree, const std::vector<std::vector<std::string>>& collider_child_links,
+                            const std::string& link_name);
+  // Real-time. The tracked link's contact points in the dispatcher's
+  // manifolds (the last step's), named through `owners` (the ground:
+  // "ground_plane::link::collision"); dt turns impulses into forces.
+  std::size_t readContacts(const btMultiBody& body, btDispatcher& dispatcher,
+                           const std::unordered_map<const btCollisionObject*, SceneCore::ColliderOwner>& owners,
+                           const btCollisionObject* ground, double dt, std::size_t tracked,
+                           std::span<LinkContact> out) const noexcept;
 
   // Real-time, after every step of the scene (dt s, gravity m/s²): the
   // tracked joints' wrenches of that step. Nothing without tracked joints.
@@ -78,7 +94,13 @@ class BodySensors {
   void readMotion(const btMultiBody& body, std::vector<BodyMotion>& out) const noexcept;
   void addContactForces(const btMultiBody& body, btDispatcher& dispatcher, double dt) noexcept;
 
+  struct TrackedContacts {
+    int body = 0;               // BodyTree index
+    std::vector<int> children;  // the link's children in the body's compound shape
+  };
+
   std::vector<TrackedLink> links_;
+  std::vector<TrackedContacts> contacts_;
   std::vector<TrackedJoint> joints_;
   // compTreeLinkVelocities' output, one entry per body.
   mutable std::vector<btVector3> omega_;

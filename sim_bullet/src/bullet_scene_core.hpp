@@ -61,11 +61,13 @@ struct SceneCore {
   std::unique_ptr<btCollisionObject> ground;  // null without a ground plane
   // In the order they joined; the scene steps them in this order.
   std::vector<SceneMember*> members;
-  // Whose each member's collider is, for messages: the robot, and the URDF
-  // link of each child of its compound shape.
+  // Whose each member's collider is, for messages: the robot, the URDF link
+  // of each child of its compound shape, and that child's name as Gazebo
+  // scopes it for contact sensors ("robot::link::link_collision").
   struct ColliderOwner {
     std::string robot;
     std::vector<std::string> child_links;
+    std::vector<std::string> collision_names;
   };
   std::unordered_map<const btCollisionObject*, ColliderOwner> collider_owners;
   std::uint64_t steps = 0;

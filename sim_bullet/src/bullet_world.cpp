@@ -446,7 +446,11 @@ struct BulletWorld::Impl final : detail::SceneMember {
         body->getLink(link).m_collider = collider.get();
       }
       world->addCollisionObject(collider.get(), group, mask);
-      scene->collider_owners[collider.get()] = {robot_name, collider_child_links.back()};
+      std::vector<std::string> collision_names;
+      for (const std::string& child : collider_child_links.back()) {
+        collision_names.push_back(robot_name + "::" + child + "::" + child + "_collision");
+      }
+      scene->collider_owners[collider.get()] = {robot_name, collider_child_links.back(), std::move(collision_names)};
       colliders.push_back(std::move(collider));
     }
   }
@@ -697,6 +701,16 @@ std::size_t BulletWorld::trackLink(const std::string& link_name) {
 
 std::size_t BulletWorld::trackJointWrench(const std::string& joint_name) {
   return impl_->sensors.trackJointWrench(impl_->tree, *impl_->body, joint_name);
+}
+
+std::size_t BulletWorld::trackContacts(const std::string& link_name) {
+  return impl_->sensors.trackContacts(impl_->tree, impl_->collider_child_links, link_name);
+}
+
+std::size_t BulletWorld::readContacts(std::size_t tracked, std::span<LinkContact> out) const {
+  const Impl& w = *impl_;
+  return w.sensors.readContacts(*w.body, *w.world->getDispatcher(), w.scene->collider_owners, w.scene->ground.get(),
+                                w.settings.time_step_s, tracked, out);
 }
 
 LinkState BulletWorld::linkState(std::size_t tracked) const { return impl_->sensors.linkState(*impl_->body, tracked); }

@@ -30,6 +30,11 @@ std::size_t PhysicsEngine::trackJointWrench(const std::string& joint) {
                     "'); use the bullet or mujoco backend for a robot with sensors");
 }
 
+std::size_t PhysicsEngine::trackContacts(const std::string& link) {
+  throw ConfigError(std::string("the ") + name() + " engine does not simulate contact sensors (link '" + link +
+                    "'); use the bullet or mujoco backend for a robot with sensors");
+}
+
 void PhysicsEngine::readJointStates(std::span<EngineJointState> states) const noexcept {
   readJointStatesVia(*this, states);
 }

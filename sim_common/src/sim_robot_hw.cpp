@@ -157,13 +157,11 @@ void SimRobotHW::loadModel(const hi::HardwareInfo& info) {
 }
 
 void SimRobotHW::initSensors() {
-  std::size_t simulated = 0;
-  for (const SensorDescription& sensor : sensor_descriptions_) simulated += sensor.type != SensorType::contact;
-  if (simulated == 0) return;
+  if (sensor_descriptions_.empty()) return;
   if (!engine_->simulatesSensors()) {
-    logger().warn("{}: the {} engine does not simulate sensors; the robot's {} IMU and force-torque sensor(s) are "
-                  "left out (the bullet and mujoco backends simulate them)",
-                  source_name_, engine_->name(), simulated);
+    logger().warn("{}: the {} engine does not simulate sensors; the robot's {} sensor(s) are left out (the bullet "
+                  "and mujoco backends simulate them)",
+                  source_name_, engine_->name(), sensor_descriptions_.size());
     return;
   }
   sensors_.init(sensor_descriptions_, *model_, *engine_, settings_.gravity, source_name_);

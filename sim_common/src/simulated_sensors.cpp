@@ -1,5 +1,6 @@
 #include "servoloop/sim_common/simulated_sensors.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 
@@ -55,15 +56,19 @@ void SimulatedSensors::init(const std::vector<SensorDescription>& sensors, const
   gravity_ = gravity;
   imus_.clear();
   force_torques_.clear();
+  contacts_.clear();
   std::size_t imu_count = 0;
   std::size_t force_torque_count = 0;
+  std::size_t contact_count = 0;
   for (const SensorDescription& sensor : sensors) {
     imu_count += sensor.type == SensorType::imu;
     force_torque_count += sensor.type == SensorType::force_torque;
+    contact_count += sensor.type == SensorType::contact;
   }
   // Sized once: the handles point into these elements.
   imus_.reserve(imu_count);
   force_torques_.reserve(force_torque_count);
+  contacts_.reserve(contact_count);
   for (const SensorDescription& sensor : sensors) {
     const auto fail = [&](const ConfigError& error) {
       return ConfigError(sensor.element + ": " + error.what());
@@ -116,6 +121,22 @@ void SimulatedSensors::init(const std::vector<SensorDescription>& sensors, const
       ft.seed = seedOf(sensor.name);
       ft.noise.model = sensor.wrench_noise;
       force_torques_.push_back(std::move(ft));
+    } else if (sensor.type == SensorType::contact) {
+      Contact contact;
+      contact.name = sensor.name;
+      contact.frame_id = sensor.frame_id.empty() ? "world" : sensor.frame_id;
+      contact.collision = model.getName() + "::" + sensor.reference + "::" + sensor.reference + "_collision";
+      contact.topic = sensor.topic.empty() ? sensor.name : sensor.topic;
+      contact.update_rate_hz = sensor.update_rate_hz;
+      try {
+        contact.tracked = engine.trackContacts(sensor.reference);
+        contact.link = engine.trackLink(sensor.reference);
+      } catch (const ConfigError& error) {
+        throw fail(error);
+      }
+      contact.sampling.period_s = period;
+      contact.scratch.resize(hi::ContactSensorReading::kCapacity);
+      contacts_.push_back(std::move(contact));
     }
   }
   reset(0.0);
@@ -138,6 +159,17 @@ void SimulatedSensors::registerInterfaces(hi::InterfaceManager& hardware) {
     force_torque_interface_.registerHandle(
         hi::ForceTorqueSensorHandle(ft.name, ft.frame_id, ft.force.data(), ft.torque.data()));
   }
+  for (Contact& contact : contacts_) {
+    hi::ContactSensorHandle::Data data;
+    data.name = contact.name;
+    data.frame_id = contact.frame_id;
+    data.collision = contact.collision;
+    data.topic = contact.topic;
+    data.update_rate_hz = contact.update_rate_hz;
+    data.reading = &contact.reading;
+    contact_interface_.registerHandle(hi::ContactSensorHandle(data));
+  }
+  if (!contacts_.empty()) hardware.registerInterface(&contact_interface_);
   if (!imus_.empty()) hardware.registerInterface(&imu_interface_);
   if (!force_torques_.empty()) hardware.registerInterface(&force_torque_interface_);
 }
@@ -165,6 +197,11 @@ void SimulatedSensors::reset(double time_s) noexcept {
     ft.noise = noise[0];
     ft.sampling.next_s = time_s;
   }
+  for (Contact& contact : contacts_) {
+    contact.sampling.next_s = time_s;
+    contact.reading.count = 0;
+    contact.reading.dropped = 0;
+  }
   update(time_s);
 }
 
@@ -173,6 +210,35 @@ void SimulatedSensors::update(double time_s) noexcept {
   for (ForceTorque& ft : force_torques_) {
     if (ft.sampling.due(time_s)) sampleForceTorque(ft);
   }
+  for (Contact& contact : contacts_) {
+    if (contact.sampling.due(time_s)) sampleContacts(contact);
+  }
+}
+
+void SimulatedSensors::sampleContacts(Contact& sensor) noexcept {
+  const std::size_t count = engine_->readContacts(sensor.tracked, sensor.scratch);
+  const std::size_t kept = std::min(count, sensor.scratch.size());
+  hi::ContactSensorReading& reading = sensor.reading;
+  EngineLinkState link;
+  engine_->readLinkState(sensor.link, link);
+  for (int axis = 0; axis < 3; ++axis) reading.link_position[axis] = link.position[axis];
+  for (std::size_t k = 0; k < kept; ++k) {
+    const EngineContact& contact = sensor.scratch[k];
+    hi::ContactPoint& point = reading.points[k];
+    static const std::string kNone;
+    const std::string& other = contact.other != nullptr ? *contact.other : kNone;
+    const std::size_t length = std::min(other.size(), point.other_collision.size() - 1);
+    std::copy_n(other.data(), length, point.other_collision.data());
+    point.other_collision[length] = '\0';
+    for (int axis = 0; axis < 3; ++axis) {
+      point.position[axis] = contact.position[axis];
+      point.normal[axis] = contact.normal[axis];
+      point.force[axis] = contact.force[axis];
+    }
+    point.depth = contact.depth;
+  }
+  reading.count = kept;
+  reading.dropped = count - kept;
 }
 
 void SimulatedSensors::sampleImu(Imu& imu, double time_s) noexcept {

@@ -90,6 +90,7 @@ void MujocoPhysics::init(const urdf::ModelInterface& model, const sim_common::Si
   motor_limits_.clear();
   for (const auto& joint : joints) motor_limits_.push_back(sim_common::motorEffortBound(joint));
   resizeJointCommands(joints.size());
+  robot_name_ = model.getName();
   joint_child_links_.clear();
   for (const auto& [name, joint] : model.joints_) joint_child_links_[name] = joint->child_link_name;
   position_motor_time_constant_s_ = std::max(kPositionMotorTimeConstant_s, settings.time_step_s);
@@ -250,7 +251,7 @@ void MujocoPhysics::step() noexcept {
   // Alone, the robot steps its model; in a world, the world steps it.
   if (world_ == nullptr) {
     if (hasSensors()) {
-      stepModel(m_, &d, [this]() noexcept { captureJointWrenches(); });
+      stepModel(m_, &d, [this]() noexcept { captureSensorData(); });
     } else {
       mj_step(m_, &d);
     }

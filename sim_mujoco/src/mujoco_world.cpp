@@ -32,7 +32,7 @@ ReturnType MujocoWorld::step() noexcept {
       std::any_of(members_.begin(), members_.end(), [](const Member& member) { return member.robot->hasSensors(); });
   if (sensors) {
     stepModel(model_.get(), data_.get(), [this]() noexcept {
-      for (const Member& member : members_) member.robot->captureJointWrenches();
+      for (const Member& member : members_) member.robot->captureSensorData();
     });
   } else {
     mj_step(model_.get(), data_.get());

@@ -242,7 +242,7 @@ TEST(GazeboSensors, ContactSensorWithBumperPlugin) {
 
   const SensorDescription no_plugin = gzOnlySensorOf(R"(<gazebo reference="bumper"><sensor name="bump" type="contact">
     <contact><collision>bumper_collision</collision></contact></sensor></gazebo>)");
-  EXPECT_EQ(no_plugin.frame_id, "bumper");
+  EXPECT_EQ(no_plugin.frame_id, "world") << "gazebo_ros_bumper's default frameName";
   EXPECT_EQ(no_plugin.topic, "");
 }
 
@@ -301,7 +301,7 @@ TEST(GazeboSensors, Pr2PreGazebo1Forms) {
   EXPECT_EQ(bumper.collisions, std::vector<std::string>{"base_geom"});
   EXPECT_DOUBLE_EQ(bumper.update_rate_hz, 100.0);
   EXPECT_EQ(bumper.topic, "base_bumper");
-  EXPECT_EQ(bumper.frame_id, "base");
+  EXPECT_EQ(bumper.frame_id, "world");
 
   const SensorDescription& imu = sensors[1];
   EXPECT_EQ(imu.name, "imu_controller");

@@ -9,9 +9,13 @@
 //    equation of motion, the hinge transmits m·(a_com - g) and no torque;
 //  - free fall: the accelerometer reads 0;
 //  - a static two-link arm: the shoulder carries the weight of both links,
-//    the elbow that of the forearm, each with its moment;
+//    the elbow that of the forearm, each with its moment; a fixed wrist
+//    (mujoco) that of the hand, and bullet's clear refusal of it;
 //  - seeded noise: the declared standard deviation, the same after a reset;
-//    a sensor's update rate holds its samples between updates.
+//    a sensor's update rate holds its samples between updates;
+//  - a box resting on the ground with a contact sensor: the contact forces
+//    add up to its weight, pushing up, at the ground, named as Gazebo names
+//    the ground's collision.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,9 +26,11 @@
 #include <Eigen/Geometry>
 
 #include "bullet_robot_hw.hpp"
+#include "servoloop/hardware_interface/contact_sensor_interface.hpp"
 #include "servoloop/hardware_interface/force_torque_sensor_interface.hpp"
 #include "servoloop/hardware_interface/imu_sensor_interface.hpp"
 #include "servoloop/hardware_interface/joint_interfaces.hpp"
+#include "servoloop/core/errors.hpp"
 #include "sim_test_support.hpp"
 #ifdef SERVOLOOP_TEST_MUJOCO
 #include "mujoco_robot_hw.hpp"
@@ -288,6 +294,56 @@ TEST_P(Sensors, StaticArmCarriesTheWeightBelowEachJoint) {
   EXPECT_LT((vec(elbow.getTorque()) - fore_rot.transpose() * elbow_moment).norm(), 1e-4);
 }
 
+// A wrist sensor in a fixed joint (the usual place of a force-torque
+// sensor): mujoco keeps the hand a body of its own and measures what the
+// joint holds; bullet merges the hand into the arm and says so.
+TEST_P(Sensors, ForceTorqueSensorInAFixedWrist) {
+  const std::string urdf = R"(<robot name="arm">
+  <link name="world"/>
+  <joint name="mount" type="fixed"><parent link="world"/><child link="base"/><origin xyz="0 0 2"/></joint>
+  <link name="base"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="1000" velocity="10"/></joint>
+  <link name="upper">
+    <inertial><origin xyz="0.5 0 0"/><mass value="3"/><inertia ixx="0.01" iyy="0.25" izz="0.25" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="wrist" type="fixed"><parent link="upper"/><child link="hand"/><origin xyz="1 0 0"/></joint>
+  <link name="hand">
+    <inertial><origin xyz="0.1 0 0"/><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <gazebo reference="wrist"><sensor name="wrist_ft" type="force_torque"/></gazebo>
+</robot>)";
+  if (GetParam().name == "bullet") {
+    try {
+      Rig rig(GetParam(), urdf, {"shoulder"});
+      FAIL() << "bullet cannot measure a fixed joint";
+    } catch (const ConfigError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("wrist_ft"), std::string::npos) << message;
+      EXPECT_NE(message.find("'wrist' is not a movable joint"), std::string::npos) << message;
+      EXPECT_NE(message.find("mujoco"), std::string::npos) << message;
+    }
+    return;
+  }
+  const double q = -0.4;
+  Rig rig(GetParam(), urdf, {"shoulder"});
+  rig.hw().setJointPositions({"shoulder"}, {q});
+  rig.hw().read(Time(), Duration(kDt));
+  const Eigen::Matrix3d rot = rotY(q);
+  const Eigen::Vector3d g(0, 0, -kG);
+  const Eigen::Vector3d wrist_at = rot * Eigen::Vector3d(1, 0, 0);
+  const Eigen::Vector3d hand_com = rot * Eigen::Vector3d(1.1, 0, 0);
+  const Eigen::Vector3d upper_com = rot * Eigen::Vector3d(0.5, 0, 0);
+  const double hold = -(upper_com.cross(3.0 * g) + hand_com.cross(0.5 * g)).y();
+  for (int k = 0; k < 20; ++k) rig.cycle({hold});
+  ASSERT_NEAR(rig.joint(0).getPosition(), q, 1e-6);
+  const hi::ForceTorqueSensorHandle wrist = rig.ft("wrist_ft");
+  EXPECT_EQ(wrist.getFrameId(), "hand");
+  EXPECT_LT((vec(wrist.getForce()) - rot.transpose() * (0.5 * g)).norm(), 1e-4);
+  EXPECT_LT((vec(wrist.getTorque()) - rot.transpose() * (hand_com - wrist_at).cross(0.5 * g)).norm(), 1e-4)
+      << vec(wrist.getTorque()).transpose();
+}
+
 TEST_P(Sensors, NoiseHasTheDeclaredSpreadAndRepeatsAfterReset) {
   const std::string noise = R"(<imu><angular_velocity><x><noise type="gaussian"><mean>0</mean><stddev>0.01</stddev></noise></x></angular_velocity>
     <linear_acceleration><z><noise type="gaussian"><mean>0.5</mean><stddev>0.2</stddev></noise></z></linear_acceleration></imu>)";
@@ -338,6 +394,42 @@ TEST_P(Sensors, UpdateRateHoldsSamplesBetweenUpdates) {
     last = now;
   }
   EXPECT_EQ(changes, 100) << "100 Hz on a 1 kHz step: one new sample every 10 steps";
+}
+
+TEST_P(Sensors, ContactSensorOfABoxOnTheGroundCarriesItsWeight) {
+  const std::string urdf = R"(<robot name="crate">
+  <link name="crate">
+    <inertial><mass value="1.5"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <gazebo reference="crate">
+    <sensor name="bumper" type="contact">
+      <update_rate>50</update_rate>
+      <contact><collision>crate_collision</collision></contact>
+      <plugin name="bumper_plugin" filename="libgazebo_ros_bumper.so"><bumperTopicName>crate_bumper</bumperTopicName></plugin>
+    </sensor>
+  </gazebo>
+</robot>)";
+  Rig rig(GetParam(), urdf, {}, "{sim: {ground_plane: true, pose: [0, 0, 0.1005, 0, 0, 0]}}");
+  for (int k = 0; k < 1000; ++k) rig.cycle({});  // settled
+  const hi::ContactSensorHandle bumper = rig.hw().get<hi::ContactSensorInterface>()->getHandle("bumper");
+  EXPECT_EQ(bumper.getTopic(), "crate_bumper");
+  EXPECT_EQ(bumper.getFrameId(), "world");
+  EXPECT_EQ(bumper.getCollision(), "crate::crate::crate_collision");
+  const hi::ContactSensorReading& reading = bumper.getReading();
+  ASSERT_GE(reading.count, 1u);
+  EXPECT_EQ(reading.dropped, 0u);
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < reading.count; ++k) {
+    const hi::ContactPoint& point = reading.points[k];
+    EXPECT_STREQ(point.other_collision.data(), "ground_plane::link::collision");
+    EXPECT_NEAR(point.position[2], 0.0, 2e-3) << "on the ground";
+    EXPECT_LT((vec(point.normal) - Eigen::Vector3d::UnitZ()).norm(), 1e-6) << "the ground pushes up";
+    EXPECT_GE(point.depth, 0.0);
+    total += vec(point.force);
+  }
+  EXPECT_LT((total - Eigen::Vector3d(0, 0, 1.5 * kG)).norm(), 1e-3 * 1.5 * kG)
+      << total.transpose() << " over " << reading.count << " point(s)";
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, Sensors, ::testing::ValuesIn(engines()),

@@ -1,14 +1,16 @@
 // The world loop's cycles allocate nothing with several robots in one world,
 // touching, on bullet and on mujoco: the wheeled base pushing a row of three 0.3 kg boxes (its diff
 // drive and joint state controllers publishing, timed cmd_vel publications
-// between segments), and the seed arm swinging under its position
-// controller. Counted on the world's thread, over its segments of cycles
+// between segments; the first box with a contact sensor), and the seed arm
+// with its IMU and joint force-torque sensor swinging under its position
+// controller, ros_controllers' sensor controllers publishing them. Counted on the world's thread, over its segments of cycles
 // (the real-time part), through operator new and the engine's own allocator
 // hook (Bullet's, MuJoCo's mju_user_malloc).
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <optional>
@@ -16,6 +18,8 @@
 
 #include "alloc_counter.hpp"
 #include "bullet_alloc_hook.hpp"
+#include "servoloop/hardware_interface/contact_sensor_interface.hpp"
+#include "servoloop/hardware_interface/imu_sensor_interface.hpp"
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/robot_instance.hpp"
 #include "servoloop/world/world_loop.hpp"
@@ -63,6 +67,11 @@ TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   ASSERT_TRUE(bullet_alloc::kInstalled);
   servoloop::testing::TempDir dir("servoloop-world-alloc-" + backend);
   servoloop::testing::writeFile(dir.path() / "box.urdf", boxUrdf(0.2, 0.3, 0.5));
+  std::string sensed_box = boxUrdf(0.2, 0.3, 0.5);
+  sensed_box.replace(sensed_box.find("</robot>"), 8, R"(<gazebo reference="box"><sensor name="bumper" type="contact">
+    <contact><collision>box_collision</collision></contact></sensor></gazebo>
+</robot>)");
+  servoloop::testing::writeFile(dir.path() / "sensed_box.urdf", sensed_box);
   const fs::path source(SERVOLOOP_SOURCE_DIR);
   // The base and the boxes drive along y = kLane, clear of the seed arm,
   // which is fixed to the world at the origin.
@@ -72,6 +81,7 @@ TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   params::ParameterStore store;
   store.loadFile((source / "robots/diff_bot/control_config/diff_bot_controllers.yaml").string(), "/");
   store.loadFile((source / "robots/one_dof/control_config/one_dof_ctl_params.yaml").string(), "/");
+  store.loadFile((source / "robots/one_dof/control_config/sensor_controllers.yaml").string(), "/");
 
   auto world = plugins->create<hardware_interface::SimulatedWorld>(backend + "/world");
   world->init({0.001, {0.0, 0.0, -9.81}, true});
@@ -121,14 +131,15 @@ TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   robots.push_back(std::make_unique<node::RobotInstance>(base, robot_world));
   for (int i = 0; i < 3; ++i) {
     node::RobotSpec box;
-    box.urdf = dir.path() / "box.urdf";
+    box.urdf = dir.path() / (i == 0 ? "sensed_box.urdf" : "box.urdf");
     box.robot_namespace = "/box" + std::to_string(i);
     box.pose = std::array<double, 6>{0.6 + 0.21 * i, kLane, 0.1, 0, 0, 0};
     robots.push_back(std::make_unique<node::RobotInstance>(box, robot_world));
   }
   node::RobotSpec arm;
-  arm.urdf = source / "robots/one_dof/minimal_robot_description_w_jnt_ctl.urdf";
-  arm.controllers = {"joint_state_controller", "joint1_position_controller"};
+  arm.urdf = source / "robots/one_dof/one_dof_sensors.urdf.xacro";
+  arm.controllers = {"joint_state_controller", "joint1_position_controller", "imu_sensor_controller",
+                     "force_torque_sensor_controller"};
   robots.push_back(std::make_unique<node::RobotInstance>(arm, robot_world));
 
   for (double t = 0.5; t < 6.0; t += 0.25) {
@@ -168,6 +179,15 @@ TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   ASSERT_NE(box_hw, nullptr);
   ASSERT_TRUE(box_hw->readBaseGroundTruth(first_box));
   EXPECT_GT(first_box.position[0], 0.6 + 0.5);
+  // The sensors were sampled: the box's contact sensor holds its contacts,
+  // the arm's IMU reads at least gravity.
+  auto* contacts = box_hw->get<hardware_interface::ContactSensorInterface>();
+  ASSERT_NE(contacts, nullptr);
+  EXPECT_GT(contacts->getHandle("bumper").getReading().count, 0u);
+  auto* imus = robots.back()->hardware().get<hardware_interface::ImuSensorInterface>();
+  ASSERT_NE(imus, nullptr);
+  const double* specific_force = imus->getHandle("imu").getLinearAcceleration();
+  EXPECT_GT(std::hypot(specific_force[0], specific_force[1], specific_force[2]), 9.0);
 
   for (const auto& robot : robots) EXPECT_NEAR(robot->simTime(), 6.0, 1e-9) << robot->robotNamespace();
 }

@@ -70,7 +70,8 @@ struct SensorDescription {
   // topic in it: the caller uses the sensor's name.
   std::string topic;
   // header.frame_id of the messages: the plugin's frameName, else the
-  // reference link (force_torque: the joint's child link).
+  // reference link (force_torque: the joint's child link; contact: "world",
+  // gazebo_ros_bumper's default, whose values are in the world frame).
   std::string frame_id;
 
   // imu: noise per axis (x, y, z) of the angular velocity (rad/s) and the

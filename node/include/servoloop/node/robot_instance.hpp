@@ -51,6 +51,7 @@
 #include <urdf_model/model.h>
 
 #include "servoloop/controller_manager/controller_manager.hpp"
+#include "servoloop/node/contact_states_publisher.hpp"
 #include "servoloop/node/ground_truth_publisher.hpp"
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/plugin_controller_factory.hpp"
@@ -259,6 +260,7 @@ class RobotInstance final : public world::WorldMember {
   std::unique_ptr<realtime::ActionRegistry> actions_;
   // Floating bases only; the loop calls it, so it outlives loop_.
   std::unique_ptr<GroundTruthPublisher> ground_truth_;
+  std::unique_ptr<ContactStatesPublisher> contact_states_;  // the contact sensors' topics (world loop only)
   std::unique_ptr<controller_manager::SafetySupervisor> safety_;  // on hw_; the loop uses it
   realtime::Subscription estop_subscription_;                     // <ns>/estop
   std::unique_ptr<controller_manager::ControllerManager> manager_;

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,15 @@ using LinkState = BaseState;
 struct JointWrench {
   Eigen::Vector3d force{Eigen::Vector3d::Zero()};
   Eigen::Vector3d torque{Eigen::Vector3d::Zero()};
+};
+
+// One contact point of a link during the last step, world frame.
+struct LinkContact {
+  const std::string* other = nullptr;  // the other collision, "robot::link::link_collision" (the scene's)
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};  // m
+  Eigen::Vector3d normal{Eigen::Vector3d::UnitZ()};   // the normal force's direction on the link
+  Eigen::Vector3d force{Eigen::Vector3d::Zero()};     // N, on the link from the other body
+  double depth = 0.0;                                 // m of overlap
 };
 
 // The robot's collision geometry that reaches deepest below the ground plane.
@@ -197,10 +207,17 @@ class BulletWorld {
   // jointWrench(). Throws ConfigError for any other joint name (a fixed
   // joint's links are merged into one body).
   std::size_t trackJointWrench(const std::string& joint_name);
+  // Non-real-time: report the contacts of a URDF link's collision geometry
+  // (a link merged into a body: its own shapes only); returns the index for
+  // readContacts(). Throws servoloop::Error for an unknown link.
+  std::size_t trackContacts(const std::string& link_name);
   // Real-time: the tracked link's state now; the tracked joint's wrench
-  // during the last step (zero before the first).
+  // during the last step (zero before the first); the tracked link's
+  // contact points of the last step (at most out.size() written, the count
+  // of all returned).
   LinkState linkState(std::size_t tracked) const;
   JointWrench jointWrench(std::size_t tracked) const;
+  std::size_t readContacts(std::size_t tracked, std::span<LinkContact> out) const;
 
   // Mass properties of the body that `link_name` moves with, expressed in the
   // frame of that body's first link (the one its joint moves). The URDF's:

@@ -93,6 +93,17 @@ struct EngineJointWrench {
   Eigen::Vector3d torque{Eigen::Vector3d::Zero()};
 };
 
+// One contact point of a link with another body during the last step.
+struct EngineContact {
+  // The other collision, Gazebo's scoped name "model::link::collision";
+  // owned by the engine, valid until the world's bodies change.
+  const std::string* other = nullptr;
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};  // m, world frame
+  Eigen::Vector3d normal{Eigen::Vector3d::UnitZ()};   // unit, world axes: the normal force's direction on the link
+  Eigen::Vector3d force{Eigen::Vector3d::Zero()};     // N, world axes: what the other body applies to the link
+  double depth = 0.0;                                 // m of overlap (0: touching)
+};
+
 // Threading: init() and reset() are non-real-time (they may allocate and
 // throw). Every other method runs on the real-time thread: no allocation, no
 // locks, no logging, no exceptions. Joint indices are those of the `joints`
@@ -157,6 +168,16 @@ class PhysicsEngine {
   virtual std::size_t trackJointWrench(const std::string& joint);
   // Real-time. The wrench the tracked joint transmitted during the last step.
   virtual void readJointWrench(std::size_t /*tracked*/, EngineJointWrench& /*out*/) const noexcept {}
+  // Non-real-time, after init(): report the contacts of URDF link `link`'s
+  // collision geometry for readContacts; returns the index to read them
+  // with. Throws servoloop::ConfigError naming the link when the engine
+  // cannot.
+  virtual std::size_t trackContacts(const std::string& link);
+  // Real-time. The tracked link's contact points of the last step, at most
+  // out.size() of them written; returns how many there were in all.
+  virtual std::size_t readContacts(std::size_t /*tracked*/, std::span<EngineContact> /*out*/) const noexcept {
+    return 0;
+  }
 
   // Real-time. Every joint's state at once, `states[j]` for joint j, as the
   // getters above give it; `states` holds one entry per joint of init()'s

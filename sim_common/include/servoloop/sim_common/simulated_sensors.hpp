@@ -14,6 +14,9 @@
 //        joint origin, in the child link's, the parent link's or the
 //        sensor's axes (<frame>), as the child applies it to the parent
 //        (child_to_parent, Gazebo's default) or the opposite.
+//   contact: the contact points of the link's collision geometry with
+//        anything else during the last step, world frame, each with the
+//        other collision's scoped name (ContactSensorInterface).
 //
 // Noise as SDFormat's Gaussian model: per sample mean + N(0, stddev²), plus
 // a bias drawn once per run (and after each reset) from
@@ -36,6 +39,7 @@
 #include <urdf_model/model.h>
 
 #include "servoloop/description/gazebo_sensors.hpp"
+#include "servoloop/hardware_interface/contact_sensor_interface.hpp"
 #include "servoloop/hardware_interface/force_torque_sensor_interface.hpp"
 #include "servoloop/hardware_interface/imu_sensor_interface.hpp"
 #include "servoloop/hardware_interface/interface_manager.hpp"
@@ -51,8 +55,9 @@ class SimulatedSensors {
   // when the engine cannot give what it needs.
   void init(const std::vector<SensorDescription>& sensors, const urdf::ModelInterface& model, PhysicsEngine& engine,
             const Eigen::Vector3d& gravity, const std::string& source_name);
-  // Non-real-time: ImuSensorInterface and ForceTorqueSensorInterface offered
-  // by `hardware` when the robot has such sensors.
+  // Non-real-time: ImuSensorInterface, ForceTorqueSensorInterface and
+  // ContactSensorInterface offered by `hardware` when the robot has such
+  // sensors.
   void registerInterfaces(hardware_interface::InterfaceManager& hardware);
   // Non-real-time: noise generators and biases restarted, the last samples
   // and velocities forgotten (then one update()).
@@ -62,6 +67,7 @@ class SimulatedSensors {
 
   std::size_t imuCount() const noexcept { return imus_.size(); }
   std::size_t forceTorqueCount() const noexcept { return force_torques_.size(); }
+  std::size_t contactCount() const noexcept { return contacts_.size(); }
 
  private:
   struct Noise {
@@ -112,15 +118,31 @@ class SimulatedSensors {
     std::array<double, 3> torque{};
   };
 
+  struct Contact {
+    std::string name;
+    std::string frame_id;
+    std::string collision;  // "robot::link::link_collision"
+    std::string topic;
+    double update_rate_hz = 0.0;
+    std::size_t tracked = 0;  // engine's tracked contacts
+    std::size_t link = 0;     // engine's tracked link (the torques' point)
+    Sampling sampling;
+    std::vector<EngineContact> scratch;  // sized once: the reading's capacity
+    hardware_interface::ContactSensorReading reading;
+  };
+
   void sampleImu(Imu& imu, double time_s) noexcept;
+  void sampleContacts(Contact& sensor) noexcept;
   void sampleForceTorque(ForceTorque& sensor) noexcept;
 
   PhysicsEngine* engine_ = nullptr;
   Eigen::Vector3d gravity_{0.0, 0.0, -9.81};
   std::vector<Imu> imus_;
   std::vector<ForceTorque> force_torques_;
+  std::vector<Contact> contacts_;
   hardware_interface::ImuSensorInterface imu_interface_;
   hardware_interface::ForceTorqueSensorInterface force_torque_interface_;
+  hardware_interface::ContactSensorInterface contact_interface_;
 };
 
 }  // namespace servoloop::sim_common

@@ -41,6 +41,7 @@
 // the mjData arena allocated at init, and every scratch buffer is sized there.
 #include <array>
 #include <map>
+#include <span>
 #include <memory>
 #include <string>
 #include <vector>
@@ -95,11 +96,15 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   void readLinkState(std::size_t tracked, sim_common::EngineLinkState& out) const noexcept override;
   std::size_t trackJointWrench(const std::string& joint) override;
   void readJointWrench(std::size_t tracked, sim_common::EngineJointWrench& out) const noexcept override;
+  std::size_t trackContacts(const std::string& link) override;
+  std::size_t readContacts(std::size_t tracked, std::span<sim_common::EngineContact> out) const noexcept override;
   // Real-time: whether a step must give this robot's sensors their data
-  // (model_step.hpp), and the capture of its joint wrenches from the
-  // forward pass of the step being taken.
-  bool hasSensors() const noexcept { return !tracked_link_names_.empty() || !tracked_joint_links_.empty(); }
-  void captureJointWrenches() noexcept;
+  // (model_step.hpp), and the capture of its joint wrenches and contacts
+  // from the forward pass of the step being taken.
+  bool hasSensors() const noexcept {
+    return !tracked_link_names_.empty() || !tracked_joint_links_.empty() || !contact_sensors_.empty();
+  }
+  void captureSensorData() noexcept;
 
   void reset() override;
   void setJointState(std::size_t joint, double position, double velocity) override;
@@ -144,8 +149,11 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   void placeAtInitialPositions();
   // In a shared world: one warning when the robot starts inside another's body.
   void warnOfOverlap(const std::string& source_name) const;
-  // Body ids of the tracked links and joints' child links in the current model.
+  // Body ids of the tracked links and joints' child links in the current
+  // model, and every body's scoped collision name for contact sensors.
   void bindSensors();
+  // The step's contacts of each contact sensor's link (captureSensorData).
+  void captureContacts() noexcept;
   // Sets the efforts of the first `motors` entries of motor_joints_.
   void solveMotorEfforts(std::size_t motors) noexcept;
 
@@ -182,6 +190,15 @@ class MujocoPhysics final : public sim_common::StoredCommandPhysicsEngine {
   std::vector<std::string> tracked_joint_links_;  // child link of each tracked joint
   std::vector<int> tracked_joint_bodies_;
   std::vector<sim_common::EngineJointWrench> joint_wrenches_;
+  struct ContactSensor {
+    std::string link;
+    int body = 0;
+    std::vector<sim_common::EngineContact> contacts;  // the last step's, capacity fixed
+    std::size_t count = 0;                           // all of them (may exceed the capacity)
+  };
+  std::vector<ContactSensor> contact_sensors_;
+  std::string robot_name_;                      // the URDF's, for scoped collision names
+  std::vector<std::string> body_collision_names_;  // by body id: "robot::link::link_collision"
 
   // Motor solve scratch, sized at init for every joint being a motor.
   std::vector<std::size_t> motor_joints_;
