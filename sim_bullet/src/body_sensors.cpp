@@ -24,6 +24,7 @@ std::size_t BodySensors::trackLink(const BodyTree& tree, const std::string& link
   if (it == tree.links.end()) throw Error("Bullet world: no link '" + link_name + "' in the robot");
   const Body& body = tree.bodies[static_cast<std::size_t>(it->second.body)];
   links_.push_back(TrackedLink{it->second.body, body.principal_in_link.inverse() * it->second.link_in_body_link});
+  motion_valid_ = false;
   return links_.size() - 1;
 }
 
@@ -138,6 +139,7 @@ void BodySensors::reserve(const btMultiBody& body) {
 
 void BodySensors::forgetMotion() noexcept {
   has_last_motion_ = false;
+  motion_valid_ = false;
   for (TrackedJoint& joint : joints_) joint.wrench = JointWrench{};
 }
 
@@ -200,11 +202,13 @@ void BodySensors::addContactForces(const btMultiBody& body, btDispatcher& dispat
 
 void BodySensors::afterStep(const btMultiBody& body, btDispatcher& dispatcher, double dt,
                             const btVector3& gravity_bt) noexcept {
-  if (joints_.empty()) return;
+  if (joints_.empty() && links_.empty()) return;
   std::swap(motion_, last_motion_);
   readMotion(body, motion_);
+  motion_valid_ = true;
   const bool accelerations_known = has_last_motion_;
   has_last_motion_ = true;
+  if (joints_.empty()) return;
   addContactForces(body, dispatcher, dt);
   const Eigen::Vector3d gravity = toEigen(gravity_bt);
 
@@ -254,29 +258,20 @@ void BodySensors::afterStep(const btMultiBody& body, btDispatcher& dispatcher, d
 }
 
 LinkState BodySensors::linkState(const btMultiBody& body, std::size_t tracked) const noexcept {
-  const TrackedLink& link = links_[tracked];
-  body.compTreeLinkVelocities(omega_.data(), velocity_.data());
-  // Bullet's frame of the body: its pose, and its velocities in its own axes.
-  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
-  if (link.body == 0) {
-    const btQuaternion& world_to_base = body.getWorldToBaseRot();
-    frame.linear() = Eigen::Quaterniond(world_to_base.w(), world_to_base.x(), world_to_base.y(), world_to_base.z())
-                         .conjugate()
-                         .toRotationMatrix();
-    frame.translation() = toEigen(body.getBasePos());
-  } else {
-    frame.linear() = toEigen(body.localFrameToWorld(link.body - 1, btMatrix3x3::getIdentity()));
-    frame.translation() = toEigen(body.localPosToWorld(link.body - 1, btVector3(0, 0, 0)));
+  // Every body's motion is read once per step (afterStep), or here after a
+  // teleport or reset; each tracked link is then one transform of it.
+  if (!motion_valid_) {
+    readMotion(body, motion_);
+    motion_valid_ = true;
   }
-  const std::size_t k = static_cast<std::size_t>(link.body);
-  const Eigen::Vector3d omega = frame.linear() * toEigen(omega_[k]);
-  const Eigen::Vector3d frame_velocity = frame.linear() * toEigen(velocity_[k]);
-  const Eigen::Isometry3d pose = frame * link.link_in_frame;
+  const TrackedLink& link = links_[tracked];
+  const BodyMotion& frame = motion_[static_cast<std::size_t>(link.body)];
+  const Eigen::Vector3d omega = frame.rotation * frame.omega;
   LinkState state;
-  state.position = pose.translation();
-  state.orientation = Eigen::Quaterniond(pose.linear());
+  state.position = frame.com + frame.rotation * link.link_in_frame.translation();
+  state.orientation = Eigen::Quaterniond(frame.rotation * link.link_in_frame.linear());
   state.angular_velocity = omega;
-  state.linear_velocity = frame_velocity + omega.cross(state.position - frame.translation());
+  state.linear_velocity = frame.rotation * frame.velocity + omega.cross(state.position - frame.com);
   return state;
 }
 

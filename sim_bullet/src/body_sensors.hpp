@@ -105,9 +105,11 @@ class BodySensors {
   // compTreeLinkVelocities' output, one entry per body.
   mutable std::vector<btVector3> omega_;
   mutable std::vector<btVector3> velocity_;
-  // Per body, for the wrenches: this step's and the last step's motion, and
-  // the contact force on it and its moment about the world origin.
-  std::vector<BodyMotion> motion_;
+  // Per body: its motion now (valid after a step; read again when not) and
+  // at the last step, for the link states and the wrenches, and the contact
+  // force on it and its moment about the world origin.
+  mutable std::vector<BodyMotion> motion_;
+  mutable bool motion_valid_ = false;
   std::vector<BodyMotion> last_motion_;
   // Each body at the step's start, world axes; velocity holds its acceleration.
   std::vector<BodyMotion> step_motion_;

@@ -33,10 +33,10 @@ Eigen::Isometry3d poseOf(const std::array<double, 6>& pose) {
 
 std::array<double, 9> diagonal(double a, double b, double c) { return {a, 0, 0, 0, b, 0, 0, 0, c}; }
 
-double sample(std::mt19937_64& generator, double mean, double stddev) noexcept {
+// mean + stddev · N(0, 1); `unit` keeps the second value of each pair it draws.
+double sample(std::mt19937_64& generator, std::normal_distribution<double>& unit, double mean, double stddev) noexcept {
   if (stddev <= 0.0) return mean;
-  std::normal_distribution<double> normal(mean, stddev);
-  return normal(generator);
+  return mean + stddev * unit(generator);
 }
 
 }  // namespace
@@ -175,25 +175,27 @@ void SimulatedSensors::registerInterfaces(hi::InterfaceManager& hardware) {
 }
 
 void SimulatedSensors::reset(double time_s) noexcept {
-  const auto draw_biases = [](std::mt19937_64& generator, auto& noises) {
+  const auto draw_biases = [](std::mt19937_64& generator, std::normal_distribution<double>& unit, auto& noises) {
     for (Noise& noise : noises) {
-      noise.bias = sample(generator, noise.model.bias_mean, noise.model.bias_stddev);
+      noise.bias = sample(generator, unit, noise.model.bias_mean, noise.model.bias_stddev);
       // SDFormat's bias: its sign is random.
       if (noise.bias != 0.0 && std::uniform_int_distribution<int>(0, 1)(generator) == 1) noise.bias = -noise.bias;
     }
   };
   for (Imu& imu : imus_) {
     imu.generator.seed(imu.seed);
-    draw_biases(imu.generator, imu.angular_velocity_noise);
-    draw_biases(imu.generator, imu.linear_acceleration_noise);
-    draw_biases(imu.generator, imu.orientation_noise);
+    imu.unit.reset();
+    draw_biases(imu.generator, imu.unit, imu.angular_velocity_noise);
+    draw_biases(imu.generator, imu.unit, imu.linear_acceleration_noise);
+    draw_biases(imu.generator, imu.unit, imu.orientation_noise);
     imu.has_last = false;
     imu.sampling.next_s = time_s;
   }
   for (ForceTorque& ft : force_torques_) {
     ft.generator.seed(ft.seed);
+    ft.unit.reset();
     std::array<Noise, 1> noise{ft.noise};
-    draw_biases(ft.generator, noise);
+    draw_biases(ft.generator, ft.unit, noise);
     ft.noise = noise[0];
     ft.sampling.next_s = time_s;
   }
@@ -268,7 +270,7 @@ void SimulatedSensors::sampleImu(Imu& imu, double time_s) noexcept {
     const auto a = static_cast<std::size_t>(axis);
     const auto noisy = [&](Noise& noise, double value) {
       if (noise.model.none()) return value;
-      return value + noise.bias + sample(imu.generator, noise.model.mean, noise.model.stddev);
+      return value + noise.bias + sample(imu.generator, imu.unit, noise.model.mean, noise.model.stddev);
     };
     imu.angular_velocity[a] = noisy(imu.angular_velocity_noise[a], angular[axis]);
     imu.linear_acceleration[a] = noisy(imu.linear_acceleration_noise[a], specific_force[axis]);
@@ -308,8 +310,8 @@ void SimulatedSensors::sampleForceTorque(ForceTorque& ft) noexcept {
     double f = force[static_cast<int>(axis)];
     double t = torque[static_cast<int>(axis)];
     if (!ft.noise.model.none()) {
-      f += ft.noise.bias + sample(ft.generator, ft.noise.model.mean, ft.noise.model.stddev);
-      t += ft.noise.bias + sample(ft.generator, ft.noise.model.mean, ft.noise.model.stddev);
+      f += ft.noise.bias + sample(ft.generator, ft.unit, ft.noise.model.mean, ft.noise.model.stddev);
+      t += ft.noise.bias + sample(ft.generator, ft.unit, ft.noise.model.mean, ft.noise.model.stddev);
     }
     ft.force[axis] = f;
     ft.torque[axis] = t;

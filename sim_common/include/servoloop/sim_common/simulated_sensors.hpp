@@ -86,6 +86,7 @@ class SimulatedSensors {
     Eigen::Isometry3d sensor_in_link{Eigen::Isometry3d::Identity()};
     Sampling sampling;
     std::mt19937_64 generator;
+    std::normal_distribution<double> unit;
     std::uint64_t seed = 0;
     std::array<Noise, 3> angular_velocity_noise;
     std::array<Noise, 3> linear_acceleration_noise;
@@ -112,6 +113,7 @@ class SimulatedSensors {
     Eigen::Matrix3d sensor_from_child{Eigen::Matrix3d::Identity()};
     Sampling sampling;
     std::mt19937_64 generator;
+    std::normal_distribution<double> unit;
     std::uint64_t seed = 0;
     Noise noise;
     std::array<double, 3> force{};
