@@ -31,6 +31,15 @@ Eigen::Isometry3d poseOf(const std::array<double, 6>& pose) {
   return out;
 }
 
+// A sensor's handle is named after the topic its gazebo_ros plugin
+// publishes on, so ros_controllers' sensor controllers (which publish on the
+// handle's name) publish where Gazebo would; without a plugin, the sensor's name.
+std::string handleName(const SensorDescription& sensor) {
+  std::string topic = sensor.topic;
+  while (!topic.empty() && topic.front() == '/') topic.erase(topic.begin());
+  return topic.empty() ? sensor.name : topic;
+}
+
 std::array<double, 9> diagonal(double a, double b, double c) { return {a, 0, 0, 0, b, 0, 0, 0, c}; }
 
 // mean + stddev · N(0, 1); `unit` keeps the second value of each pair it draws.
@@ -76,7 +85,7 @@ void SimulatedSensors::init(const std::vector<SensorDescription>& sensors, const
     const double period = sensor.update_rate_hz > 0.0 ? 1.0 / sensor.update_rate_hz : 0.0;
     if (sensor.type == SensorType::imu) {
       Imu imu;
-      imu.name = sensor.name;
+      imu.name = handleName(sensor);
       imu.frame_id = sensor.frame_id.empty() ? sensor.reference : sensor.frame_id;
       try {
         imu.link = engine.trackLink(sensor.reference);
@@ -101,7 +110,7 @@ void SimulatedSensors::init(const std::vector<SensorDescription>& sensors, const
       imus_.push_back(std::move(imu));
     } else if (sensor.type == SensorType::force_torque) {
       ForceTorque ft;
-      ft.name = sensor.name;
+      ft.name = handleName(sensor);
       const urdf::JointConstSharedPtr joint = model.getJoint(sensor.reference);
       if (!joint) throw ConfigError(sensor.element + ": no joint '" + sensor.reference + "' in " + source_name);
       ft.frame_id = sensor.frame_id.empty() ? joint->child_link_name : sensor.frame_id;

@@ -7,12 +7,18 @@
 //    joint the link's weight and moment (1 kg, centre of mass 0.5 m up);
 //  - a box resting on a plate with a contact sensor (another robot): the
 //    bumper topic's ContactsState names both collisions and its contacts
-//    carry the box's weight, pushing the plate down.
+//    carry the box's weight, pushing the plate down;
+//  - the wheeled base (robots/diff_bot) with an IMU on its base as husky
+//    has it (hector_gazebo_ros_imu, topicName imu/data: the controller
+//    publishes on /diff_bot/imu/data), driving a circle: the IMU's yaw rate
+//    and its centripetal acceleration v·ω match the base's ground truth, and
+//    the two engines agree.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -185,6 +191,94 @@ TEST_P(SensorNode, BumperOfAPlateFeelsTheBoxOnIt) {
   }
   ASSERT_TRUE(box_found) << msg.states.size() << " state(s)";
   EXPECT_LT((total - Eigen::Vector3d(0, 0, -0.8 * kG)).norm(), 0.01 * 0.8 * kG) << total.transpose();
+}
+
+struct Circle {
+  Eigen::Vector3d angular_velocity;   // the IMU's, mean over the last second
+  Eigen::Vector3d specific_force;     // the IMU's, mean over the last second
+  double speed = 0.0;                 // ground truth: forward speed and yaw rate at the end
+  double yaw_rate = 0.0;
+};
+
+Circle driveCircle(const std::string& backend) {
+  const fs::path diff_bot = fs::path(SERVOLOOP_SOURCE_DIR) / "robots" / "diff_bot";
+  servoloop::testing::TempDir dir("servoloop-imu-circle-" + backend);
+  std::ifstream in(diff_bot / "diff_bot.urdf");
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  urdf.insert(urdf.rfind("</robot>"), R"(<gazebo><plugin name="imu_controller" filename="libhector_gazebo_ros_imu.so">
+    <updateRate>100.0</updateRate><bodyName>base_link</bodyName><topicName>imu/data</topicName>
+    <accelGaussianNoise>0 0 0</accelGaussianNoise><rateGaussianNoise>0 0 0</rateGaussianNoise>
+  </plugin></gazebo>
+)");
+  writeFile(dir.path() / "diff_bot.urdf", urdf);
+  writeFile(dir.path() / "imu.yaml",
+            "diff_bot:\n  imu_sensor_controller: {type: imu_sensor_controller/ImuSensorController, publish_rate: 100}\n");
+  writeFile(dir.path() / "world.launch.yaml",
+            "world: {backend: " + backend + ", time_step: 0.001, ground_plane: true}\n"
+            "controller_manager: {update_rate: 1000}\n"
+            "robots:\n"
+            "  - {urdf: diff_bot.urdf, model: diff_bot, namespace: /diff_bot, pose: [0, 0, 0.1, 0, 0, 0],\n"
+            "     params: [" + (diff_bot / "control_config/diff_bot_controllers.yaml").string() + ", imu.yaml],\n"
+            "     controllers: [joint_state_controller, diff_drive_controller, imu_sensor_controller]}\n");
+  node::Node world(node::loadLaunchFile(dir.path() / "world.launch.yaml"), pausedNode());
+  world.start();
+  node::RobotInstance& robot = *world.findRobot("/diff_bot");
+  realtime::TopicBus& bus = robot.topics();
+  std::mutex mutex;
+  std::vector<sensor_msgs::Imu> readings;
+  const realtime::Subscription subscription =
+      bus.subscribe<sensor_msgs::Imu>("/diff_bot/imu/data", [&](const sensor_msgs::Imu& msg) {
+        std::lock_guard lock(mutex);
+        if (msg.stamp > 5.0) readings.push_back(msg);
+      });
+  Latest<nav_msgs::Odometry> truth(bus, "/diff_bot/ground_truth/odom");
+  geometry_msgs::Twist command;
+  command.linear.x = 0.4;
+  command.angular.z = 0.5;
+  for (int k = 0; k < 60; ++k) {  // 6 s, the command renewed every 0.1 s
+    bus.publish("/diff_bot/diff_drive_controller/cmd_vel", command);
+    EXPECT_EQ(world.stepWorld(100), 100u);
+  }
+  bus.flush();
+  Circle circle;
+  const nav_msgs::Odometry odom = truth.get();
+  circle.speed = odom.linear.x;
+  circle.yaw_rate = odom.angular.z;
+  std::lock_guard lock(mutex);
+  EXPECT_GE(readings.size(), 95u) << "100 Hz over the last second";
+  circle.angular_velocity.setZero();
+  circle.specific_force.setZero();
+  for (const sensor_msgs::Imu& msg : readings) {
+    circle.angular_velocity += Eigen::Vector3d(msg.angular_velocity.x, msg.angular_velocity.y, msg.angular_velocity.z);
+    circle.specific_force +=
+        Eigen::Vector3d(msg.linear_acceleration.x, msg.linear_acceleration.y, msg.linear_acceleration.z);
+  }
+  circle.angular_velocity /= static_cast<double>(std::max<std::size_t>(1, readings.size()));
+  circle.specific_force /= static_cast<double>(std::max<std::size_t>(1, readings.size()));
+  return circle;
+}
+
+// Steady turning: yaw rate ω about z, and the base's origin accelerating
+// towards the centre, v·ω to its left (+y); gravity +g up.
+TEST_P(SensorNode, ImuOfADrivingBaseReadsItsTurn) {
+  const Circle circle = driveCircle(GetParam());
+  EXPECT_NEAR(circle.speed, 0.4, 0.02);
+  EXPECT_NEAR(circle.yaw_rate, 0.5, 0.02);
+  EXPECT_NEAR(circle.angular_velocity.z(), circle.yaw_rate, 0.01);
+  EXPECT_NEAR(circle.specific_force.y(), circle.speed * circle.yaw_rate, 0.03) << circle.specific_force.transpose();
+  EXPECT_NEAR(circle.specific_force.x(), 0.0, 0.03) << "steady speed";
+  EXPECT_NEAR(circle.specific_force.z(), kG, 0.05);
+}
+
+TEST(SensorNodeEngines, BulletAndMujocoAgreeOnTheTurningBasesImu) {
+#ifndef SERVOLOOP_TEST_MUJOCO
+  GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
+#endif
+  const Circle bullet = driveCircle("bullet");
+  const Circle mujoco = driveCircle("mujoco");
+  EXPECT_LT((bullet.angular_velocity - mujoco.angular_velocity).norm(), 0.02);
+  EXPECT_LT((bullet.specific_force - mujoco.specific_force).norm(), 0.05)
+      << bullet.specific_force.transpose() << " vs " << mujoco.specific_force.transpose();
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, SensorNode, ::testing::Values("bullet", "mujoco"));

@@ -25,6 +25,10 @@
 // noise. The orientation's noise turns it by a small rotation with that
 // standard deviation per axis. Each covariance is diag(stddev²).
 // A sensor with an update rate keeps its last sample until the next is due.
+// IMU and force-torque handles are named after the topic of the sensor's
+// gazebo_ros plugin (topicName), so ros_controllers' sensor controllers,
+// which publish on <ns>/<handle name>, publish where Gazebo would; a sensor
+// without a plugin topic is named after itself.
 //
 // Threading: init(), registerInterfaces() and reset() are non-real-time;
 // update() runs on the real-time thread (no allocation, no locks, no throw).
