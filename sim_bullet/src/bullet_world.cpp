@@ -26,6 +26,7 @@
 
 #include "body_sensors.hpp"
 #include "body_tree.hpp"
+#include "overlap_probe.hpp"
 #include "bullet_scene_core.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/sim_common/collision_mesh.hpp"
@@ -747,45 +748,6 @@ GroundPenetration BulletWorld::deepestGroundPenetration() const {
   return deepest;
 }
 
-namespace {
-
-// The deepest contact of one collider with colliders outside `own`, with
-// the compound child in contact on each side.
-struct OverlapProbe final : btCollisionWorld::ContactResultCallback {
-  const std::vector<std::unique_ptr<btMultiBodyLinkCollider>>* own = nullptr;
-  const btCollisionObject* ground = nullptr;
-  double depth_m = 0.0;
-  int own_child = -1;
-  const btCollisionObject* other = nullptr;
-  int other_child = -1;
-
-  bool ours(const btCollisionObject* object) const {
-    return std::any_of(own->begin(), own->end(), [&](const auto& c) { return c.get() == object; });
-  }
-
-  btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper* a, int /*part0*/, int index0,
-                           const btCollisionObjectWrapper* b, int /*part1*/, int index1) override {
-    const bool first_ours = ours(a->getCollisionObject());
-    const btCollisionObject* foreign = first_ours ? b->getCollisionObject() : a->getCollisionObject();
-    if (ours(foreign) || foreign == ground) return 0;
-    const double depth = -point.getDistance();
-    if (depth > depth_m) {
-      depth_m = depth;
-      other = foreign;
-      own_child = first_ours ? index0 : index1;
-      other_child = first_ours ? index1 : index0;
-    }
-    return 0;
-  }
-};
-
-const std::string& childLink(const std::vector<std::string>& child_links, int child) {
-  static const std::string unknown = "?";
-  if (child >= 0 && child < static_cast<int>(child_links.size())) return child_links[static_cast<std::size_t>(child)];
-  return child_links.size() == 1 ? child_links.front() : unknown;
-}
-
-}  // namespace
 
 MemberOverlap BulletWorld::deepestMemberOverlap() const {
   const Impl& w = *impl_;
@@ -794,18 +756,18 @@ MemberOverlap BulletWorld::deepestMemberOverlap() const {
   for (std::size_t k = 0; k < w.colliders.size(); ++k) {
     btMultiBodyLinkCollider& collider = *w.colliders[k];
     if (!collider.getCollisionShape()->isCompound()) continue;  // a link without geometry
-    OverlapProbe probe;
+    detail::OverlapProbe probe;
     probe.own = &w.colliders;
     probe.ground = w.scene->ground.get();
     w.world->contactTest(&collider, probe);
     if (probe.other != nullptr && probe.depth_m > deepest.depth_m) {
       deepest.depth_m = probe.depth_m;
-      deepest.link = childLink(w.collider_child_links[k], probe.own_child);
+      deepest.link = detail::childLink(w.collider_child_links[k], probe.own_child);
       const auto owner = w.scene->collider_owners.find(probe.other);
       deepest.other = owner == w.scene->collider_owners.end()
                           ? "another body"
                           : "robot '" + owner->second.robot + "' link '" +
-                                childLink(owner->second.child_links, probe.other_child) + "'";
+                                detail::childLink(owner->second.child_links, probe.other_child) + "'";
     }
   }
   return deepest;

@@ -20,14 +20,15 @@ std::uint64_t seedOf(std::string_view name) {
   return hash;
 }
 
+// SDFormat's <pose> x y z roll pitch yaw (URDF's rpy convention, urdfdom's).
 Eigen::Isometry3d poseOf(const std::array<double, 6>& pose) {
+  urdf::Rotation rotation;
+  rotation.setFromRPY(pose[3], pose[4], pose[5]);
+  double x = 0.0, y = 0.0, z = 0.0, w = 1.0;
+  rotation.getQuaternion(x, y, z, w);
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
   out.translation() = Eigen::Vector3d(pose[0], pose[1], pose[2]);
-  // URDF/SDF roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
-  out.linear() = (Eigen::AngleAxisd(pose[5], Eigen::Vector3d::UnitZ()) *
-                  Eigen::AngleAxisd(pose[4], Eigen::Vector3d::UnitY()) *
-                  Eigen::AngleAxisd(pose[3], Eigen::Vector3d::UnitX()))
-                     .toRotationMatrix();
+  out.linear() = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
   return out;
 }
 
