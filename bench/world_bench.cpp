@@ -1,10 +1,16 @@
 // The shared world's loop against the raw engine stepping the same world:
 // 1, 4 and 16 seed arms (each under its position controller, commanded to
-// 1 rad) beside 16 free boxes resting on the ground, 5 s of 1 ms steps.
+// 1 rad) beside 16 free boxes resting on the ground, 5 s of 1 ms steps, on
+// bullet and (with the argument `mujoco`) on mujoco.
 //
 //   raw bullet:  one BulletScene with every arm and box; per step, each arm's
 //                position law written out by hand (HandWrittenPositionLaw,
 //                the servoloop controller's law and limits) and one scene step
+//   raw mujoco:  one MujocoWorld with every arm and box (servoloop's MuJoCo
+//                engine used directly, as servoloop_bench_loop_vs_mujoco's
+//                raw side: no SimRobotHW, transmissions, limits or
+//                controllers); per step the same law's efforts, then one
+//                mj_step of the world
 //   servoloop:   a node (node::Node, as `servoloop launch` builds and runs it)
 //                of the same robots, free-running: every robot's cycle
 //                (read, controllers, write) and the world's step, its topics
@@ -36,6 +42,10 @@
 #include "servoloop/node/node.hpp"
 #include "servoloop/sim_bullet/bullet_scene.hpp"
 #include "servoloop/sim_bullet/bullet_world.hpp"
+#ifdef SERVOLOOP_BENCH_MUJOCO
+#include "servoloop/sim_mujoco/mujoco_physics.hpp"
+#include "servoloop/sim_mujoco/mujoco_world.hpp"
+#endif
 
 namespace servoloop::bench {
 namespace {
@@ -57,7 +67,12 @@ double armX(int k) { return 1.5 * k; }
 // namespace, left out), the box, and every arm's controllers.
 struct Files {
   fs::path dir;
-  explicit Files(int arms) : dir(fs::temp_directory_path() / ("servoloop-world-bench-" + std::to_string(::getpid()))) {
+  bool keep = false;
+  // In a temporary folder removed at the end, or in `folder`, kept.
+  explicit Files(int arms, const fs::path& folder = {})
+      : dir(folder.empty() ? fs::temp_directory_path() / ("servoloop-world-bench-" + std::to_string(::getpid()))
+                           : folder),
+        keep(!folder.empty()) {
     fs::create_directories(dir);
     std::ifstream in(sourcePath("robots/one_dof/minimal_robot_description_w_jnt_ctl.urdf"));
     std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -75,12 +90,12 @@ struct Files {
   }
   ~Files() {
     std::error_code ec;
-    fs::remove_all(dir, ec);
+    if (!keep) fs::remove_all(dir, ec);
   }
 };
 
-std::string launchText(int arms, bool shared) {
-  std::string yaml = "world: {backend: bullet, time_step: 0.001, ground_plane: true, shared: " +
+std::string launchText(const std::string& backend, int arms, bool shared) {
+  std::string yaml = "world: {backend: " + backend + ", time_step: 0.001, ground_plane: true, shared: " +
                      std::string(shared ? "true" : "false") + "}\ncontroller_manager: {update_rate: 1000}\nrobots:\n";
   for (int k = 0; k < arms; ++k) {
     yaml += "  - {urdf: arm.urdf, model: arm" + std::to_string(k) + ", namespace: /arm" + std::to_string(k) +
@@ -100,12 +115,12 @@ std::string launchText(int arms, bool shared) {
 }
 
 // Seconds of wall time for kSteps of the node (built beforehand).
-double runNode(const Files& files, int arms, bool shared) {
+double runNode(const Files& files, const std::string& backend, int arms, bool shared) {
   node::NodeOptions options;
   options.serve_ipc = false;
   options.real_time_factor = 0.0;
   options.duration_s = static_cast<double>(kSteps) * kTimeStepS;
-  node::Node node(node::parseLaunchFile(launchText(arms, shared), "world_bench", files.dir), options);
+  node::Node node(node::parseLaunchFile(launchText(backend, arms, shared), "world_bench", files.dir), options);
   const auto start = std::chrono::steady_clock::now();
   node.start();
   node.waitUntilDone({}, std::chrono::milliseconds(5));
@@ -168,6 +183,59 @@ double runRaw(const Files& files, int arms) {
   return std::chrono::duration<double>(end - start).count();
 }
 
+#ifdef SERVOLOOP_BENCH_MUJOCO
+// Seconds of wall time for kSteps of the same world in one MujocoWorld.
+double runRawMujoco(const Files& files, int arms) {
+  const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
+  const auto box_model = parseRobotModel(kBoxUrdf, "box");
+  sim_mujoco::MujocoWorld world;
+  world.init({kTimeStepS, {0.0, 0.0, -9.81}, true});
+  std::vector<std::unique_ptr<sim_mujoco::MujocoPhysics>> bodies;
+  struct Arm {
+    sim_mujoco::MujocoPhysics* physics;
+    HandWrittenPositionLaw law;
+  };
+  std::vector<Arm> laws;
+  const RobotCase seed = seedRobot();
+  const YAML::Node params = seed.namespaceParams();
+  for (int k = 0; k < arms + kBoxes; ++k) {
+    const bool arm = k < arms;
+    sim_common::SimSettings settings;
+    settings.time_step_s = kTimeStepS;
+    settings.ground_plane = true;
+    settings.base = arm ? sim_common::BaseMode::fixed : sim_common::BaseMode::floating;
+    settings.base_position = arm ? Eigen::Vector3d(armX(k), 0.0, 0.0)
+                                 : Eigen::Vector3d(boxX(k - arms), boxY(k - arms), 0.1);
+    std::vector<sim_common::EngineJointConfig> joints;
+    if (arm) joints.push_back(sim_common::EngineJointConfig{"joint1"});
+    bodies.push_back(std::make_unique<sim_mujoco::MujocoPhysics>());
+    bodies.back()->joinWorld(world);
+    bodies.back()->init(arm ? *arm_model : *box_model, settings, joints, arm ? "arm" : "box");
+    if (arm) {
+      HandWrittenPositionLaw law = HandWrittenPositionLaw::forJoint(seed, params, 0, *arm_model);
+      law.setpoint_rad = 1.0;
+      laws.push_back({bodies.back().get(), law});
+    }
+  }
+  world.restart();
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t n = 0; n < kSteps; ++n) {
+    for (Arm& arm : laws) {
+      arm.physics->setJointEffort(0, arm.law.effort(arm.physics->jointPosition(0), arm.physics->jointVelocity(0)));
+      arm.physics->step();
+    }
+    world.step();
+  }
+  const auto end = std::chrono::steady_clock::now();
+  if (!(laws.front().physics->jointPosition(0) > 0.5)) {
+    std::fprintf(stderr, "raw mujoco: the first arm did not swing towards its setpoint\n");
+  }
+  for (auto& body : bodies) world.remove(*body);
+  bodies.clear();
+  return std::chrono::duration<double>(end - start).count();
+}
+#endif
+
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   return values[values.size() / 2];
@@ -176,23 +244,66 @@ double median(std::vector<double> values) {
 }  // namespace
 }  // namespace servoloop::bench
 
-int main() {
+// The whole-process comparison, each side a process of its own that loads
+// its robots, builds its world and runs 5 s:
+//   servoloop_bench_world --write DIR N ENGINE   writes DIR/world.launch.yaml
+//       and its robots, for `servoloop launch DIR/world.launch.yaml --duration 5`
+//   servoloop_bench_world --raw N ENGINE         the raw world of N arms, once
+int wholeProcessMode(int argc, char** argv) {
   using namespace servoloop::bench;
+  const std::string mode = argv[1];
+  if (mode == "--write" && argc == 5) {
+    const int arms = std::stoi(argv[3]);
+    const Files files(arms, argv[2]);
+    std::ofstream(files.dir / "world.launch.yaml") << launchText(argv[4], arms, true);
+    return 0;
+  }
+  if (mode == "--raw" && argc == 4) {
+    const int arms = std::stoi(argv[2]);
+    const std::string engine = argv[3];
+    const Files files(arms);
+#ifdef SERVOLOOP_BENCH_MUJOCO
+    if (engine == "mujoco") return runRawMujoco(files, arms) > 0.0 ? 0 : 1;
+#endif
+    if (engine == "bullet") return runRaw(files, arms) > 0.0 ? 0 : 1;
+  }
+  std::fprintf(stderr, "usage: servoloop_bench_world [mujoco] | --write DIR ARMS ENGINE | --raw ARMS ENGINE\n");
+  return 2;
+}
+
+int main(int argc, char** argv) {
+  using namespace servoloop::bench;
+  if (argc > 1 && std::string(argv[1]).rfind("--", 0) == 0) return wholeProcessMode(argc, argv);
+  std::vector<std::string> backends{"bullet"};
+#ifdef SERVOLOOP_BENCH_MUJOCO
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "mujoco") backends.push_back("mujoco");
+  }
+#else
+  (void)argc;
+  (void)argv;
+#endif
   std::printf("=== The shared world: %llu steps of 1 ms, 16 boxes beside N seed arms; wall time, median of %d ===\n",
               static_cast<unsigned long long>(kSteps), kRepetitions);
-  std::printf("%-8s %12s %14s %14s %12s %18s\n", "arms", "raw (ms)", "shared (ms)", "separate (ms)",
+  std::printf("%-8s %-8s %12s %14s %14s %12s %18s\n", "engine", "arms", "raw (ms)", "shared (ms)", "separate (ms)",
               "shared/raw", "separate/shared");
-  for (const int arms : {1, 4, 16}) {
-    const Files files(arms);
-    std::vector<double> raw, shared, separate;
-    for (int r = 0; r < kRepetitions; ++r) {
-      raw.push_back(runRaw(files, arms));
-      shared.push_back(runNode(files, arms, true));
-      separate.push_back(runNode(files, arms, false));
+  for (const std::string& backend : backends) {
+    for (const int arms : {1, 4, 16}) {
+      const Files files(arms);
+      std::vector<double> raw, shared, separate;
+      for (int r = 0; r < kRepetitions; ++r) {
+#ifdef SERVOLOOP_BENCH_MUJOCO
+        raw.push_back(backend == "mujoco" ? runRawMujoco(files, arms) : runRaw(files, arms));
+#else
+        raw.push_back(runRaw(files, arms));
+#endif
+        shared.push_back(runNode(files, backend, arms, true));
+        separate.push_back(runNode(files, backend, arms, false));
+      }
+      const double raw_s = median(raw), shared_s = median(shared), separate_s = median(separate);
+      std::printf("%-8s %-8d %12.1f %14.1f %14.1f %12.3f %18.3f\n", backend.c_str(), arms, raw_s * 1e3,
+                  shared_s * 1e3, separate_s * 1e3, shared_s / raw_s, separate_s / shared_s);
     }
-    const double raw_s = median(raw), shared_s = median(shared), separate_s = median(separate);
-    std::printf("%-8d %12.1f %14.1f %14.1f %12.3f %18.3f\n", arms, raw_s * 1e3, shared_s * 1e3, separate_s * 1e3,
-                shared_s / raw_s, separate_s / shared_s);
   }
   return 0;
 }

@@ -166,15 +166,7 @@ void BulletPhysics::applyJointCommands(std::span<const sim_common::AppliedJointC
 
 void BulletPhysics::step() noexcept { world_->step(); }
 
-std::size_t BulletPhysics::trackLink(const std::string& link) {
-  try {
-    return world_->trackLink(link);
-  } catch (const ConfigError&) {
-    throw;
-  } catch (const Error& e) {
-    throw ConfigError(e.what());
-  }
-}
+std::size_t BulletPhysics::trackLink(const std::string& link) { return world_->trackLink(link); }
 
 void BulletPhysics::readLinkState(std::size_t tracked, sim_common::EngineLinkState& out) const noexcept {
   const LinkState state = world_->linkState(tracked);
@@ -187,13 +179,7 @@ void BulletPhysics::readLinkState(std::size_t tracked, sim_common::EngineLinkSta
 std::size_t BulletPhysics::trackContacts(const std::string& link) {
   constexpr std::size_t kMostContacts = 256;
   contacts_.resize(kMostContacts);
-  try {
-    return world_->trackContacts(link);
-  } catch (const ConfigError&) {
-    throw;
-  } catch (const Error& e) {
-    throw ConfigError(e.what());
-  }
+  return world_->trackContacts(link);
 }
 
 std::size_t BulletPhysics::readContacts(std::size_t tracked, std::span<sim_common::EngineContact> out) const noexcept {

@@ -21,7 +21,7 @@ Eigen::Matrix3d toEigen(const btMatrix3x3& m) {
 
 std::size_t BodySensors::trackLink(const BodyTree& tree, const std::string& link_name) {
   const auto it = tree.links.find(link_name);
-  if (it == tree.links.end()) throw Error("Bullet world: no link '" + link_name + "' in the robot");
+  if (it == tree.links.end()) throw ConfigError("Bullet world: no link '" + link_name + "' in the robot");
   const Body& body = tree.bodies[static_cast<std::size_t>(it->second.body)];
   links_.push_back(TrackedLink{it->second.body, body.principal_in_link.inverse() * it->second.link_in_body_link});
   motion_valid_ = false;
@@ -59,7 +59,7 @@ std::size_t BodySensors::trackContacts(const BodyTree& tree,
                                        const std::vector<std::vector<std::string>>& collider_child_links,
                                        const std::string& link_name) {
   const auto it = tree.links.find(link_name);
-  if (it == tree.links.end()) throw Error("Bullet world: no link '" + link_name + "' in the robot");
+  if (it == tree.links.end()) throw ConfigError("Bullet world: no link '" + link_name + "' in the robot");
   TrackedContacts tracked;
   tracked.body = it->second.body;
   const auto& children = collider_child_links.at(static_cast<std::size_t>(tracked.body));

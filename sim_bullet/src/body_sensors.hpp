@@ -33,7 +33,7 @@ namespace servoloop::sim_bullet::detail {
 
 class BodySensors {
  public:
-  // Non-real-time. Throws servoloop::Error naming an unknown link.
+  // Non-real-time. Throws servoloop::ConfigError naming an unknown link.
   std::size_t trackLink(const BodyTree& tree, const std::string& link_name);
   // Non-real-time. Measures the joint that moves a body of the tree.
   // Throws servoloop::ConfigError for a fixed joint (its links are merged
@@ -46,7 +46,7 @@ class BodySensors {
 
   // Non-real-time. Contacts of the compound children that came from
   // `link_name` (collider_child_links: per body, each child's URDF link).
-  // Throws servoloop::Error for an unknown link.
+  // Throws servoloop::ConfigError for an unknown link.
   std::size_t trackContacts(const BodyTree& tree, const std::vector<std::vector<std::string>>& collider_child_links,
                             const std::string& link_name);
   // Real-time. The tracked link's contact points in the dispatcher's

@@ -199,8 +199,8 @@ class BulletWorld {
   // throws servoloop::Error for an unknown link. Not for the real-time path.
   Eigen::Vector3d linkWorldPosition(const std::string& link_name) const;
   // Sensors. Non-real-time: follow a URDF link frame (any link, merged or
-  // not); returns the index for linkState(). Throws servoloop::Error for an
-  // unknown link.
+  // not); returns the index for linkState(). Throws servoloop::ConfigError
+  // for an unknown link.
   std::size_t trackLink(const std::string& link_name);
   // Non-real-time: measure what a revolute, continuous or prismatic joint
   // transmits (Bullet's joint feedback); returns the index for
@@ -209,7 +209,7 @@ class BulletWorld {
   std::size_t trackJointWrench(const std::string& joint_name);
   // Non-real-time: report the contacts of a URDF link's collision geometry
   // (a link merged into a body: its own shapes only); returns the index for
-  // readContacts(). Throws servoloop::Error for an unknown link.
+  // readContacts(). Throws servoloop::ConfigError for an unknown link.
   std::size_t trackContacts(const std::string& link_name);
   // Real-time: the tracked link's state now; the tracked joint's wrench
   // during the last step (zero before the first); the tracked link's
