@@ -8,8 +8,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string urdf = servoloop::fuzz::text(data, size);
   return servoloop::fuzz::refusalsAllowed([&] {
-    servoloop::transmissions::parseTransmissions(urdf, "fuzz.urdf");
     const auto model = servoloop::parseRobotModel(urdf, "fuzz.urdf");
+    servoloop::transmissions::parseTransmissions(urdf, "fuzz.urdf");
     servoloop::readGazeboSensors(urdf, *model, "fuzz.urdf");
   });
 }
