@@ -190,7 +190,12 @@ void spawnPose(const params::ParameterStore& parameters, const std::string& robo
 void Node::refreshModelStates() {
   if (!world_loop_ || !model_states_) return;
   std::lock_guard serial(model_states_mutex_);
-  std::vector<ModelStatesPublisher::Model> models;
+  struct Entry {
+    ModelStatesPublisher::Model model;
+    const hardware_interface::SimulatedRobotHW* hardware;
+    std::string robot_namespace;
+  };
+  std::vector<Entry> entries;
   realtime::TopicBus* bus = nullptr;
   {
     std::lock_guard lock(robots_mutex_);
@@ -200,20 +205,10 @@ void Node::refreshModelStates() {
     for (const auto& robot : robots_) {
       auto* simulated = dynamic_cast<const hardware_interface::SimulatedRobotHW*>(&robot->hardware());
       if (simulated == nullptr || robot->wallClock()) continue;
-      ModelStatesPublisher::Model model;
+      Entry entry{{}, simulated, robot->robotNamespace()};
       // Gazebo's model names are unique; robots of one URDF go by their namespace.
-      model.name = name_count[robot->robotName()] == 1 ? robot->robotName() : robot->robotNamespace().substr(1);
-      hardware_interface::BaseGroundTruth probe;
-      if (simulated->readBaseGroundTruth(probe)) {
-        model.floating = simulated;
-      } else {
-        double position[3];
-        double orientation[4];
-        spawnPose(parameters_, robot->robotNamespace(), position, orientation);
-        model.fixed_pose.position = {position[0], position[1], position[2]};
-        model.fixed_pose.orientation = {orientation[0], orientation[1], orientation[2], orientation[3]};
-      }
-      models.push_back(std::move(model));
+      entry.model.name = name_count[robot->robotName()] == 1 ? robot->robotName() : robot->robotNamespace().substr(1);
+      entries.push_back(std::move(entry));
     }
     // The topic goes where `topic echo` looks for it (as robotForTopic picks).
     RobotInstance* carrier = robots_.empty() ? nullptr : robots_.front().get();
@@ -226,7 +221,25 @@ void Node::refreshModelStates() {
     }
     if (carrier != nullptr) bus = &carrier->topics();
   }
-  world_loop_->whilePaused([&] { model_states_->setModels(std::move(models), bus); });
+  // Whether a base floats is asked of its state, which only the world's
+  // thread may read while the world runs: asked with the world paused.
+  world_loop_->whilePaused([&] {
+    std::vector<ModelStatesPublisher::Model> models;
+    for (Entry& entry : entries) {
+      hardware_interface::BaseGroundTruth probe;
+      if (entry.hardware->readBaseGroundTruth(probe)) {
+        entry.model.floating = entry.hardware;
+      } else {
+        double position[3];
+        double orientation[4];
+        spawnPose(parameters_, entry.robot_namespace, position, orientation);
+        entry.model.fixed_pose.position = {position[0], position[1], position[2]};
+        entry.model.fixed_pose.orientation = {orientation[0], orientation[1], orientation[2], orientation[3]};
+      }
+      models.push_back(std::move(entry.model));
+    }
+    model_states_->setModels(std::move(models), bus);
+  });
 }
 
 ModelState Node::modelState(const std::string& model) {
