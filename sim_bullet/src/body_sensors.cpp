@@ -202,13 +202,15 @@ void BodySensors::addContactForces(const btMultiBody& body, btDispatcher& dispat
 
 void BodySensors::afterStep(const btMultiBody& body, btDispatcher& dispatcher, double dt,
                             const btVector3& gravity_bt) noexcept {
-  if (joints_.empty() && links_.empty()) return;
+  if (joints_.empty()) {
+    motion_valid_ = false;  // link states alone: read when asked (linkState)
+    return;
+  }
   std::swap(motion_, last_motion_);
   readMotion(body, motion_);
   motion_valid_ = true;
   const bool accelerations_known = has_last_motion_;
   has_last_motion_ = true;
-  if (joints_.empty()) return;
   addContactForces(body, dispatcher, dt);
   const Eigen::Vector3d gravity = toEigen(gravity_bt);
 

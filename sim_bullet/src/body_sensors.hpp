@@ -58,7 +58,8 @@ class BodySensors {
                            std::span<LinkContact> out) const noexcept;
 
   // Real-time, after every step of the scene (dt s, gravity m/s²): the
-  // tracked joints' wrenches of that step. Nothing without tracked joints.
+  // tracked joints' wrenches of that step. Without tracked joints, only
+  // marks the link states as stale (linkState reads them when asked).
   void afterStep(const btMultiBody& body, btDispatcher& dispatcher, double dt, const btVector3& gravity) noexcept;
   // Every measured wrench back to zero and the last velocities forgotten
   // (a reset or a teleport: the next step's accelerations are not known).
