@@ -1,5 +1,7 @@
 #include "bench_support.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -8,6 +10,8 @@
 
 #include "servoloop/controller_manager/controller_base.hpp"
 #include "servoloop/core/errors.hpp"
+#include "servoloop/node/launch_file.hpp"
+#include "servoloop/node/node.hpp"
 
 namespace servoloop::bench {
 
@@ -93,6 +97,25 @@ std::string revoluteChainUrdf(std::size_t joints) {
     parent = link;
   }
   return xml + "</robot>";
+}
+
+double wallSecondsOfNodeRun(const std::string& launch_yaml, const std::filesystem::path& dir, double duration_s) {
+  node::NodeOptions options;
+  options.serve_ipc = false;
+  options.real_time_factor = 0.0;
+  options.duration_s = duration_s;
+  node::Node node(node::parseLaunchFile(launch_yaml, "bench", dir), options);
+  const auto start = std::chrono::steady_clock::now();
+  node.start();
+  node.waitUntilDone({}, std::chrono::milliseconds(5));
+  const auto end = std::chrono::steady_clock::now();
+  node.shutdown();
+  return std::chrono::duration<double>(end - start).count();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
 }
 
 }  // namespace servoloop::bench

@@ -73,6 +73,13 @@ std::filesystem::path pluginDirectory();
 std::string sourcePath(const std::string& relative);
 std::string readTextFile(const std::string& path);
 
+// Wall seconds of a node (node::Node as `servoloop launch` builds it) of the
+// launch file `launch_yaml` (paths relative to `dir`), free-running for
+// `duration_s` simulated seconds; its construction is not counted.
+double wallSecondsOfNodeRun(const std::string& launch_yaml, const std::filesystem::path& dir, double duration_s);
+// The median of `values` (the upper one of an even count).
+double median(std::vector<double> values);
+
 // "joint_01" ... "joint_<n>" (two digits at least).
 std::vector<std::string> numberedJointNames(std::size_t joints);
 

@@ -16,7 +16,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,8 +24,6 @@
 
 #include "bench_support.hpp"
 #include "servoloop/core/logging.hpp"
-#include "servoloop/node/launch_file.hpp"
-#include "servoloop/node/node.hpp"
 
 namespace servoloop::bench {
 namespace {
@@ -95,22 +92,7 @@ double runNode(const Files& files, const std::string& backend, const std::string
                            "}\n"
                            "publish:\n  - {topic: /one_DOF_robot/joint1_position_controller/command, "
                            "type: std_msgs/Float64, time: 0.0, value: 1.0}\n";
-  node::NodeOptions options;
-  options.serve_ipc = false;
-  options.real_time_factor = 0.0;
-  options.duration_s = static_cast<double>(kSteps) * 0.001;
-  node::Node node(node::parseLaunchFile(yaml, "sensors_bench", files.dir), options);
-  const auto start = std::chrono::steady_clock::now();
-  node.start();
-  node.waitUntilDone({}, std::chrono::milliseconds(5));
-  const auto end = std::chrono::steady_clock::now();
-  node.shutdown();
-  return std::chrono::duration<double>(end - start).count();
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
+  return wallSecondsOfNodeRun(yaml, files.dir, static_cast<double>(kSteps) * 0.001);
 }
 
 }  // namespace

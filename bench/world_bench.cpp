@@ -116,17 +116,7 @@ std::string launchText(const std::string& backend, int arms, bool shared) {
 
 // Seconds of wall time for kSteps of the node (built beforehand).
 double runNode(const Files& files, const std::string& backend, int arms, bool shared) {
-  node::NodeOptions options;
-  options.serve_ipc = false;
-  options.real_time_factor = 0.0;
-  options.duration_s = static_cast<double>(kSteps) * kTimeStepS;
-  node::Node node(node::parseLaunchFile(launchText(backend, arms, shared), "world_bench", files.dir), options);
-  const auto start = std::chrono::steady_clock::now();
-  node.start();
-  node.waitUntilDone({}, std::chrono::milliseconds(5));
-  const auto end = std::chrono::steady_clock::now();
-  node.shutdown();
-  return std::chrono::duration<double>(end - start).count();
+  return wallSecondsOfNodeRun(launchText(backend, arms, shared), files.dir, static_cast<double>(kSteps) * kTimeStepS);
 }
 
 // Seconds of wall time for kSteps of the same world stepped by hand.
@@ -235,11 +225,6 @@ double runRawMujoco(const Files& files, int arms) {
   return std::chrono::duration<double>(end - start).count();
 }
 #endif
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
 
 }  // namespace
 }  // namespace servoloop::bench

@@ -186,4 +186,20 @@ inline void initController(cm::ControllerBase& controller, hi::RobotHW& hw,
   ASSERT_TRUE(controller.initRequest(&hw, context, claimed));
 }
 
+// Runs the controller's updates first..last at 1 kHz (control time k·1 ms),
+// flushes `bus`, and returns the numbers of the updates that published
+// (the controller's publishedCount() grew).
+template <class Controller>
+std::vector<int> updatesThatPublishAt1kHz(Controller& controller, servoloop::realtime::TopicBus& bus, int first,
+                                          int last) {
+  std::vector<int> published;
+  for (int k = first; k <= last; ++k) {
+    const auto before = controller.publishedCount();
+    EXPECT_EQ(controller.update(Time(0.001 * k), Duration(0.001)), ReturnType::ok);
+    if (controller.publishedCount() != before) published.push_back(k);
+  }
+  bus.flush();
+  return published;
+}
+
 }  // namespace servoloop::controllers::testing

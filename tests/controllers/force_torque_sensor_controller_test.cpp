@@ -33,14 +33,7 @@ class ForceTorqueSensorControllerTest : public ::testing::Test {
   }
 
   std::vector<int> runAt1kHz(ForceTorqueSensorController& controller, int first, int last) {
-    std::vector<int> published;
-    for (int k = first; k <= last; ++k) {
-      const auto before = controller.publishedCount();
-      EXPECT_EQ(controller.update(Time(0.001 * k), Duration(0.001)), ReturnType::ok);
-      if (controller.publishedCount() != before) published.push_back(k);
-    }
-    bus.flush();
-    return published;
+    return testing::updatesThatPublishAt1kHz(controller, bus, first, last);
   }
 
   servoloop::realtime::TopicBus bus;

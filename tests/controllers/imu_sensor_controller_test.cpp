@@ -41,14 +41,7 @@ class ImuSensorControllerTest : public ::testing::Test {
   // Runs updates first..last at 1 kHz (control time k·1 ms) and returns the
   // numbers of the updates that published.
   std::vector<int> runAt1kHz(ImuSensorController& controller, int first, int last) {
-    std::vector<int> published;
-    for (int k = first; k <= last; ++k) {
-      const auto before = controller.publishedCount();
-      EXPECT_EQ(controller.update(Time(0.001 * k), Duration(0.001)), ReturnType::ok);
-      if (controller.publishedCount() != before) published.push_back(k);
-    }
-    bus.flush();
-    return published;
+    return testing::updatesThatPublishAt1kHz(controller, bus, first, last);
   }
 
   std::string initError(const std::string& name, const std::string& params_yaml) {
