@@ -10,6 +10,7 @@ packages=(
   liburdfdom-dev liburdfdom-headers-dev libtinyxml2-dev
   libyaml-cpp-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
   libspdlog-dev libfmt-dev
+  libwebsocketpp-dev libasio-dev libjs-three
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libmujoco-dev libpng-dev gnuplot-nox libassimp-dev libsdformat-dev
   python3-dev pybind11-dev python3-numpy python3-yaml python3-distributed

@@ -4,7 +4,8 @@
 #   CMAKE_ARGS  extra configure arguments (e.g. -DSERVOLOOP_SANITIZE=ON)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install_deps.sh
+# Chromium: the browser view's tests run the page in Debian's headless Chromium.
+bash scripts/install_deps.sh chromium
 build_dir=${BUILD_DIR:-build}
 # shellcheck disable=SC2086
 cmake -S . -B "$build_dir" -G Ninja ${CMAKE_ARGS:-}

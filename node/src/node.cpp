@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/ipc/ipc_socket_path.hpp"
 #include "servoloop/node/message_json.hpp"
 #include "servoloop/node/node_operations.hpp"
@@ -104,7 +105,9 @@ void Node::createWorld() {
   }
   world_loop_ = std::make_unique<world::WorldLoop>(*world_, std::move(options));
   model_states_ = std::make_unique<ModelStatesPublisher>(settings.time_step_s);
-  world_loop_->setObserver(model_states_.get());
+  world_loop_->addObserver(*model_states_);
+  world_snapshot_ = std::make_unique<WorldSnapshot>(settings.time_step_s);
+  world_loop_->addObserver(*world_snapshot_);
   if (options_.start_paused) world_loop_->pause();
 }
 
@@ -194,6 +197,7 @@ void Node::refreshModelStates() {
     ModelStatesPublisher::Model model;
     const hardware_interface::SimulatedRobotHW* hardware;
     std::string robot_namespace;
+    WorldSnapshot::Model snapshot;
   };
   std::vector<Entry> entries;
   realtime::TopicBus* bus = nullptr;
@@ -205,7 +209,14 @@ void Node::refreshModelStates() {
     for (const auto& robot : robots_) {
       auto* simulated = dynamic_cast<const hardware_interface::SimulatedRobotHW*>(&robot->hardware());
       if (simulated == nullptr || robot->wallClock()) continue;
-      Entry entry{{}, simulated, robot->robotNamespace()};
+      Entry entry{{}, simulated, robot->robotNamespace(), {}};
+      entry.snapshot.ns = robot->robotNamespace();
+      if (auto* state = robot->hardware().get<hardware_interface::JointStateInterface>()) {
+        for (const std::string& joint : state->getNames()) {
+          entry.snapshot.joint_names.push_back(joint);
+          entry.snapshot.joint_positions.push_back(state->getHandle(joint).getPositionPtr());
+        }
+      }
       // Gazebo's model names are unique; robots of one URDF go by their namespace.
       entry.model.name = name_count[robot->robotName()] == 1 ? robot->robotName() : robot->robotNamespace().substr(1);
       entries.push_back(std::move(entry));
@@ -225,21 +236,42 @@ void Node::refreshModelStates() {
   // thread may read while the world runs: asked with the world paused.
   world_loop_->whilePaused([&] {
     std::vector<ModelStatesPublisher::Model> models;
+    std::vector<WorldSnapshot::Model> snapshot_models;
     for (Entry& entry : entries) {
       hardware_interface::BaseGroundTruth probe;
       if (entry.hardware->readBaseGroundTruth(probe)) {
         entry.model.floating = entry.hardware;
+        entry.snapshot.floating = entry.hardware;
       } else {
         double position[3];
         double orientation[4];
         spawnPose(parameters_, entry.robot_namespace, position, orientation);
         entry.model.fixed_pose.position = {position[0], position[1], position[2]};
         entry.model.fixed_pose.orientation = {orientation[0], orientation[1], orientation[2], orientation[3]};
+        std::copy(std::begin(position), std::end(position), entry.snapshot.fixed_pose);
+        std::copy(std::begin(orientation), std::end(orientation), entry.snapshot.fixed_pose + 3);
       }
       models.push_back(std::move(entry.model));
+      snapshot_models.push_back(std::move(entry.snapshot));
     }
     model_states_->setModels(std::move(models), bus);
+    world_snapshot_->setModels(std::move(snapshot_models), world_loop_->steps());
   });
+}
+
+bool Node::worldFrame(WorldSnapshot::Frame& out) {
+  if (!world_loop_ || !world_snapshot_) return false;
+  if (!world_snapshot_->enabled()) {
+    world_snapshot_->enable();
+    // The first frame at once, not at the next snapshot of world time.
+    if (started_) world_loop_->whilePaused([&] { world_snapshot_->take(world_loop_->steps()); });
+  } else if (world_loop_->paused() && started_) {
+    // A paused world takes no snapshot of its own; what changed it while
+    // paused (a step, a reset, a model moved) shows now.
+    world_loop_->whilePaused([&] { world_snapshot_->take(world_loop_->steps()); });
+  }
+  world_snapshot_->read(out);
+  return true;
 }
 
 ModelState Node::modelState(const std::string& model) {

@@ -140,8 +140,19 @@ json NodeOperations::deferToWorker(const json& request, ipc::IpcConnection& conn
   return ipc::IpcServer::deferredReply();
 }
 
-RobotInstance& NodeOperations::robotFor(const std::string& op) {
+RobotInstance& NodeOperations::robotFor(const std::string& op, const json& request) {
   if (robot_ != nullptr) return *robot_;
+  if (const json* named = ipc::findRequestField(request, "robot"); named != nullptr) {
+    if (!named->is_string()) ipc::throwBadRequestField(request, "robot", "a robot's namespace or model name", *named);
+    RobotInstance* robot = node_.findModel(named->get<std::string>());
+    if (robot == nullptr) {
+      std::string names;
+      for (const RobotInstance* each : node_.robots()) names += (names.empty() ? "" : ", ") + each->robotNamespace();
+      throw Error(fmt::format("'{}': no robot '{}' in this world (it has: {})", op, named->get<std::string>(),
+                              names.empty() ? "none" : names));
+    }
+    return *robot;
+  }
   const std::vector<RobotInstance*> robots = node_.robots();
   if (robots.size() == 1) return *robots.front();
   if (robots.empty()) {
@@ -166,10 +177,11 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   }
   if (op.starts_with("world.")) return worldOp(op, request, connection);
   if (op.starts_with("model.")) return modelOp(op, request, connection);
+  if (op.starts_with("view.")) return viewOp(op);
   if (op.starts_with("param.")) return paramOp(op, request);
   if (op == "control.list_types") return controlListTypes();
 
-  RobotInstance& robot = robotFor(op);
+  RobotInstance& robot = robotFor(op, request);
   if (op == "robot.description") {
     return {{"urdf", robot.robotDescription()}, {"path", robot.urdfPath().string()}, {"model", robot.robotName()}};
   }

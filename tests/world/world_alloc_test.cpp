@@ -5,7 +5,8 @@
 // with its IMU and joint force-torque sensor swinging under its position
 // controller, ros_controllers' sensor controllers publishing them. Counted on the world's thread, over its segments of cycles
 // (the real-time part), through operator new and the engine's own allocator
-// hook (Bullet's, MuJoCo's mju_user_malloc).
+// hook (Bullet's, MuJoCo's mju_user_malloc); and with a browser page open,
+// the view's snapshots taken between segments allocate nothing either.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -14,6 +15,7 @@
 #include <cstdlib>
 #include <memory>
 #include <optional>
+#include <thread>
 #include <vector>
 
 #include "alloc_counter.hpp"
@@ -22,6 +24,8 @@
 #include "servoloop/hardware_interface/imu_sensor_interface.hpp"
 #include "servoloop/node/launch_file.hpp"
 #include "servoloop/node/robot_instance.hpp"
+#include "servoloop/node/world_snapshot.hpp"
+#include "servoloop/hardware_interface/joint_interfaces.hpp"
 #include "servoloop/world/world_loop.hpp"
 #include "temp_dir.hpp"
 #include "wait_until.hpp"
@@ -113,6 +117,29 @@ TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   world::WorldLoop loop(*world, options);
   loop_ptr = &loop;
 
+  // A browser page open: the world's snapshots for the view taken between
+  // segments (counted too) while a reader copies them all the time.
+  node::WorldSnapshot snapshot(0.001);
+  std::size_t snapshot_allocations = 0;
+  std::size_t snapshots_counted = 0;
+  struct CountedSnapshots final : world::WorldObserver {
+    node::WorldSnapshot* inner = nullptr;
+    std::size_t* allocations = nullptr;
+    std::size_t* counted = nullptr;
+    std::uint64_t betweenSegments(std::uint64_t steps) override {
+      if (steps < kCountFromStep) return inner->betweenSegments(steps);
+      servoloop::testing::AllocationCounter count;
+      const std::uint64_t next = inner->betweenSegments(steps);
+      *allocations += count.allocations();
+      ++*counted;
+      return next;
+    }
+  } counted_snapshots;
+  counted_snapshots.inner = &snapshot;
+  counted_snapshots.allocations = &snapshot_allocations;
+  counted_snapshots.counted = &snapshots_counted;
+  loop.addObserver(counted_snapshots);
+
   node::RobotWorld robot_world;
   robot_world.plugins = plugins;
   robot_world.parameters = &store;
@@ -152,6 +179,34 @@ TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
         "test"));
   }
 
+  std::vector<node::WorldSnapshot::Model> snapshot_models;
+  for (const auto& robot : robots) {
+    node::WorldSnapshot::Model model;
+    model.ns = robot->robotNamespace();
+    auto* simulated = dynamic_cast<hardware_interface::SimulatedRobotHW*>(&robot->hardware());
+    hardware_interface::BaseGroundTruth probe;
+    if (simulated != nullptr && simulated->readBaseGroundTruth(probe)) model.floating = simulated;
+    if (auto* state = robot->hardware().get<hardware_interface::JointStateInterface>()) {
+      for (const std::string& joint : state->getNames()) {
+        model.joint_names.push_back(joint);
+        model.joint_positions.push_back(state->getHandle(joint).getPositionPtr());
+      }
+    }
+    snapshot_models.push_back(std::move(model));
+  }
+  snapshot.setModels(std::move(snapshot_models), 0);
+  snapshot.enable();
+  std::atomic<bool> reading{true};
+  std::uint64_t frames_read = 0;
+  std::thread reader([&] {
+    node::WorldSnapshot::Frame frame;
+    while (reading) {
+      snapshot.read(frame);
+      if (frame.steps > 0) ++frames_read;
+      std::this_thread::yield();
+    }
+  });
+
   loop.start();
   for (const auto& robot : robots) robot->start(6.0);
   ASSERT_TRUE(servoloop::testing::waitUntil(
@@ -163,8 +218,18 @@ TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
       },
       std::chrono::seconds(120)));
   loop.stop();
+  reading = false;
+  reader.join();
 
   EXPECT_EQ(allocations, 0u);
+  EXPECT_EQ(snapshot_allocations, 0u) << "the view's snapshots allocated on the world's thread";
+  EXPECT_GT(snapshots_counted, 100u);
+  EXPECT_GT(frames_read, 0u);
+  // The last snapshot holds the world's state: the first box where the
+  // engine has it, to the snapshots' period (1/60 s at < 1 m/s).
+  node::WorldSnapshot::Frame last;
+  snapshot.read(last);
+  EXPECT_GT(last.steps, 5900u);
   if (backend == "bullet") {
     ASSERT_GT(bullet_alloc::all.load(), 0u) << "the hook must see Bullet's allocations";
     EXPECT_EQ(bullet_alloc::counted.load(), 0u) << "Bullet allocated during the world's cycles";
@@ -179,6 +244,8 @@ TEST_P(WorldAllocation, CyclesOfSeveralRobotsInContactAllocateNothing) {
   ASSERT_NE(box_hw, nullptr);
   ASSERT_TRUE(box_hw->readBaseGroundTruth(first_box));
   EXPECT_GT(first_box.position[0], 0.6 + 0.5);
+  EXPECT_NEAR(last.models[1].pose[0], first_box.position[0], 0.02);
+  EXPECT_NEAR(last.models[1].pose[1], first_box.position[1], 0.02);
   // The sensors were sampled: the box's contact sensor holds its contacts,
   // the arm's IMU reads at least gravity.
   auto* contacts = box_hw->get<hardware_interface::ContactSensorInterface>();

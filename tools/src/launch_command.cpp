@@ -22,6 +22,9 @@
 #include "servoloop/node/node.hpp"
 #include "servoloop/node/run_summary.hpp"
 #include "ros1_bridge_process.hpp"
+#include "servoloop/ipc/ipc_client.hpp"
+#include "servoloop/view/view_server.hpp"
+#include "view_connection.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 
@@ -45,6 +48,8 @@ struct LaunchOptions {
   bool ipc = false;
   bool ros1_bridge = false;
   std::vector<std::string> plugin_dirs;
+  std::string view;  // [HOST:]PORT of the browser view; empty: none
+  bool view_control = false;
 };
 
 // The node the signal handler stops. requestShutdown is one atomic store, so
@@ -118,6 +123,23 @@ void plotRecordings(const node::LaunchFile& launch) {
   plotToPng(request);
 }
 
+// The view's connection to this process's own world: its world socket, or
+// (when another node serves that) its first robot's.
+view::NodeRequest connectToOwnWorld(node::Node& world) {
+  try {
+    servoloop::ipc::IpcClient client = servoloop::ipc::IpcClient::connectToNode("/");
+    const nlohmann::json ping = client.call("ping");
+    if (ping.value("robots", std::vector<std::string>{}) == world.robotNamespaces()) {
+      return nodeRequestOver(std::move(client));
+    }
+  } catch (const Error&) {
+    // Not served by this node: its robots' sockets below.
+  }
+  const std::vector<std::string> robots = world.robotNamespaces();
+  if (robots.empty()) throw Error("this world's socket is served by another node and it has no robot yet");
+  return nodeRequestOver(servoloop::ipc::IpcClient::connectToNode(robots.front()));
+}
+
 void runLaunch(const LaunchOptions& options) {
   node::LaunchFile launch = launchFileWithFlags(options);
   if (launch.robots.empty()) {
@@ -132,7 +154,8 @@ void runLaunch(const LaunchOptions& options) {
   if (!options.clock.empty()) node_options.wall_clock = options.clock == "wall";
   // A batch run serves no socket unless asked: it would otherwise collide
   // with an interactive node of the same robot namespace.
-  node_options.serve_ipc = !options.duration_s || options.ipc;
+  // The view reads the world through the sockets, as `servoloop view` does.
+  node_options.serve_ipc = !options.duration_s || options.ipc || !options.view.empty();
   for (const std::string& dir : options.plugin_dirs) node_options.plugin_directories.emplace_back(dir);
 
   const bool ros1_bridge = launch.ros1_bridge || options.ros1_bridge;
@@ -143,10 +166,23 @@ void runLaunch(const LaunchOptions& options) {
     ros1BridgeProgram();  // says how to get it, before anything starts
   }
 
+  if (options.view_control && options.view.empty()) {
+    throw Error("--view-control: there is no view to control from; add --view [HOST:]PORT");
+  }
   node::Node world(launch, node_options);
+  std::unique_ptr<view::ViewServer> view_server;
+  if (!options.view.empty()) {
+    // Bound before the world starts: a port in use ends the launch at once.
+    view::ViewOptions view_options;
+    view::parseViewAddress(options.view, view_options);
+    view_options.control = options.view_control;
+    view_server = std::make_unique<view::ViewServer>(view_options, [&world] { return connectToOwnWorld(world); });
+    view_server->start();
+  }
   {
     ShutdownSignals signals(world);
     world.start();
+    if (view_server) logger().info("view: open {} in a browser", view_server->url());
     Ros1BridgeProcesses bridges;
     if (ros1_bridge) {
       for (const std::string& ns : world.robotNamespaces()) bridges.start(ns);
@@ -168,6 +204,7 @@ void runLaunch(const LaunchOptions& options) {
     });
     if (progress) progress->finish();
     bridges.stop();  // before the node: a bridge whose node vanished would report it
+    if (view_server) view_server->stop();
     world.shutdown();
   }
 
@@ -244,6 +281,11 @@ void addLaunchCommand(CLI::App& root) {
                      "Search this directory for plugins first (repeatable); SERVOLOOP_PLUGIN_PATH and the "
                      "installation's plugin folder follow")
       ->type_name("DIR");
+  launch->add_option("--view", options->view,
+                     "Serve a live 3D view of the world to a browser on [HOST:]PORT (loopback unless a host is "
+                     "given); see docs/view.md")
+      ->type_name("[HOST:]PORT");
+  addViewControlFlag(*launch, options->view_control);
   launch->callback([options] { runLaunch(*options); });
 }
 

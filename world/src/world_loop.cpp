@@ -276,8 +276,8 @@ void WorldLoop::run() {
       wake_.wait_for(lock, kIdlePoll, [&] { return requestsWaiting(); });
       continue;
     }
-    if (observer_ != nullptr) {
-      segment = std::min(segment, std::max<std::uint64_t>(1, observer_->betweenSegments(steps())));
+    for (WorldObserver* observer : observers_) {
+      segment = std::min(segment, std::max<std::uint64_t>(1, observer->betweenSegments(steps())));
     }
     for (WorldMember* member : active_) member->simulationLoop().beginExternalRun();
     if (options_.before_segment) options_.before_segment();

@@ -44,6 +44,7 @@
 #include "servoloop/node/robot_instance.hpp"
 #include "servoloop/node/run_summary.hpp"
 #include "servoloop/node/topic_recorder.hpp"
+#include "servoloop/node/world_snapshot.hpp"
 #include "servoloop/params/parameter_store.hpp"
 #include "servoloop/plugin/plugin_loader.hpp"
 #include "servoloop/world/world_loop.hpp"
@@ -198,6 +199,13 @@ class Node {
   // Throws servoloop::Error naming the models there are for an unknown one.
   ModelState modelState(const std::string& model);
 
+  // What a viewer draws: every simulated model's base pose and joint
+  // positions, taken between two segments of cycles (world_snapshot.hpp).
+  // The first call starts the snapshots (60 per second of world time); a
+  // paused world is copied on each call. False for a world on the wall
+  // clock, which has no world loop to take them.
+  bool worldFrame(WorldSnapshot::Frame& out);
+
   // The robot of a namespace, or nullptr. Robots live until the node is destroyed.
   RobotInstance* findRobot(const std::string& robot_namespace);
   std::vector<std::string> robotNamespaces() const;
@@ -237,6 +245,7 @@ class Node {
   std::unique_ptr<hardware_interface::SimulatedWorld> separate_worlds_;  // or robots simulated apart
   hardware_interface::SimulatedWorld* world_ = nullptr;
   std::unique_ptr<ModelStatesPublisher> model_states_;  // the world loop's observer
+  std::unique_ptr<WorldSnapshot> world_snapshot_;  // the world loop's observer, for viewers
   std::mutex model_states_mutex_;  // one refreshModelStates() at a time
   std::unique_ptr<world::WorldLoop> world_loop_;
 

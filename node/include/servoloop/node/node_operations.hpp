@@ -61,7 +61,9 @@ class NodeOperations {
  private:
   using Job = std::function<void()>;
 
-  RobotInstance& robotFor(const std::string& op);
+  // The socket's robot; on the world's socket, the robot named by the
+  // request's "robot" field (namespace or model name), or the only one.
+  RobotInstance& robotFor(const std::string& op, const nlohmann::json& request);
   nlohmann::json worldOp(const std::string& op, const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json worldState();
   nlohmann::json deferToWorker(const nlohmann::json& request, ipc::IpcConnection& connection,
@@ -82,6 +84,8 @@ class NodeOperations {
   // model.*: model_operations.cpp.
   nlohmann::json modelOp(const std::string& op, const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json modelSpawn(const nlohmann::json& request);
+  // view.*: view_operations.cpp.
+  nlohmann::json viewOp(const std::string& op);
   nlohmann::json actionList(RobotInstance& robot);
   nlohmann::json actionSend(RobotInstance& robot, const nlohmann::json& request, ipc::IpcConnection& connection);
   nlohmann::json actionStatus(const nlohmann::json& request, ipc::IpcConnection& connection);

@@ -118,9 +118,9 @@ class WorldLoop {
   // between two segments (no cycle, no physics step): for adding bodies to
   // the world or taking them out. Exceptions from `change` propagate.
   void whilePaused(const std::function<void()>& change);
-  // The observer of the world (nullptr: none); before start(), or inside
-  // whilePaused's change. It must outlive the loop or be replaced first.
-  void setObserver(WorldObserver* observer) noexcept { observer_ = observer; }
+  // Adds an observer of the world (called in the order added); before
+  // start(), or inside whilePaused's change. It must outlive the loop.
+  void addObserver(WorldObserver& observer) { observers_.push_back(&observer); }
   // Ends the current segment early, so that every member's betweenSegments()
   // runs soon (e.g. after a request it serves there).
   void wake();
@@ -182,7 +182,7 @@ class WorldLoop {
   WorldMember* entering_ = nullptr;  // whose enterWorld() runs now
 
   // The world's thread only (and whilePaused's change).
-  WorldObserver* observer_ = nullptr;
+  std::vector<WorldObserver*> observers_;
   std::vector<WorldMember*> members_;
   std::vector<WorldMember*> active_;  // members cycling in this segment
 
