@@ -717,13 +717,22 @@ class SensorReader {
 
   // ---------------------------------------------------------------------------
 
+  // Sensors are told apart by what their handle is named after: the topic
+  // of their gazebo_ros plugin, else their name (as sim_common names the
+  // handles). Plugins of one name on topics of their own are distinct, as in
+  // Gazebo (Kinova's arms name every joint's ft plugin "ft_sensor").
   void add(SensorDescription sensor) {
-    const auto [first, inserted] = by_name_.emplace(sensor.name, sensors_.size());
+    std::string topic = sensor.topic;
+    while (!topic.empty() && topic.front() == '/') topic.erase(topic.begin());
+    const std::string key = topic.empty() ? sensor.name : topic;
+    const auto [first, inserted] = by_name_.emplace(key, sensors_.size());
     if (!inserted) {
       const std::string& other = sensors_[first->second].element;
       const std::string other_place = startsWith(other, source_ + ": ") ? other.substr(source_.size() + 2) : other;
-      fail(sensor.element, "a second sensor named '" + sensor.name + "' (the first: " + other_place +
-                               "); give each sensor of the robot a name of its own");
+      fail(sensor.element, topic.empty() ? "a second sensor named '" + sensor.name + "' (the first: " + other_place +
+                                               "); give each sensor of the robot a name of its own"
+                                         : "a second sensor publishing on '" + sensor.topic + "' (the first: " +
+                                               other_place + "); give each sensor a topic of its own");
     }
     sensors_.push_back(std::move(sensor));
   }
@@ -733,7 +742,7 @@ class SensorReader {
   std::set<std::string> urdf_links_;   // as the text names them, left out or not
   std::set<std::string> urdf_joints_;
   std::vector<SensorDescription> sensors_;
-  std::map<std::string, std::size_t> by_name_;  // index into sensors_
+  std::map<std::string, std::size_t> by_name_;  // handle name -> index into sensors_
 };
 
 }  // namespace

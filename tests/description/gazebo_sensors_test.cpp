@@ -529,6 +529,27 @@ TEST(GazeboSensors, DuplicateName) {
   EXPECT_CONTAINS(plugin, "a second sensor named 'imu_controller'");
 }
 
+TEST(GazeboSensors, PluginsOfOneNameOnTopicsOfTheirOwnAreTwoSensors) {
+  // Kinova's arms: every joint's gazebo_ros_ft_sensor plugin is named
+  // "ft_sensor", each with its own topic.
+  const auto sensors = gzSensorsOf(
+      R"(<gazebo><plugin name="ft_sensor" filename="libgazebo_ros_ft_sensor.so"><topicName>a_ft</topicName>
+      <jointName>arm_joint</jointName></plugin></gazebo>
+      <gazebo><plugin name="ft_sensor" filename="libgazebo_ros_ft_sensor.so"><topicName>b_ft</topicName>
+      <jointName>arm_joint</jointName></plugin></gazebo>)");
+  ASSERT_EQ(sensors.size(), 2u);
+  EXPECT_EQ(sensors[0].topic, "a_ft");
+  EXPECT_EQ(sensors[1].topic, "b_ft");
+  // One topic twice is still an error, naming the topic.
+  const std::string message = gzErrorOf(
+      R"(<gazebo><plugin name="ft_a" filename="libgazebo_ros_ft_sensor.so"><topicName>same</topicName>
+      <jointName>arm_joint</jointName></plugin></gazebo>
+      <gazebo><plugin name="ft_b" filename="libgazebo_ros_ft_sensor.so"><topicName>/same</topicName>
+      <jointName>arm_joint</jointName></plugin></gazebo>)");
+  EXPECT_CONTAINS(message, "a second sensor publishing on '/same'");
+  EXPECT_CONTAINS(message, "<gazebo><plugin name='ft_a'");
+}
+
 TEST(GazeboSensors, UnknownTypeListsTheTypes) {
   const std::string message = gzErrorOf(R"(<gazebo reference="base"><sensor name="s" type="lidarx"/></gazebo>)");
   EXPECT_CONTAINS(message, "s.urdf: <gazebo reference='base'><sensor name='s'>");
