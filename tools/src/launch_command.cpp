@@ -169,19 +169,33 @@ void runLaunch(const LaunchOptions& options) {
   if (options.view_control && options.view.empty()) {
     throw Error("--view-control: there is no view to control from; add --view [HOST:]PORT");
   }
-  node::Node world(launch, node_options);
+  // The view is bound before the world is built: a port in use ends the
+  // launch at once. Pages that come before the world runs wait for it.
+  std::atomic<node::Node*> running_world{nullptr};
   std::unique_ptr<view::ViewServer> view_server;
   if (!options.view.empty()) {
-    // Bound before the world starts: a port in use ends the launch at once.
     view::ViewOptions view_options;
     view::parseViewAddress(options.view, view_options);
     view_options.control = options.view_control;
-    view_server = std::make_unique<view::ViewServer>(view_options, [&world] { return connectToOwnWorld(world); });
+    view_server = std::make_unique<view::ViewServer>(view_options, [&running_world] {
+      node::Node* world = running_world.load();
+      if (world == nullptr) throw Error("the world is starting");
+      return connectToOwnWorld(*world);
+    });
     view_server->start();
   }
+  node::Node world(launch, node_options);
+  // However the launch ends, the view stops before the world goes.
+  struct ViewStopper {
+    view::ViewServer* view;
+    ~ViewStopper() {
+      if (view != nullptr) view->stop();
+    }
+  } view_stopper{view_server.get()};
   {
     ShutdownSignals signals(world);
     world.start();
+    running_world.store(&world);
     if (view_server) logger().info("view: open {} in a browser", view_server->url());
     Ros1BridgeProcesses bridges;
     if (ros1_bridge) {

@@ -43,10 +43,12 @@
 
   var scene3 = new THREE.Scene();
   scene3.background = new THREE.Color(0xe6e8eb);
+  view.scene3 = scene3;         // the three.js scene, for inspection from the console
 
   var camera = new THREE.PerspectiveCamera(45, window.innerWidth / window.innerHeight, 0.01, 1000);
   camera.up.set(0, 0, 1);                 // world is Z-up (URDF); set before OrbitControls
   camera.position.set(2.5, -3, 1.8);
+  view.camera = camera;         // for inspection from the console
 
   var renderer = null;
   try {
@@ -75,11 +77,27 @@
   fill.position.set(-3, 4, 2);
   scene3.add(fill);
 
-  // Ground grid: GridHelper lies in XZ, rotate it into the XY plane.
-  var grid = new THREE.GridHelper(10, 20, 0x7a7f87, 0xc2c6cc);
-  grid.rotation.x = Math.PI / 2;
-  // Shown always, as a reference in the XY plane (a world with a ground
-  // plane has its surface there as well).
+  // Ground grid in the XY plane (z = 0), 10 m across in 0.5 m cells, the
+  // axes darker; shown always, as a reference. Every line is made of
+  // cell-long segments: a 10 m line that passes behind a close camera is
+  // dropped whole by some software renderers (Chromium's SwiftShader).
+  var grid = (function () {
+    var half = 5, cell = 0.5, minor = [], axis = [];
+    for (var i = -half; i <= half + 1e-9; i += cell) {
+      var target = Math.abs(i) < 1e-9 ? axis : minor;
+      for (var j = -half; j < half - 1e-9; j += cell) {
+        target.push(i, j, 0, i, j + cell, 0);   // along y
+        target.push(j, i, 0, j + cell, i, 0);   // along x
+      }
+    }
+    var group = new THREE.Group();
+    [[minor, 0xa9aeb5], [axis, 0x5f646c]].forEach(function (lines) {
+      var geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.Float32BufferAttribute(lines[0], 3));
+      group.add(new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: lines[1] })));
+    });
+    return group;
+  })();
   scene3.add(grid);
 
   var modelsRoot = new THREE.Group();
@@ -311,6 +329,12 @@
       var dae = new THREE.ColladaLoader().parse(data, base);
       if (!dae || !dae.scene || !hasTriangles(dae.scene)) throw new Error('not a usable COLLADA file');
       ensureNormals(dae.scene, false);
+      // A COLLADA file exported with its lamps and cameras would light the
+      // whole world (ten meshes, ten lamps): only its geometry is drawn, as
+      // rviz does.
+      var extras = [];
+      dae.scene.traverse(function (o) { if (o.isLight || o.isCamera) extras.push(o); });
+      extras.forEach(function (o) { o.parent.remove(o); });
       if (fallback) replaceMaterials(dae.scene, material());
       // ColladaLoader turns Z_UP files into Y_UP; our world is Z-up, so turn it back.
       var up = new THREE.Group();
