@@ -2,7 +2,7 @@
 # Builds the concurrent parts of servoloop under ThreadSanitizer and runs
 # their tests: the controller manager, the control loop, the PID's gains, the topic bus, the
 # IPC server and client, the node and its world loop, the command-line clients against a live
-# node, and the fault suite. Any data race or lock-order report fails the run.
+# node, the browser view's server against a node, and the fault suite. Any data race or lock-order report fails the run.
 #   BUILD_DIR   build folder (default build-tsan)
 # The membarrier fence of the controller manager is invisible to TSan; under
 # TSan both of its sides use the sequentially consistent fallback
@@ -13,7 +13,7 @@ bash scripts/install_deps.sh
 build_dir=${BUILD_DIR:-build-tsan}
 tests=(controller_manager_test control_loop_test topic_bus_test ipc_test node_run_test node_ipc_test pid_test
        cli_client_test cli_live_node_test e2e_seed_interactive_test fault_test controllers_test
-       e2e_trajectory_action_test world_test world_control_test)
+       e2e_trajectory_action_test world_test world_control_test view_server_test)
 cmake -S . -B "$build_dir" -G Ninja -DSERVOLOOP_SANITIZE_THREAD=ON -DSERVOLOOP_BUILD_BENCHMARKS=OFF -DSERVOLOOP_ROS1_BRIDGE=OFF \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo
 cmake --build "$build_dir" --parallel 2 --target "${tests[@]}"

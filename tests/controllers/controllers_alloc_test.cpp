@@ -386,9 +386,14 @@ TEST(ControllersAllocation, SensorControllersPublishWithoutAllocating) {
   control.join();
   bus.stop();
   EXPECT_EQ(allocations, 0u);
-  // Two sensors each, every other cycle.
-  EXPECT_EQ(imus.publishedCount(), static_cast<std::uint64_t>(kCycles));
-  EXPECT_EQ(force_torques.publishedCount(), static_cast<std::uint64_t>(kCycles));
+  // Two sensors each, every other cycle: kCycles messages each, less the few
+  // a real-time publisher skips when the delivery thread holds its message
+  // at that moment (as ros_control's RealtimePublisher does; more of them on
+  // a slow machine or under a sanitizer).
+  for (const std::uint64_t published : {imus.publishedCount(), force_torques.publishedCount()}) {
+    EXPECT_LE(published, static_cast<std::uint64_t>(kCycles));
+    EXPECT_GT(published, static_cast<std::uint64_t>(kCycles) * 9 / 10);
+  }
   EXPECT_GT(imu_messages, 0u);
 }
 
