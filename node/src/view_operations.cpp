@@ -28,10 +28,9 @@ json NodeOperations::viewOp(const std::string& op) {
   }
   if (op == "view.frame") {
     WorldSnapshot::Frame frame;
-    if (!node_.worldFrame(frame)) {
-      throw Error("view.frame: this world runs on the wall clock (world.clock: wall); the view shows a simulated "
-                  "world");
-    }
+    // A world on the wall clock has no world loop and so no snapshots: its
+    // frames hold no model (the view says why), only the time.
+    if (!node_.worldFrame(frame)) frame.sim_time_s = node_.simTime();
     const WorldState state = node_.worldState();
     json models = json::array();
     for (const WorldSnapshot::ModelFrame& model : frame.models) {

@@ -183,11 +183,16 @@ bool HttpWsServer::send(ConnectionId connection, const std::string& text, std::s
     if (it == impl.connections.end()) return false;
     hdl = it->second;
   }
-  std::error_code error;
-  Server::connection_ptr con = impl.server.get_con_from_hdl(hdl, error);
-  if (error || !con) return false;
-  if (con->get_buffered_amount() > max_buffered) return false;
-  con->send(text, websocketpp::frame::opcode::text);
+  // A connection's state is the server thread's: the message is handed to
+  // it, which drops it when the page has more than `max_buffered` unsent.
+  auto message = std::make_shared<const std::string>(text);
+  asio::post(impl.server.get_io_service(), [&impl, hdl, message, max_buffered] {
+    std::error_code error;
+    Server::connection_ptr con = impl.server.get_con_from_hdl(hdl, error);
+    if (error || !con || con->get_state() != websocketpp::session::state::open) return;
+    if (con->get_buffered_amount() > max_buffered) return;
+    con->send(*message, websocketpp::frame::opcode::text);
+  });
   return true;
 }
 

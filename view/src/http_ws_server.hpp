@@ -3,8 +3,8 @@
 // websocketpp on standalone asio (Debian's libwebsocketpp-dev and
 // libasio-dev). This header uses only the standard library, so the rest of
 // servoloop (C++20) includes it; its .cpp compiles as C++17, the standard
-// websocketpp 0.8 is written for. One thread runs the server; send() may be
-// called from any thread.
+// websocketpp 0.8 is written for. One thread runs the server and owns every
+// connection's state; send() from any thread hands its message to it.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -44,9 +44,10 @@ class HttpWsServer {
   void stop();
   unsigned port() const;
 
-  // Queues a text message; false (nothing queued) when the connection is
-  // gone or has more than `max_buffered` bytes still unsent (a slow page
-  // skips messages instead of piling them up).
+  // Any thread. Hands a text message to the server's thread, which sends it
+  // unless the page has more than `max_buffered` bytes still unsent (a slow
+  // page skips messages instead of piling them up). False when the
+  // connection is gone.
   bool send(ConnectionId connection, const std::string& text, std::size_t max_buffered = 4u << 20);
 
  private:

@@ -185,15 +185,22 @@ void ViewServer::refreshScene(const NodeRequest& node, const json& frame) {
   const json scene = ok(node({{"op", "view.scene"}}), "view.scene");
   std::vector<SceneModel> models;
   std::vector<std::string> robots;
+  std::vector<std::string> warnings;
   for (const json& model : scene.at("models")) {
     SceneModel entry{model.value("name", ""), model.value("ns", ""), model.value("urdf", ""), model.value("path", ""), {}};
+    robots.push_back(entry.ns);  // its controllers are shown either way
+    if (!model.value("simulated", true)) {
+      // Its joints move on its own loop's thread, which the world's
+      // snapshots do not reach.
+      warnings.push_back("robot '" + entry.ns +
+                         "' runs on the wall clock (hardware): the view draws the simulated world only");
+      continue;
+    }
     for (const json& in_frame : frame.at("models")) {
       if (in_frame.value("ns", "") == entry.ns) entry.joint_names = in_frame.value("joint_names", std::vector<std::string>{});
     }
-    robots.push_back(entry.ns);
     models.push_back(std::move(entry));
   }
-  std::vector<std::string> warnings;
   json message = buildScene(models, scene.value("ground_plane", false), *files_, warnings);
   message["generation"] = frame.at("generation");
   for (const std::string& warning : warnings) logger().warn("view: {}", warning);
@@ -268,10 +275,8 @@ void ViewServer::sendRound(const NodeRequest& node, bool controllers_due) {
     std::lock_guard lock(pages_mutex_);
     pages.assign(pages_.begin(), pages_.end());
   }
-  for (std::uint64_t page : pages) {
-    // A page that has not taken the last megabyte skips this frame.
-    if (server_->send(page, text, 1u << 20)) frames_sent_.fetch_add(1);
-  }
+  // A page that has not taken the last megabyte skips this frame.
+  for (std::uint64_t page : pages) server_->send(page, text, 1u << 20);
 
   if (!controllers_due) return;
   std::vector<std::string> robots;

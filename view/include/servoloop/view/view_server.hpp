@@ -84,8 +84,6 @@ class ViewServer {
   std::string url() const;
   // Pages connected now.
   std::size_t pages() const;
-  // Frames sent to pages so far (all pages together).
-  std::uint64_t framesSent() const noexcept { return frames_sent_.load(); }
 
  private:
   void opened(std::uint64_t page);
@@ -129,7 +127,6 @@ class ViewServer {
   std::atomic<bool> controllers_now_{false};  // send the controllers' states in the next round
 
   std::atomic<bool> stopping_{false};
-  std::atomic<std::uint64_t> frames_sent_{0};
   std::thread frame_thread_;
   std::thread command_thread_;
   bool started_ = false;
