@@ -102,12 +102,14 @@ void ControlLoop::applyRequestedStatisticsReset() noexcept {
 ReturnType ControlLoop::readHardware(Time time, Duration period, std::uint64_t cycle) noexcept {
   ReturnType result = ReturnType::error;
   const std::int64_t start_ns = time_phases_ ? loop_clock::cycleClockNs() : 0;
+  beginHardwareCall(HardwareCall::read);
   try {
     result = robot_hw_.read(time, period);
   } catch (...) {
     // read() must not throw; containing it keeps the loop (and the robot's
     // other joints) under control. It is reported as an error of this call.
   }
+  endHardwareCall();
   if (time_phases_) statistics_.recordRead(loop_clock::cycleClockNs() - start_ns);
   NonFiniteJointState non_finite;
   if (result == ReturnType::ok && !jointStatesFinite(&non_finite)) [[unlikely]] {
@@ -143,11 +145,13 @@ ReturnType ControlLoop::writeHardware(Time time, Duration period, std::uint64_t 
   if (options_.safety != nullptr) options_.safety->overrideCommands();
   ReturnType result = ReturnType::error;
   const std::int64_t start_ns = time_phases_ ? loop_clock::cycleClockNs() : 0;
+  beginHardwareCall(HardwareCall::write);
   try {
     result = robot_hw_.write(time, period);
   } catch (...) {
     // As in readHardware: counted and reported as an error of write().
   }
+  endHardwareCall();
   if (time_phases_) statistics_.recordWrite(loop_clock::cycleClockNs() - start_ns);
   recordHardwareResult(HardwareCall::write, result, time, cycle);
   return result;

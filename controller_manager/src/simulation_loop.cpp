@@ -127,11 +127,13 @@ ReturnType SimulationLoop::runCycle(bool* control_updated) noexcept {
   const ReturnType write_result = writeHardware(time, physics_step_, step);
 
   ReturnType step_result = ReturnType::error;
+  beginHardwareCall(HardwareCall::step);
   try {
     step_result = hw_.step();
   } catch (...) {
     // step() must not throw; counted and reported as an error of step().
   }
+  endHardwareCall();
   recordHardwareResult(HardwareCall::step, step_result, time, step);
   steps_taken_.store(step + 1, std::memory_order_release);
   if (step_result == ReturnType::ok) [[likely]] {

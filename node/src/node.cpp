@@ -633,8 +633,10 @@ void Node::waitUntilDone(const std::function<void()>& tick, std::chrono::millise
   while (!shutdownRequested()) {
     bool all_finished = true;
     bool any_robot = false;
+    const auto now = std::chrono::steady_clock::now();
     for (RobotInstance* robot : robots()) {
       any_robot = true;
+      robot->watchHardware(now);
       robot->manager().processFaults();
       robot->loop().logHardwareErrorReport();
       robot->publishDiagnosticsIfDue();
@@ -702,7 +704,10 @@ void Node::shutdown() {
     robot->loop().logHardwareErrorReport();
   }
   for (auto& recorder : recorders_) recorder->close();
-  for (RobotInstance* robot : robots()) robot->shutdownControllers();
+  for (RobotInstance* robot : robots()) {
+    // An abandoned robot's thread may still come back into its controllers.
+    if (!robot->abandoned()) robot->shutdownControllers();
+  }
   recorders_.clear();
   servers_.clear();
   // A deletion that began before the shutdown did.
@@ -714,6 +719,12 @@ void Node::shutdown() {
     if (reaper.joinable()) reaper.join();
   }
   std::lock_guard lock(robots_mutex_);
+  // A robot whose loop thread was left inside a hardware call that never
+  // returned stays alive (unused) until the process ends: that thread may
+  // still come back to it.
+  for (auto& robot : robots_) {
+    if (robot->abandoned()) static_cast<void>(robot.release());
+  }
   robots_.clear();
 }
 

@@ -187,6 +187,16 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   }
   if (op == "control.list") return controlList(robot);
   if (op == "control.list_joints") return controlListJoints(robot);
+  // What waits for a cycle of the robot is refused at once while a hardware
+  // call of its loop does not return.
+  if (op == "control.load" || op == "control.unload" || op == "control.switch" || op == "control.recover" ||
+      op == "control.reload_libraries") {
+    if (const std::string stuck = robot.stuckReason(); !stuck.empty()) {
+      throw Error(fmt::format("robot '{}': {}; '{}' needs a cycle of the robot and cannot be carried out until it "
+                              "returns",
+                              robot.robotNamespace(), stuck, op));
+    }
+  }
   if (op == "control.load" || op == "control.unload") {
     const std::string name = requireString(request, "name");
     const bool load = op == "control.load";
@@ -326,10 +336,12 @@ json NodeOperations::controlStats(RobotInstance& robot, bool reset) {
 
 json NodeOperations::controlSafety(RobotInstance& robot) {
   const controller_manager::SafetySupervisor& safety = robot.safety();
-  return {{"state", controller_manager::toString(safety.state())},
+  // A hardware call that does not return is a fault whatever the loop last said.
+  const std::string stuck = robot.stuckReason();
+  return {{"state", stuck.empty() ? controller_manager::toString(safety.state()) : "fault"},
           {"emergency_stop", safety.emergencyStopLatched()},
           {"hardware_emergency_input", safety.hardwareEmergencyInput()},
-          {"reason", safety.reason()},
+          {"reason", stuck.empty() ? safety.reason() : stuck},
           {"protective_stops", safety.protectiveStops()},
           {"emergency_stops", safety.emergencyStops()}};
 }

@@ -104,7 +104,7 @@ void RobotInstance::driveLoop(std::optional<double> duration_s) {
   }
   bus_->flush();
   loop_done_.store(true);
-  if (on_finished_) on_finished_();
+  if (on_finished_ && !abandoned_.load()) on_finished_();
 }
 
 void RobotInstance::start(std::optional<double> duration_s) {
@@ -155,6 +155,23 @@ void RobotInstance::stop() {
   }
   recovery_wake_.notify_all();
   if (loop_) loop_->requestStop();
+  if (loop_thread_.joinable() && !stuck_.load()) {
+    // A hardware call that stops returning now is caught by the watch of
+    // the thread that waits here no longer: checked every 100 ms.
+    while (!loop_done_.load()) {
+      watchHardware(std::chrono::steady_clock::now());
+      if (stuck_.load()) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+  if (loop_thread_.joinable() && stuck_.load() && !loop_done_.load()) {
+    // Its hardware call never returned: the thread is left where it is,
+    // and this robot with it (Node::shutdown keeps it alive).
+    abandoned_.store(true);
+    loop_thread_.detach();
+    logger().error("robot '{}': {}; the node ends without waiting for it", namespace_, stuckReason());
+    return;
+  }
   if (loop_thread_.joinable()) loop_thread_.join();
   if (world_loop_ != nullptr && world_started_.load()) world_loop_->remove(*this);
   loop_done_.store(true);

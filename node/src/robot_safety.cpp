@@ -206,3 +206,53 @@ controller_manager::ServiceResult RobotInstance::recover() {
 }
 
 }  // namespace servoloop::node
+
+namespace servoloop::node {
+
+namespace {
+
+const char* callName(controller_manager::HardwareCall call) {
+  switch (call) {
+    case controller_manager::HardwareCall::read: return "read";
+    case controller_manager::HardwareCall::write: return "write";
+    case controller_manager::HardwareCall::step: return "step";
+  }
+  return "hardware";
+}
+
+}  // namespace
+
+void RobotInstance::watchHardware(std::chrono::steady_clock::time_point now) {
+  if (!loop_) return;
+  const controller_manager::ControlLoop::HardwareCallInProgress call = loop_->hardwareCallInProgress();
+  std::lock_guard lock(stuck_mutex_);
+  if (!call.in_call || call.number != watched_call_) {
+    if (stuck_.load()) {
+      stuck_.store(false);
+      logger().info("robot '{}': its hardware's {}() returned after {:.1f} s; the robot runs on", namespace_,
+                    stuck_call_, std::chrono::duration<double>(now - watched_since_).count());
+    }
+    watched_call_ = call.in_call ? call.number : 0;
+    watched_since_ = now;
+    stuck_call_ = callName(call.call);
+    return;
+  }
+  const double limit_s = std::max(1.0, 20.0 * loop_->controlPeriod().seconds);
+  const double seconds = std::chrono::duration<double>(now - watched_since_).count();
+  if (!stuck_.load() && seconds >= limit_s) {
+    stuck_.store(true);
+    logger().error("robot '{}': its hardware's {}() has not returned for {:.1f} s; its controllers get no update "
+                   "until it does, and nothing that needs a cycle of the robot can be carried out (the node and "
+                   "its other robots run on)",
+                   namespace_, stuck_call_, seconds);
+  }
+}
+
+std::string RobotInstance::stuckReason() const {
+  std::lock_guard lock(stuck_mutex_);
+  if (!stuck_.load()) return {};
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - watched_since_).count();
+  return fmt::format("its hardware's {}() has not returned for {:.1f} s", stuck_call_, seconds);
+}
+
+}  // namespace servoloop::node

@@ -53,6 +53,11 @@ RobotSummary summarizeRobot(RobotInstance& robot) {
   summary.protective_stops = safety.protectiveStops();
   summary.emergency_stops = safety.emergencyStops();
   summary.stopped_by_hardware = safety.startsForbidden();
+  if (const std::string stuck = robot.stuckReason(); !stuck.empty()) {
+    summary.safety_state = "fault";
+    summary.safety_reason = stuck;
+    summary.stopped_by_hardware = true;
+  }
   return summary;
 }
 

@@ -328,6 +328,36 @@ TEST_F(SafetyOnHardware, AHardwareThatDeactivatesIsAFaultTheNodeSurvivesAndRecov
 
 // Hardware cannot be reset: `servoloop world reset` (Gazebo's
 // reset_simulation) is refused with one error, and the robot runs on.
+// A driver blocked on a device that went away: read() does not return.
+// Within about a second `control safety` says fault and why, what needs a
+// cycle is refused at once naming it, the robot runs on once read()
+// returns, and Ctrl-C ends the node even while it does not.
+TEST_F(SafetyOnHardware, AReadThatDoesNotReturnIsAFaultCommandsSeeAndCtrlCEnds) {
+  script("hang\n");
+  ASSERT_TRUE(waitFor([&] { return state() == "fault"; })) << node_->currentErr();
+  EXPECT_THAT(safety().value("reason", ""), HasSubstr("its hardware's read() has not returned for"));
+  EXPECT_THAT(node_->currentErr(), HasSubstr("robot '/one_DOF_robot': its hardware's read() has not returned"));
+  const CliResult stop = cli({"control", "stop", "position_controller"});
+  EXPECT_EQ(stop.status, 1);
+  EXPECT_THAT(stop.err, HasSubstr("read() has not returned"));
+  // Refused at once, not after the switch's wait for a cycle (10 s).
+  EXPECT_LT(stop.elapsed_s, 5.0);
+  EXPECT_EQ(controllerState("position_controller"), "running");
+
+  script("");
+  ASSERT_TRUE(waitFor([&] { return state() == "running"; })) << node_->currentErr();
+  EXPECT_THAT(node_->currentErr(), HasSubstr("its hardware's read() returned after"));
+  expectLoopKeepsItsRate();
+
+  script("hang\n");
+  ASSERT_TRUE(waitFor([&] { return state() == "fault"; }));
+  node_->signal(SIGINT);
+  const CliResult ended = node_->wait(kWait_s);
+  EXPECT_FALSE(ended.timed_out) << ended.err;
+  EXPECT_THAT(ended.err, HasSubstr("the node ends without waiting for it"));
+  node_.reset();
+}
+
 TEST_F(SafetyOnHardware, AResetOfAWorldWithHardwareIsRefusedAndTheRobotRunsOn) {
   command(0.5);
   ASSERT_TRUE(positionReaches(0.5, 1e-9));

@@ -125,6 +125,22 @@ class ControlLoop {
   // The time between two ControllerManager::update calls.
   Duration controlPeriod() const noexcept { return control_period_; }
 
+  // Any thread. The hardware call (read(), write(), a simulation's step())
+  // the loop's thread is in now. A call that does not return shows as the
+  // same call, with the same number, on every look: a watch on another
+  // thread tells how long it has been in it (RobotInstance::watchHardware).
+  // Costs the cycle two relaxed atomic stores per call, no clock read.
+  struct HardwareCallInProgress {
+    bool in_call = false;
+    HardwareCall call = HardwareCall::read;
+    std::uint64_t number = 0;  // calls started so far, this one included
+  };
+  HardwareCallInProgress hardwareCallInProgress() const noexcept {
+    const std::uint64_t ended = calls_ended_.load(std::memory_order_acquire);
+    const std::uint64_t started = calls_started_.load(std::memory_order_acquire);
+    return {started != ended, static_cast<HardwareCall>(current_call_.load(std::memory_order_relaxed)), started};
+  }
+
  protected:
   ControlLoop(hardware_interface::RobotHW& robot_hw, ControllerManager& manager,
               const LoopCommonOptions& options, Duration control_period);
@@ -133,6 +149,14 @@ class ControlLoop {
 
   // Calls read()/write() (exceptions count as errors) and records the result.
   ReturnType readHardware(Time time, Duration period, std::uint64_t cycle) noexcept;
+  // Around every hardware call (read, write, step): hardwareCallInProgress().
+  void beginHardwareCall(HardwareCall call) noexcept {
+    current_call_.store(static_cast<std::uint8_t>(call), std::memory_order_relaxed);
+    calls_started_.store(calls_started_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+  }
+  void endHardwareCall() noexcept {
+    calls_ended_.store(calls_ended_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+  }
   ReturnType writeHardware(Time time, Duration period, std::uint64_t cycle) noexcept;
   // Records the result of a hardware call (read() and write() here, step()
   // in the subclass). ok needs no bookkeeping; the rest goes to recordFailure().
@@ -193,6 +217,10 @@ class ControlLoop {
   LoopHardwareErrors hardware_errors_;
   std::atomic<bool> stop_requested_{false};
   std::atomic<bool> hardware_stop_{false};
+  // Written by the loop's thread only (hardwareCallInProgress).
+  std::atomic<std::uint64_t> calls_started_{0};
+  std::atomic<std::uint64_t> calls_ended_{0};
+  std::atomic<std::uint8_t> current_call_{0};
   bool deactivate_this_cycle_ = false;  // real-time thread only
   bool time_phases_ = true;             // real-time thread only
   std::uint32_t update_timing_countdown_ = 0;  // cycles until the next timed update; real-time thread only

@@ -173,6 +173,22 @@ class RobotInstance final : public world::WorldMember {
   // why, while the emergency stop is engaged, when a controller does not
   // start, or when the hardware fails again at once.
   controller_manager::ServiceResult recover();
+  // Non-real-time, one thread (the node's main loop, every tick). Watches the
+  // loop's hardware calls (ControlLoop::hardwareCallInProgress): a read(),
+  // write() or step() that has not returned for max(1 s, 20 control
+  // periods) makes the robot stuck — logged once, as an error naming the
+  // call and how long; `control safety` reports a fault with that reason;
+  // what needs a cycle of the robot (switch, load, unload, recover) is
+  // refused at once; and stop() does not wait for it. It clears (logged)
+  // when the call returns.
+  void watchHardware(std::chrono::steady_clock::time_point now);
+  // Any thread. Why the robot is stuck; empty when it is not.
+  std::string stuckReason() const;
+  // Any thread. stop() left the robot's loop thread inside its hardware call
+  // (it never returned): the robot must be left alive, unused, until the
+  // process ends (Node::shutdown does so).
+  bool abandoned() const { return abandoned_.load(); }
+
   // Non-real-time, one thread (the node's main loop). Logs an emergency stop
   // the hardware's input engaged since the last call (a command or the topic
   // log their own in setEmergencyStop).
@@ -297,6 +313,13 @@ class RobotInstance final : public world::WorldMember {
   std::uint64_t emergency_stops_seen_ = 0;  // logHardwareEmergencyStops
   std::function<void()> on_finished_;
   bool controllers_shut_down_ = false;
+  // watchHardware's: the call it saw last, and since when (its thread only).
+  std::uint64_t watched_call_ = 0;
+  std::chrono::steady_clock::time_point watched_since_{};
+  std::atomic<bool> stuck_{false};
+  mutable std::mutex stuck_mutex_;
+  std::string stuck_call_;  // the call watched ("read", "write", "step"); under stuck_mutex_
+  std::atomic<bool> abandoned_{false};
 };
 
 }  // namespace servoloop::node
