@@ -7,9 +7,11 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <signal.h>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -88,11 +90,13 @@ class Ros1BridgeTest : public ::testing::Test {
     setenv("ROS_HOME", (run_.scratch() / "ros_home").c_str(), 1);
     setenv("ROS_LOG_DIR", (run_.scratch() / "ros_log").c_str(), 1);
     // rosservice and rostopic read controller_manager_msgs and control_msgs
-    // from where `servoloop ros1-bridge --print-env` points.
-    const ProcessResult env = run({SERVOLOOP_CLI_EXE, "ros1-bridge", "--print-env"});
-    std::smatch match;
-    ASSERT_TRUE(std::regex_search(env.out, match, std::regex("PYTHONPATH=\"([^\"$]+)"))) << env.out;
-    setenv("PYTHONPATH", match[1].str().c_str(), 1);
+    // with no step of the user's: the bridge names their folder in the
+    // user's site-packages (here the test's own home), and nothing else
+    // points Python there.
+    setenv("HOME", (run_.scratch() / "home").c_str(), 1);
+    unsetenv("PYTHONPATH");
+    unsetenv("PYTHONUSERBASE");
+    unsetenv("PYTHONNOUSERSITE");
 
     // In a session of its own, so TearDown can end the master and rosout it
     // starts even if roscore itself does not stop them.
@@ -535,6 +539,66 @@ TEST_F(Ros1BridgeTest, SpawnerCallSequenceLoadsStartsAndTakesDown) {
   const CliResult list = runCli({"control", "list", "-N", "/one_DOF_robot"}, run_.scratch());
   EXPECT_THAT(list.out, Not(HasSubstr("joint1_gripper_controller")));
   EXPECT_THAT(list.out, HasSubstr("joint_state_controller"));
+}
+
+TEST_F(Ros1BridgeTest, RosToolsFindServoloopsMessagesWithNoStepOfTheUsers) {
+  // A Python started afresh, with no PYTHONPATH (SetUp removed it), imports
+  // the packages Debian lacks, from this build's generated folder, through
+  // the .pth file the bridge wrote in the user's site-packages.
+  const ProcessResult imported = run({"/usr/bin/python3", "-c",
+                                      "import control_msgs.msg, controller_manager_msgs.srv, gazebo_msgs.msg, site; "
+                                      "print(controller_manager_msgs.__file__); print(site.getusersitepackages())"});
+  ASSERT_EQ(imported.status, 0) << imported.err;
+  EXPECT_THAT(imported.out, HasSubstr("share/servoloop/ros1/python/controller_manager_msgs"));
+  EXPECT_THAT(imported.out, HasSubstr((run_.scratch() / "home").string()));
+  // And rostopic reads a controller's control_msgs state.
+  const ProcessResult state = run({ros("rostopic"), "echo", "-n", "1", "/one_DOF_robot/joint1_position_controller/state"});
+  EXPECT_EQ(state.status, 0) << state.err;
+  EXPECT_THAT(state.out, HasSubstr("process_value:"));
+}
+
+TEST_F(Ros1BridgeTest, AnUnloadedControllersTopicsLeaveTheMasterAndComeBackWithIt) {
+  const std::string state = "/one_DOF_robot/joint1_position_controller/state";
+  auto listed = [&](const std::string& topic) {
+    const std::string topics = run({ros("rostopic"), "list"}).out + "\n";
+    return topics.find(topic + "\n") != std::string::npos;
+  };
+  ASSERT_TRUE(waitUntil([&] { return listed(state) && listed(kCommandTopic); }, 30.0));
+  const std::string manager = "/one_DOF_robot/controller_manager/";
+  ASSERT_THAT(run({ros("rosservice"), "call", manager + "switch_controller",
+                   "{start_controllers: [], stop_controllers: [joint1_position_controller], strictness: 2}"}).out,
+              HasSubstr("ok: True"));
+  ASSERT_THAT(run({ros("rosservice"), "call", manager + "unload_controller", "name: joint1_position_controller"}).out,
+              HasSubstr("ok: True"));
+  // Nothing in the node publishes the state or reads the command now: both
+  // are off the master, as ros_control's would be.
+  EXPECT_TRUE(waitUntil([&] { return !listed(state) && !listed(kCommandTopic); }, 30.0))
+      << run({ros("rostopic"), "list"}).out;
+  EXPECT_TRUE(listed("/one_DOF_robot/joint_states"));
+  // Loaded and started again, they come back.
+  ASSERT_THAT(run({ros("rosservice"), "call", manager + "load_controller", "name: joint1_position_controller"}).out,
+              HasSubstr("ok: True"));
+  ASSERT_THAT(run({ros("rosservice"), "call", manager + "switch_controller",
+                   "{start_controllers: [joint1_position_controller], stop_controllers: [], strictness: 2}"}).out,
+              HasSubstr("ok: True"));
+  EXPECT_TRUE(waitUntil([&] { return listed(state) && listed(kCommandTopic); }, 30.0))
+      << run({ros("rostopic"), "list"}).out;
+  const ProcessResult echo = run({ros("rostopic"), "echo", "-n", "1", state});
+  EXPECT_THAT(echo.out, HasSubstr("process_value:"));
+}
+
+TEST_F(Ros1BridgeTest, TheBridgeEndsPromptlyOnCtrlC) {
+  ASSERT_TRUE(bridge_.has_value());
+  const auto start = std::chrono::steady_clock::now();
+  bridge_->signal(SIGINT);
+  const ProcessResult ended = bridge_->wait(20.0);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  bridge_.reset();
+  EXPECT_EQ(ended.status, 0) << ended.err;
+  // Within half a second of Ctrl-C (the run's figure is in the log).
+  std::printf("the bridge ended %.3f s after SIGINT\n", seconds);
+  EXPECT_LT(seconds, 0.5);
+  EXPECT_TRUE(nodeAnswers());
 }
 
 TEST_F(Ros1BridgeTest, NeitherRoscoreNorTheBridgeEndingStopsTheNode) {

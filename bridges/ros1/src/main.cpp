@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -13,6 +14,7 @@
 #include <thread>
 
 #include <CLI/CLI.hpp>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 
 #include "action_bridge.hpp"
@@ -22,6 +24,7 @@
 #include "robot_state_cache.hpp"
 #include "node_link.hpp"
 #include "parameter_bridge.hpp"
+#include "python_messages.hpp"
 #include "topic_bridge.hpp"
 
 namespace {
@@ -47,7 +50,24 @@ bool waitForMaster(servoloop::ros1::NodeLink& link) {
   return false;
 }
 
+// The ROS tools of this user find servoloop's generated message packages
+// (python_messages.hpp); said once, when first set up.
+void registerMessagesForRosTools() {
+  std::error_code error;
+  const auto registration = servoloop::ros1::registerPythonMessages(std::filesystem::read_symlink("/proc/self/exe", error));
+  if (registration.written) {
+    std::cout << "servoloop ros1-bridge: rostopic, rosservice and rosbag read control_msgs, controller_manager_msgs "
+                 "and gazebo_msgs from "
+              << registration.folder.string() << " (named in " << registration.pth.string() << ")" << std::endl;
+  } else if (!registration.registered) {
+    std::cerr << "servoloop ros1-bridge: " << registration.why_not
+              << "; for rostopic and rosservice to read control_msgs and controller_manager_msgs, run: "
+                 "eval \"$(servoloop ros1-bridge --print-env)\"\n";
+  }
+}
+
 int runBridge(const std::string& requested_namespace, bool use_sim_time, bool gazebo_services) {
+  registerMessagesForRosTools();
   const std::string node_namespace = servoloop::ros1::pickNodeNamespace(requested_namespace);
   servoloop::ros1::NodeLink link(node_namespace);
 
@@ -57,9 +77,11 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   // The services on a connection of their own: a switch that takes a while
   // never holds up the commands flowing from ROS on `link`.
   servoloop::ros1::NodeLink service_link(node_namespace);
-  servoloop::ros1::ControllerManagerServices services(nh, service_link, copy.copied);
+  std::optional<servoloop::ros1::ControllerManagerServices> services;
+  services.emplace(nh, service_link, copy.copied);
   servoloop::ros1::RobotStateCache robot_state;
-  servoloop::ros1::TopicBridge topics(nh, link, robot_state);
+  std::optional<servoloop::ros1::TopicBridge> topics;
+  topics.emplace(nh, link, robot_state);
   // Gazebo's joint, world and model services, on a connection of their own.
   std::optional<servoloop::ros1::NodeLink> gazebo_link;
   std::optional<servoloop::ros1::GazeboServices> gazebo;
@@ -72,7 +94,8 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   // Actions on a connection of their own (the node answers a goal's status
   // only on the connection that sent it), polled on a thread of their own.
   servoloop::ros1::NodeLink action_link(node_namespace);
-  servoloop::ros1::ActionBridge actions(nh, action_link);
+  std::optional<servoloop::ros1::ActionBridge> actions;
+  actions.emplace(nh, action_link);
   // Service calls (a switch, a goal being sent, a first joint state awaited)
   // may take a while: enough threads that commands still flow meanwhile.
   ros::AsyncSpinner spinner(4);
@@ -86,9 +109,9 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
       try {
         if (std::chrono::steady_clock::now() >= next_discovery) {
           next_discovery += std::chrono::seconds(1);
-          actions.discover();
+          actions->discover();
         }
-        actions.poll();
+        actions->poll();
       } catch (const std::exception& e) {
         if (std::chrono::steady_clock::now() >= next_report) {
           std::cerr << "servoloop ros1-bridge: actions: " << e.what() << "\n";
@@ -105,13 +128,28 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
             << (gazebo_services ? ", /gazebo/*" : "") << ")" << std::endl;
   std::string failure;
   try {
-    topics.run(g_stop);
+    topics->run(g_stop);
   } catch (const std::exception& e) {
     failure = e.what();
   }
   g_stop.store(true);
   action_thread.join();
+  // The spinner's threads wait on the callback queue: woken at once.
+  ros::getGlobalCallbackQueue()->disable();
   spinner.stop();
+  // Each topic and service is one call to the master to take it down: the
+  // parts go side by side, so that Ctrl-C ends the bridge within half a
+  // second.
+  std::thread services_down([&] { services.reset(); });
+  std::thread gazebo_down([&] {
+    gazebo_models.reset();
+    gazebo.reset();
+  });
+  std::thread actions_down([&] { actions.reset(); });
+  topics.reset();
+  services_down.join();
+  gazebo_down.join();
+  actions_down.join();
   ros::shutdown();
   if (!failure.empty()) throw std::runtime_error(failure + "; the bridge stops");
   return 0;

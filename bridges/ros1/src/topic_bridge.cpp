@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <set>
+#include <vector>
 
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -26,11 +28,29 @@ TopicBridge::TopicBridge(ros::NodeHandle& nh, NodeLink& link, RobotStateCache& s
 
 void TopicBridge::discover() {
   const json topics = streams_.call("topic.list").at("topics");
+  std::set<std::string> listed;
   for (const json& topic : topics) {
     const std::string name = topic.at("name").get<std::string>();
     const std::string type_name = topic.value("type", "");
-    if (directions_.count(name) != 0 || skipped_.count(name) != 0 || type_name.empty()) continue;
+    listed.insert(name);
+    if (skipped_.count(name) != 0 || type_name.empty()) continue;
     const BridgedType* type = findBridgedType(type_name);
+    // The node's own end of the topic: its publishers for a topic going to
+    // ROS, its subscribers (a controller's command input) for one coming from it.
+    const std::size_t endpoints =
+        topic.value(type != nullptr && type->command ? "subscribers" : "publishers", std::size_t{0});
+    if (directions_.count(name) != 0) {
+      if (endpoints > 0) {
+        had_endpoint_.insert(name);
+      } else if (had_endpoint_.count(name) != 0) {
+        retire(name);
+      }
+      continue;
+    }
+    if (retired_.count(name) != 0) {
+      if (endpoints == 0) continue;
+      retired_.erase(name);
+    }
     if (type == nullptr) {
       ROS_WARN("servoloop bridge: topic %s has type %s, which the bridge does not carry; it stays in servoloop",
                name.c_str(), type_name.c_str());
@@ -45,8 +65,35 @@ void TopicBridge::discover() {
       skipped_.insert(name);
       continue;
     }
+    if (endpoints > 0) had_endpoint_.insert(name);
     ROS_INFO("servoloop bridge: %s (%s) %s", name.c_str(), type_name.c_str(), directions_.at(name).c_str());
   }
+  // A topic the node no longer lists at all goes too.
+  std::vector<std::string> gone;
+  for (const auto& [name, direction] : directions_) {
+    if (listed.count(name) == 0) gone.push_back(name);
+  }
+  for (const std::string& name : gone) retire(name);
+}
+
+void TopicBridge::retire(const std::string& name) {
+  const auto direction = directions_.find(name);
+  if (direction == directions_.end()) return;
+  if (direction->second == "to ROS") {
+    to_ros_.erase(name);  // its ROS publisher with it: unadvertised
+    try {
+      streams_.call("topic.unsubscribe", {{"topic", name}});
+    } catch (const std::exception& e) {
+      ROS_WARN("servoloop bridge: %s: the node's stream stays open: %s", name.c_str(), e.what());
+    }
+  } else {
+    from_ros_.erase(name);  // its ROS subscriber with it: unsubscribed
+  }
+  ROS_INFO("servoloop bridge: %s taken off the master (nothing in the node %s it any more)", name.c_str(),
+           direction->second == "to ROS" ? "publishes" : "subscribes to");
+  directions_.erase(direction);
+  had_endpoint_.erase(name);
+  retired_.insert(name);
 }
 
 void TopicBridge::bridgeTopic(const std::string& name, const std::string& type_name, const BridgedType& type) {

@@ -8,8 +8,11 @@
 // /gazebo/model_states, carried on the first robot's bus; the sensors'
 // sensor_msgs/Imu, geometry_msgs/WrenchStamped and gazebo_msgs/ContactsState)
 // go from the node to ROS. Topics are found with `topic.list` once a second,
-// so controllers spawned later are bridged too. /clock follows the node's
-// simulated time.
+// so controllers spawned later are bridged too, and a topic whose last
+// publisher (to ROS) or subscriber (from ROS) in the node went away — its
+// controller unloaded — is unadvertised (or unsubscribed) on the master, as
+// ros_control's controllers do when they are unloaded; it is bridged again
+// when it comes back. /clock follows the node's simulated time.
 #include <atomic>
 #include <map>
 #include <set>
@@ -49,6 +52,9 @@ class TopicBridge {
  private:
   void discover();
   void bridgeTopic(const std::string& name, const std::string& type_name, const BridgedType& type);
+  // Takes a bridged topic off the master (its ROS publisher or subscriber
+  // and the node's stream of it dropped).
+  void retire(const std::string& name);
   void forwardToRos(const nlohmann::json& stream_message);
   void publishClock(double sim_time);
 
@@ -62,6 +68,11 @@ class TopicBridge {
   std::map<std::string, JsonPublisher> to_ros_;
   std::map<std::string, ros::Subscriber> from_ros_;
   std::map<std::string, std::string> directions_;
+  // Bridged topics that have had a publisher (to ROS) or subscriber (from
+  // ROS) of their own in the node: they are retired when it goes. Topics the
+  // node publishes without advertising (/gazebo/model_states) never are.
+  std::set<std::string> had_endpoint_;
+  std::set<std::string> retired_;  // taken off; bridged again once an endpoint comes back
   std::set<std::string> skipped_;
   std::set<std::string> conversion_warned_;  // topics of types the bridge does not carry (reported once)
   ros::Publisher clock_;
