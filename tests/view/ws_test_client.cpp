@@ -88,9 +88,13 @@ bool WsTestClient::connect(const std::string& url, std::chrono::milliseconds tim
 }
 
 bool WsTestClient::send(const std::string& text) {
-  std::error_code error;
-  impl_->client.send(impl_->hdl, text, websocketpp::frame::opcode::text, error);
-  return !error;
+  // The connection is the client thread's: everything that touches it runs there.
+  if (!impl_->thread.joinable()) return false;
+  asio::post(impl_->client.get_io_service(), [impl = impl_.get(), text] {
+    std::error_code error;
+    impl->client.send(impl->hdl, text, websocketpp::frame::opcode::text, error);
+  });
+  return true;
 }
 
 std::optional<std::string> WsTestClient::receive(std::chrono::milliseconds timeout) {
@@ -116,23 +120,27 @@ bool WsTestClient::isOpen() const {
 void WsTestClient::close() {
   Impl& impl = *impl_;
   if (!impl.thread.joinable()) return;
-  std::error_code error;
-  impl.client.close(impl.hdl, websocketpp::close::status::normal, "test done", error);
+  asio::post(impl.client.get_io_service(), [&impl] {
+    std::error_code error;
+    impl.client.close(impl.hdl, websocketpp::close::status::normal, "test done", error);
+  });
   {
     std::unique_lock lock(impl.mutex);
     impl.changed.wait_for(lock, std::chrono::seconds(3), [&] { return impl.ended; });
   }
-  impl.client.stop();
+  asio::post(impl.client.get_io_service(), [&impl] { impl.client.stop(); });
   impl.thread.join();
 }
 
 void WsTestClient::abort() {
   Impl& impl = *impl_;
   if (!impl.thread.joinable()) return;
-  std::error_code error;
-  Client::connection_ptr connection = impl.client.get_con_from_hdl(impl.hdl, error);
-  if (!error && connection) connection->get_raw_socket().close(error);
-  impl.client.stop();
+  asio::post(impl.client.get_io_service(), [&impl] {
+    std::error_code error;
+    Client::connection_ptr connection = impl.client.get_con_from_hdl(impl.hdl, error);
+    if (!error && connection) connection->get_raw_socket().close(error);
+    impl.client.stop();
+  });
   impl.thread.join();
 }
 

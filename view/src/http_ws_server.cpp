@@ -160,15 +160,19 @@ void HttpWsServer::stop() {
   Impl& impl = *impl_;
   if (!impl.running) return;
   impl.running = false;
-  std::error_code error;
-  impl.server.stop_listening(error);
-  std::map<ConnectionId, websocketpp::connection_hdl> open;
-  {
-    std::lock_guard lock(impl.connections_mutex);
-    open = impl.connections;
-  }
-  for (auto& [id, hdl] : open) impl.server.close(hdl, websocketpp::close::status::going_away, "the view stops", error);
-  impl.server.stop();
+  // The listening socket and the connections are the server thread's: it
+  // closes them itself, then ends its loop.
+  asio::post(impl.server.get_io_service(), [&impl] {
+    std::error_code error;
+    impl.server.stop_listening(error);
+    std::map<ConnectionId, websocketpp::connection_hdl> open;
+    {
+      std::lock_guard lock(impl.connections_mutex);
+      open = impl.connections;
+    }
+    for (auto& [id, hdl] : open) impl.server.close(hdl, websocketpp::close::status::going_away, "the view stops", error);
+    impl.server.stop();
+  });
   if (impl.thread.joinable()) impl.thread.join();
 }
 
