@@ -583,6 +583,18 @@ void resolveMeshes(urdf::Link& link, const fs::path& base_dir, const std::string
 
 }  // namespace
 
+const char* jointTypeName(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE: return "revolute";
+    case urdf::Joint::CONTINUOUS: return "continuous";
+    case urdf::Joint::PRISMATIC: return "prismatic";
+    case urdf::Joint::FLOATING: return "floating";
+    case urdf::Joint::PLANAR: return "planar";
+    case urdf::Joint::FIXED: return "fixed";
+    default: return "unknown";
+  }
+}
+
 std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& xml,
                                                             const std::string& source_name) {
   checkXml(xml, source_name);

@@ -27,7 +27,10 @@ namespace {
 using nlohmann::json;
 using servoloop::testing::ChildProcess;
 using servoloop::testing::ProcessOptions;
+using servoloop::testing::nextOfType;
 using servoloop::testing::TempDir;
+
+constexpr std::chrono::seconds kMessageWait{30};
 
 const std::string kSeedLaunch = std::string(SERVOLOOP_SOURCE_DIR) + "/robots/one_dof/one_dof_w_jnt_ctl.launch.yaml";
 
@@ -37,17 +40,6 @@ unsigned viewPort(const ChildProcess& process) {
   std::smatch match;
   const std::string err = process.currentErr();
   return std::regex_search(err, match, url) ? static_cast<unsigned>(std::stoul(match[1])) : 0u;
-}
-
-json nextOfType(servoloop::testing::WsTestClient& page, const std::string& type) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (std::chrono::steady_clock::now() < deadline) {
-    const auto text = page.receive(std::chrono::milliseconds(200));
-    if (!text) continue;
-    json message = json::parse(*text, nullptr, false);
-    if (message.is_object() && message.value("type", "") == type) return message;
-  }
-  return nullptr;
 }
 
 class ViewCli : public ::testing::Test {
@@ -79,13 +71,13 @@ TEST_F(ViewCli, LaunchWithAViewAndAViewAttachingFromAnotherProcess) {
   for (const unsigned port : {launch_port, viewPort(view)}) {
     servoloop::testing::WsTestClient socket;
     ASSERT_TRUE(socket.connect("ws://127.0.0.1:" + std::to_string(port) + "/ws")) << socket.why();
-    const json hello = nextOfType(socket, "hello");
+    const json hello = nextOfType(socket, "hello", kMessageWait);
     EXPECT_FALSE(hello.value("control", true)) << "read-only unless --view-control";
-    const json scene = nextOfType(socket, "scene");
+    const json scene = nextOfType(socket, "scene", kMessageWait);
     ASSERT_TRUE(scene.is_object()) << port;
     ASSERT_EQ(scene["models"].size(), 1u);
     EXPECT_EQ(scene["models"][0]["ns"], "/one_DOF_robot");
-    const json frame = nextOfType(socket, "frame");
+    const json frame = nextOfType(socket, "frame", kMessageWait);
     ASSERT_TRUE(frame.is_object());
     EXPECT_EQ(frame["models"][0]["ns"], "/one_DOF_robot");
   }

@@ -34,6 +34,7 @@ namespace {
 using namespace servoloop;
 using namespace servoloop::node_test;
 using nlohmann::json;
+using servoloop::testing::nextOfType;
 using servoloop::testing::WsTestClient;
 namespace fs = std::filesystem;
 
@@ -42,18 +43,6 @@ constexpr const char* kRobot = "/one_DOF_robot";
 view::NodeRequest overSocket(const std::string& node_name) {
   auto client = std::make_shared<ipc::IpcClient>(ipc::IpcClient::connectToNode(node_name));
   return [client](const json& request) { return client->request(request, 30.0); };
-}
-
-// The next message of `type`, skipping others; null when none comes in time.
-json nextOfType(WsTestClient& page, const std::string& type, std::chrono::seconds timeout = std::chrono::seconds(20)) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < deadline) {
-    const auto text = page.receive(std::chrono::milliseconds(200));
-    if (!text) continue;
-    json message = json::parse(*text, nullptr, false);
-    if (message.is_object() && message.value("type", "") == type) return message;
-  }
-  return nullptr;
 }
 
 class ViewServerTest : public ::testing::Test {
@@ -291,7 +280,9 @@ TEST_F(ViewServerTest, AReadOnlyViewRefusesControlAndAControlViewCarriesItOut) {
   reply = nextOfType(page, "reply");
   EXPECT_TRUE(reply["ok"].get<bool>()) << reply.dump();
   for (const auto& spec : node_->findRobot(kRobot)->manager().listControllers()) {
-    if (spec.name == "joint1_position_controller") EXPECT_NE(spec.state, controller_manager::ControllerState::running);
+    if (spec.name == "joint1_position_controller") {
+      EXPECT_NE(spec.state, controller_manager::ControllerState::running);
+    }
   }
 
   ASSERT_TRUE(page.send(json{{"op", "pause"}, {"id", 4}}.dump()));

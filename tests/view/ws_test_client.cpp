@@ -146,6 +146,17 @@ void WsTestClient::abort() {
 
 const std::string& WsTestClient::why() const { return impl_->why; }
 
+nlohmann::json nextOfType(WsTestClient& page, const std::string& type, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const auto text = page.receive(std::chrono::milliseconds(200));
+    if (!text) continue;
+    nlohmann::json message = nlohmann::json::parse(*text, nullptr, false);
+    if (message.is_object() && message.value("type", "") == type) return message;
+  }
+  return nullptr;
+}
+
 HttpReply httpGet(const std::string& host, unsigned port, const std::string& raw_path) {
   HttpReply reply;
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);

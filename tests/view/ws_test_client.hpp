@@ -2,11 +2,13 @@
 // A WebSocket client for tests (websocketpp on standalone asio, as the view
 // server): connect to ws://HOST:PORT/PATH, send and receive text messages,
 // close politely or drop the connection mid-transfer. Also a plain HTTP GET.
-// Only the standard library here: the .cpp compiles as C++17.
+// Only the standard library and nlohmann-json here: the .cpp compiles as C++17.
 #include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace servoloop::testing {
 
@@ -36,6 +38,11 @@ class WsTestClient {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The next message of the view's protocol whose "type" is `type`, skipping
+// others; null when none comes in `timeout`.
+nlohmann::json nextOfType(WsTestClient& page, const std::string& type,
+                          std::chrono::milliseconds timeout = std::chrono::seconds(20));
 
 // A GET of http://HOST:PORT/PATH as sent (no normalisation of "..", as a
 // hostile client would send it): the status code and body; status 0 when

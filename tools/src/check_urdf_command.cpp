@@ -42,18 +42,6 @@ struct CheckUrdfOptions {
   bool json = false;
 };
 
-const char* jointTypeName(int type) {
-  switch (type) {
-    case urdf::Joint::REVOLUTE: return "revolute";
-    case urdf::Joint::CONTINUOUS: return "continuous";
-    case urdf::Joint::PRISMATIC: return "prismatic";
-    case urdf::Joint::FLOATING: return "floating";
-    case urdf::Joint::PLANAR: return "planar";
-    case urdf::Joint::FIXED: return "fixed";
-    default: return "unknown";
-  }
-}
-
 // The link tree's deepest level (the root is level 0) that the report shows
 // nested: past it the text report prints one line instead of the indentation
 // (each level indents four more spaces: a 20,000-link chain would print 800 MB

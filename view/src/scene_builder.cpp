@@ -90,17 +90,6 @@ json visualJson(const urdf::Pose& pose, const urdf::Geometry& shape, const urdf:
   return {{"origin", origin(pose)}, {"geometry", geometry(shape, link, files, warnings, model)}, {"color", color}};
 }
 
-const char* jointType(int type) {
-  switch (type) {
-    case urdf::Joint::REVOLUTE: return "revolute";
-    case urdf::Joint::CONTINUOUS: return "continuous";
-    case urdf::Joint::PRISMATIC: return "prismatic";
-    case urdf::Joint::FLOATING: return "floating";
-    case urdf::Joint::PLANAR: return "planar";
-    default: return "fixed";
-  }
-}
-
 }  // namespace
 
 std::vector<double> gazeboMaterialColor(const std::string& name) {
@@ -153,7 +142,7 @@ json buildScene(const std::vector<SceneModel>& models, bool ground_plane, Static
     json joints = json::array();
     for (const auto& [name, joint] : urdf->joints_) {
       joints.push_back({{"name", name},
-                        {"type", jointType(joint->type)},
+                        {"type", jointTypeName(joint->type)},
                         {"parent", joint->parent_link_name},
                         {"child", joint->child_link_name},
                         {"origin", origin(joint->parent_to_joint_origin_transform)},
