@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -403,6 +404,15 @@ urdf::ModelInterfaceSharedPtr parseUrdfWithUrdfdom(const std::string& xml, const
   holder->model = std::move(model);
   model = urdf::ModelInterfaceSharedPtr(holder, holder->model.get());
   if (report_warnings) {
+    // An <inertial> urdfdom cannot read (a mass written "  1.0  ") leaves
+    // its link with a zero mass; refused here, naming the value, rather than
+    // as a zero mass the user never wrote.
+    static const std::regex unreadable_inertial(R"(Could not parse inertial element for Link \[([^\]]*)\])");
+    if (std::smatch match; std::regex_search(handler.errors, match, unreadable_inertial)) {
+      fail(source_name, "link '" + match[1].str() + "': urdfdom could not read its <inertial> (" + handler.errors +
+                            "); write each value as a plain number, e.g. <mass value=\"1.0\"/>, without spaces, "
+                            "units or expressions");
+    }
     for (const auto& w : handler.warnings) logger().warn("{}: urdfdom: {}", source_name, w);
     // Errors urdfdom recovers from (a <collision> it cannot read): ROS goes
     // on without the element, and so does servoloop, saying so.

@@ -187,6 +187,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   }
   if (op == "control.list") return controlList(robot);
   if (op == "control.list_joints") return controlListJoints(robot);
+  if (op == "control.gains") return controlGains(robot, request);
   // What waits for a cycle of the robot is refused at once while a hardware
   // call of its loop does not return.
   if (op == "control.load" || op == "control.unload" || op == "control.switch" || op == "control.recover" ||
@@ -267,7 +268,7 @@ json NodeOperations::handle(const json& request, ipc::IpcConnection& connection)
   if (op == "action.cancel") return actionCancel(request, connection);
   throw Error("unknown op '" + op +
               "'; this node serves ping, control.{list,list_types,list_joints,load,unload,switch,reload_libraries,"
-              "safety,estop,recover,stats}, "
+              "safety,estop,recover,stats,gains}, "
               "param.{get,set,load,dump,list}, topic.{list,pub,subscribe,unsubscribe}, "
               "action.{list,send,status,cancel}, model.{list,get,spawn,set_configuration,set_state,delete}, world.{state,pause,unpause,step,reset,shutdown}");
 }

@@ -129,6 +129,25 @@ TEST_F(ControlTest, ReloadLibrariesForceKill) {
   EXPECT_EQ(node.requestsFor("control.reload_libraries").at(0)["force_kill"], true);
 }
 
+TEST_F(ControlTest, GainsSendsTheControllerThePidAndOnlyTheGainsGiven) {
+  FakeNode node("/one_DOF_robot");
+  node.on("control.gains", [](const json&, auto&) -> json { return {{"pids", json::array()}}; });
+  ASSERT_EQ(runCli({"control", "gains", "arm"}, run_dir_.scratch()).status, 0);
+  const CliResult set = runCli({"control", "gains", "arm", "--pid", "gains/j1", "--i", "2", "--i-clamp-max", "3",
+                                "--antiwindup", "false"},
+                               run_dir_.scratch());
+  ASSERT_EQ(set.status, 0) << set.err;
+  const auto requests = node.requestsFor("control.gains");
+  ASSERT_EQ(requests.size(), 2u);
+  EXPECT_EQ(requests[0], json({{"id", requests[0]["id"]}, {"op", "control.gains"}, {"controller", "arm"}}));
+  EXPECT_EQ(requests[1], json({{"id", requests[1]["id"]}, {"op", "control.gains"}, {"controller", "arm"},
+                               {"pid", "gains/j1"}, {"i", 2.0}, {"i_clamp_max", 3.0}, {"antiwindup", false}}));
+  const CliResult bad = runCli({"control", "gains", "arm", "--p", "fast"}, run_dir_.scratch());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_THAT(bad.err, HasSubstr("--p"));
+  EXPECT_EQ(node.requestsFor("control.gains").size(), 2u);
+}
+
 TEST_F(ControlTest, NoNodeRunningIsAClearError) {
   const CliResult result = runCli({"control", "list"}, run_dir_.scratch());
   EXPECT_EQ(result.status, 1);

@@ -2,7 +2,7 @@
 // the mock backend in real time (serving its socket), then `servoloop plot
 // --topic`, `topic list` and, once it has ended, the "no node" error — each
 // bounded in time, on a private SERVOLOOP_RUN_DIR; and control, param and topic
-// commands against a node on the wall clock; spawn-model's warnings.
+// commands against a node on the wall clock; control gains; spawn-model's warnings.
 #include <csignal>
 #include <cmath>
 #include <filesystem>
@@ -143,6 +143,63 @@ TEST(CliLiveNode, ClientCommandsAgainstAWallClockNode) {
   ASSERT_FALSE(launched.timed_out);
   EXPECT_EQ(launched.status, 0) << launched.err;
   EXPECT_THAT(launched.err, HasSubstr("runs on the wall clock at 1000 Hz"));
+}
+
+// `control gains` against a running node: the seed's PID as its YAML gives it
+// (robots/one_dof/control_config/one_dof_ctl_params.yaml), a change the
+// running controller takes (its state topic reports the gains its updates
+// use) and the parameters follow; bad requests are refused naming the fix.
+TEST(CliLiveNode, ControlGainsShowsAndChangesARunningControllersPid) {
+  ScopedRunDir run_dir;
+  const fs::path& scratch = run_dir.scratch();
+  CliProcess launch({"launch", kSeedLaunch, "--backend", "mock", "--clock", "wall"}, scratch);
+  ASSERT_TRUE(waitForNode(scratch, 60.0)) << launch.currentOut();
+  const std::string controller = "joint1_position_controller";
+
+  CliResult gains = runCli({"control", "gains", controller, "--json"}, scratch, 30.0);
+  ASSERT_EQ(gains.status, 0) << gains.err;
+  const nlohmann::json seed = nlohmann::json::parse(R"([{"name": "pid", "p": 10.0, "i": 10.0, "d": 10.0,
+      "i_clamp_min": -10.0, "i_clamp_max": 10.0, "antiwindup": false}])");
+  EXPECT_EQ(nlohmann::json::parse(gains.out), seed);
+
+  gains = runCli({"control", "gains", controller, "--p", "42.5", "--d", "0.5", "--antiwindup", "true"}, scratch, 30.0);
+  ASSERT_EQ(gains.status, 0) << gains.err;
+  EXPECT_EQ(gains.out, controller + "/pid: p 42.5 i 10 d 0.5 i_clamp_min -10 i_clamp_max 10 antiwindup true\n");
+
+  // The controller's state (every 10th update) reports the gains its update used.
+  bool taken = false;
+  for (int attempt = 0; attempt < 20 && !taken; ++attempt) {
+    const CliResult state =
+        runCli({"topic", "echo", "-n", "1", "--json", "/one_DOF_robot/" + controller + "/state"}, scratch, 30.0);
+    ASSERT_EQ(state.status, 0) << state.err;
+    const nlohmann::json message = nlohmann::json::parse(state.out);
+    taken = message.value("p", 0.0) == 42.5 && message.value("d", 0.0) == 0.5 && message.value("antiwindup", false);
+  }
+  EXPECT_TRUE(taken);
+  const CliResult param = runCli({"param", "get", "/one_DOF_robot/" + controller + "/pid/p"}, scratch, 30.0);
+  ASSERT_EQ(param.status, 0) << param.err;
+  EXPECT_THAT(param.out, HasSubstr("42.5"));
+
+  const CliResult unknown = runCli({"control", "gains", controller, "--pid", "gains/joint1", "--p", "1"}, scratch, 30.0);
+  EXPECT_EQ(unknown.status, 1);
+  EXPECT_THAT(unknown.err, HasSubstr("no PID 'gains/joint1'; its PIDs are 'pid'"));
+  const CliResult clamp = runCli({"control", "gains", controller, "--i-clamp-min", "5"}, scratch, 30.0);
+  EXPECT_EQ(clamp.status, 1);
+  EXPECT_THAT(clamp.err, HasSubstr("i_clamp_min <= 0 <= i_clamp_max"));
+  const CliResult none = runCli({"control", "gains", "joint_state_controller", "--p", "1"}, scratch, 30.0);
+  EXPECT_EQ(none.status, 1);
+  EXPECT_THAT(none.err, HasSubstr("has no PID"));
+  EXPECT_EQ(lineCount(none.err), 1) << none.err;
+  // Nothing of the refused requests was taken.
+  gains = runCli({"control", "gains", controller, "--json"}, scratch, 30.0);
+  ASSERT_EQ(gains.status, 0) << gains.err;
+  EXPECT_EQ(nlohmann::json::parse(gains.out)[0]["p"], 42.5);
+  EXPECT_EQ(nlohmann::json::parse(gains.out)[0]["i_clamp_min"], -10.0);
+
+  launch.signal(SIGINT);
+  const CliResult launched = launch.wait(30.0);
+  ASSERT_FALSE(launched.timed_out);
+  EXPECT_EQ(launched.status, 0) << launched.err;
 }
 
 // `spawn-model` into a running world shows what the node warned about while

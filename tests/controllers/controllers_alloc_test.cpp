@@ -1,8 +1,8 @@
 // Zero allocations on the control thread: 100,000 updates of a
 // JointStateController publishing at 50 Hz and the seed's
 // effort_controllers/JointPositionController (state topic every 10th update)
-// receiving a new setpoint from another thread every 100 cycles, with the
-// bus's delivery thread running. Also the raw PD and a group controller, and
+// receiving a new setpoint and new PID gains from another thread every 100
+// cycles, with the bus's delivery thread running. Also the raw PD and a group controller, and
 // a 6-joint trajectory controller taking trajectories, goals, cancels and
 // stops while it publishes its state. The IMU and force-torque sensor
 // controllers publishing at 500 Hz.
@@ -126,6 +126,8 @@ TEST(ControllersAllocation, NoAllocationOnTheControlThreadAfterStartUp) {
     bus.publish("/one_DOF_robot/joint1_position_controller/command", Float64{setpoint});
     bus.publish("/robot/pd/pos_cmd", Float64{-setpoint});
     bus.publish("/robot/group/command", Float64MultiArray{{setpoint, -setpoint}});
+    // New gains, as `control gains` or dynamic_reconfigure set them.
+    position.pid().setGains(10.0 + n % 5, 10.0, 10.0 + n % 3, 10.0, -10.0, n % 2 == 0);
     published.store(n);
   }
   control.join();
@@ -133,6 +135,11 @@ TEST(ControllersAllocation, NoAllocationOnTheControlThreadAfterStartUp) {
 
   EXPECT_EQ(allocations, 0u);
   const int last = kCycles / kCommandEvery;
+  // The last gains were taken at the update after they were set.
+  const Pid::Gains active = position.pid().getActiveGains();
+  EXPECT_EQ(active.p_gain, 10.0 + last % 5);
+  EXPECT_EQ(active.d_gain, 10.0 + last % 3);
+  EXPECT_EQ(active.antiwindup, last % 2 == 0);
   EXPECT_DOUBLE_EQ(final_setpoint, 0.25 + 1.5 * static_cast<double>(last % 7) / 6.0);
   EXPECT_DOUBLE_EQ(hw.effort_command[2], final_setpoint);  // the group's last command
   // One timeout before the first command (t = 0.05 s), then one 0.05 s after

@@ -587,6 +587,47 @@ TEST_F(Ros1BridgeTest, AnUnloadedControllersTopicsLeaveTheMasterAndComeBackWithI
   EXPECT_THAT(echo.out, HasSubstr("process_value:"));
 }
 
+// ros_control's dynamic_reconfigure of a PID, driven by Debian's dynparam:
+// listed, the seed's gains as its YAML gives them, a change the running
+// controller takes at once (its state topic reports the gains its updates
+// use), a value past control_toolbox's range clamped to it, and the parameter
+// server following, as a dynamic_reconfigure server does.
+TEST_F(Ros1BridgeTest, DynparamChangesARunningControllersPidGains) {
+  const std::string pid = "/one_DOF_robot/joint1_position_controller/pid";
+  const auto dynparam = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"/usr/bin/python3", ros_lib("dynamic_reconfigure/dynparam")});
+    return run(args, 60.0);
+  };
+  ASSERT_TRUE(waitUntil([&] { return (dynparam({"list"}).out + "\n").find(pid + "\n") != std::string::npos; }, 30.0))
+      << dynparam({"list"}).err;
+  const ProcessResult got = dynparam({"get", pid});
+  ASSERT_EQ(got.status, 0) << got.err;
+  for (const char* expected : {"'p': 10.0", "'i': 10.0", "'d': 10.0", "'i_clamp_min': -10.0", "'i_clamp_max': 10.0",
+                               "'antiwindup': False"}) {
+    EXPECT_THAT(got.out, HasSubstr(expected));
+  }
+
+  const ProcessResult set = dynparam({"set", pid, "{'p': 42.5, 'd': 0.5, 'i_clamp_max': 5000.0}"});
+  ASSERT_EQ(set.status, 0) << set.err;
+  const std::string state = "/one_DOF_robot/joint1_position_controller/state";
+  EXPECT_TRUE(waitUntil([&] {
+    const std::string echo = run({ros("rostopic"), "echo", "-n", "1", state}).out;
+    return numberField(echo, "p") == 42.5 && numberField(echo, "d") == 0.5 && numberField(echo, "i") == 10.0;
+  }, 30.0));
+  const ProcessResult after = dynparam({"get", pid});
+  EXPECT_THAT(after.out, HasSubstr("'p': 42.5"));
+  EXPECT_THAT(after.out, HasSubstr("'i_clamp_max': 1000.0"));  // the range's end
+  EXPECT_THAT(run({ros("rosparam"), "get", pid + "/p"}).out, HasSubstr("42.5"));
+  const CliResult node_gains = runCli({"control", "gains", "joint1_position_controller", "--json", "-N",
+                                       "/one_DOF_robot"}, run_.scratch());
+  ASSERT_EQ(node_gains.status, 0) << node_gains.err;
+  EXPECT_EQ(nlohmann::json::parse(node_gains.out)[0]["i_clamp_max"], 1000.0);
+  // A gain changed on servoloop's side reaches ROS's parameter_updates.
+  ASSERT_EQ(runCli({"control", "gains", "joint1_position_controller", "--i", "3", "-N", "/one_DOF_robot"},
+                   run_.scratch()).status, 0);
+  EXPECT_TRUE(waitUntil([&] { return dynparam({"get", pid}).out.find("'i': 3.0") != std::string::npos; }, 30.0));
+}
+
 TEST_F(Ros1BridgeTest, TheBridgeEndsPromptlyOnCtrlC) {
   ASSERT_TRUE(bridge_.has_value());
   const auto start = std::chrono::steady_clock::now();

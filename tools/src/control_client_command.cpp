@@ -1,8 +1,10 @@
-// `servoloop control list|list-joints|load|unload|start|stop|switch|reload-libraries`:
+// `servoloop control list|list-joints|load|unload|start|stop|switch|reload-libraries|gains`:
 // the controller manager commands that talk to a running node (ros_control's
 // `controller_manager` script), and the safety commands `control safety|estop|recover`.
 // `control list-types` lives in control_command.cpp.
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -35,7 +37,15 @@ struct ControlOptions {
   bool force_kill = false;
   std::string estop;  // "on" or "off"
   bool reset = false;
+  // control gains: the controller, the PID, and each gain given (nullopt: keep it).
+  std::string controller;
+  std::string pid;
+  std::array<std::optional<double>, 5> gains;  // p, i, d, i_clamp_min, i_clamp_max
+  std::optional<bool> antiwindup;
 };
+
+// `control gains`' options, in the order of ControlOptions::gains.
+constexpr std::array<const char*, 5> kGainOptionKeys = {"p", "i", "d", "i_clamp_min", "i_clamp_max"};
 
 std::string stringField(const nlohmann::json& object, const char* key) {
   const auto found = object.find(key);
@@ -197,6 +207,29 @@ void runStats(const ControlOptions& options) {
   if (options.reset) std::cerr << "statistics reset\n";
 }
 
+void runGains(const ControlOptions& options) {
+  servoloop::ipc::IpcClient client = connectToRobotNode(options.ns);
+  nlohmann::json request = {{"controller", options.controller}};
+  if (!options.pid.empty()) request["pid"] = options.pid;
+  for (std::size_t k = 0; k < kGainOptionKeys.size(); ++k) {
+    if (options.gains[k]) request[kGainOptionKeys[k]] = *options.gains[k];
+  }
+  if (options.antiwindup) request["antiwindup"] = *options.antiwindup;
+  const nlohmann::json reply = client.call("control.gains", request);
+  const nlohmann::json pids = reply.value("pids", nlohmann::json::array());
+  if (options.json) {
+    std::cout << pids.dump(2) << "\n";
+    return;
+  }
+  if (pids.empty()) std::cout << options.controller << " has no PID whose gains can be changed\n";
+  for (const auto& pid : pids) {
+    std::cout << fmt::format("{}/{}: p {} i {} d {} i_clamp_min {} i_clamp_max {} antiwindup {}\n",
+                             options.controller, stringField(pid, "name"), pid.value("p", 0.0), pid.value("i", 0.0),
+                             pid.value("d", 0.0), pid.value("i_clamp_min", 0.0), pid.value("i_clamp_max", 0.0),
+                             pid.value("antiwindup", false));
+  }
+}
+
 CLI::App* addClientSubcommand(CLI::App& control, const std::string& name,
                               const std::string& description, ControlOptions& options) {
   CLI::App* command = control.add_subcommand(name, description);
@@ -300,6 +333,29 @@ void addControlClientCommands(CLI::App& root) {
     stats->add_flag("--json", options->json, "Print the figures as JSON (seconds)");
     stats->add_flag("--reset", options->reset, "Zero the figures after printing them");
     stats->callback([options] { runStats(*options); });
+  }
+  {
+    auto options = std::make_shared<ControlOptions>();
+    CLI::App* gains = addClientSubcommand(
+        control, "gains",
+        "Show a controller's PID gains, or change them while it runs (taken at its next update; ros_control's "
+        "dynamic_reconfigure of <controller>/pid)",
+        *options);
+    gains->add_option("controller", options->controller, "Controller name")->required()->type_name("NAME");
+    gains->add_option("--pid", options->pid,
+                      "Which PID: pid, <joint>/pid or gains/<joint> (needed when the controller has several)")
+        ->type_name("NAME");
+    const std::array<const char*, 5> flags = {"--p", "--i", "--d", "--i-clamp-min", "--i-clamp-max"};
+    const std::array<const char*, 5> meanings = {"Proportional gain", "Integral gain", "Derivative gain",
+                                                 "Lower bound of the integral term (<= 0)",
+                                                 "Upper bound of the integral term (>= 0)"};
+    for (std::size_t k = 0; k < flags.size(); ++k) {
+      gains->add_option(flags[k], options->gains[k], meanings[k])->type_name("X")->check(CLI::Number);
+    }
+    gains->add_option("--antiwindup", options->antiwindup, "Keep the integral inside the clamp (true or false)")
+        ->type_name("BOOL");
+    gains->add_flag("--json", options->json, "Print the PIDs' gains as JSON");
+    gains->callback([options] { runGains(*options); });
   }
   {
     auto options = std::make_shared<ControlOptions>();

@@ -24,6 +24,7 @@
 #include "robot_state_cache.hpp"
 #include "node_link.hpp"
 #include "parameter_bridge.hpp"
+#include "pid_reconfigure.hpp"
 #include "python_messages.hpp"
 #include "topic_bridge.hpp"
 
@@ -96,6 +97,10 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   servoloop::ros1::NodeLink action_link(node_namespace);
   std::optional<servoloop::ros1::ActionBridge> actions;
   actions.emplace(nh, action_link);
+  // The PIDs' dynamic_reconfigure, on a connection of its own.
+  servoloop::ros1::NodeLink pid_link(node_namespace);
+  std::optional<servoloop::ros1::PidReconfigureServers> pids;
+  pids.emplace(nh, pid_link);
   // Service calls (a switch, a goal being sent, a first joint state awaited)
   // may take a while: enough threads that commands still flow meanwhile.
   ros::AsyncSpinner spinner(4);
@@ -110,6 +115,7 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
         if (std::chrono::steady_clock::now() >= next_discovery) {
           next_discovery += std::chrono::seconds(1);
           actions->discover();
+          pids->discover();
         }
         actions->poll();
       } catch (const std::exception& e) {
@@ -124,7 +130,7 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
   std::cout << "servoloop ros1-bridge: bridging " << node_namespace << " to the ROS master at "
             << ros::master::getURI() << " (" << copy.parameters << " parameters"
             << (copy.robot_description ? ", robot_description" : "") << ", /clock, "
-            << link.resolve("controller_manager") << "/*"
+            << link.resolve("controller_manager") << "/*, the PIDs' dynamic_reconfigure"
             << (gazebo_services ? ", /gazebo/*" : "") << ")" << std::endl;
   std::string failure;
   try {
@@ -145,7 +151,10 @@ int runBridge(const std::string& requested_namespace, bool use_sim_time, bool ga
     gazebo_models.reset();
     gazebo.reset();
   });
-  std::thread actions_down([&] { actions.reset(); });
+  std::thread actions_down([&] {
+    actions.reset();
+    pids.reset();
+  });
   topics.reset();
   services_down.join();
   gazebo_down.join();

@@ -17,11 +17,13 @@ bool JointGroupPositionController::init(hardware_interface::EffortJointInterface
       requireStringList(context, "joints", "joints: [joint1, joint2]");
   const std::size_t count = joint_names.size();
   pids_ = std::make_unique<Pid[]>(count);
+  tunable_pids_.clear();
   position_errors_.assign(count, JointPositionError());
   for (std::size_t i = 0; i < count; ++i) {
     const std::string& joint_name = joint_names[i];
     pids_[i].initFromParams(context.params.child(joint_name).child("pid"),
                             parameterPath(context, joint_name + "/pid"));
+    tunable_pids_.push_back({joint_name + "/pid", &pids_[i]});
     if (context.robot_model) {
       position_errors_[i] = JointPositionError::fromModel(*context.robot_model, joint_name, context.name);
     }

@@ -96,6 +96,7 @@ bool GripperActionController<Interface>::init(Interface* hw, const controller_ma
                         joint_name + ": {p: 100, d: 1}}'");
     }
     pid_ = std::make_unique<Pid>();
+    pid_name_ = key;
     pid_->initFromParams(context.params.child(key), parameterPath(context, key));
   }
   goal_tolerance_ = optionalNonNegative(context, "goal_tolerance", 0.01);

@@ -23,6 +23,7 @@ bool JointTrajectoryController<Interface>::init(Interface* hw, const controller_
   const std::size_t n = joint_names.size();
   if constexpr (kUsesPid<Interface>) {
     pids_ = std::make_unique<Pid[]>(n);
+    tunable_pids_.clear();
     for (std::size_t j = 0; j < n; ++j) {
       const std::string key = "gains/" + joint_names[j];
       if (context.params.child(key).empty()) {
@@ -31,6 +32,7 @@ bool JointTrajectoryController<Interface>::init(Interface* hw, const controller_
                           "gains for every joint, e.g. 'gains: {" + joint_names[j] + ": {p: 100, d: 10}}'");
       }
       pids_[j].initFromParams(context.params.child(key), parameterPath(context, key));
+      tunable_pids_.push_back({key, &pids_[j]});
     }
   }
   velocity_ff_.assign(n, 0.0);

@@ -24,6 +24,10 @@
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/core/time.hpp"
 
+namespace servoloop::controllers {
+class Pid;  // servoloop/controllers/pid.hpp
+}
+
 namespace servoloop::controller_manager {
 
 enum class ControllerState : std::uint8_t { constructed, initialized, running, stopped, failed };
@@ -45,6 +49,16 @@ struct ClaimedCommand {
   double* command = nullptr;       // the handle's command storage (owned by the RobotHW)
   const double* position = nullptr;  // measured position of the same resource
   SafeCommand safe = SafeCommand::zero;
+};
+
+// A PID of a controller whose gains may be changed while it runs, named by its
+// parameter namespace under the controller, where ros_control serves the same
+// PID's dynamic_reconfigure: "pid" (joint position and velocity controllers),
+// "<joint>/pid" (group position controller), "gains/<joint>" (trajectory and
+// gripper controllers).
+struct TunablePid {
+  std::string name;
+  controllers::Pid* pid = nullptr;
 };
 
 class ControllerBase {
@@ -90,6 +104,12 @@ class ControllerBase {
   // effort/velocity, hold position). Override to reset internal state or to
   // write safe values to outputs the manager does not know about.
   virtual void setSafeOutput() {}
+
+  // Non-real-time. The PIDs whose gains may be changed while the controller
+  // runs (Pid::setGains: taken at the PID's next computeCommand, without
+  // allocating or waiting). Asked after init; the pointers stay valid as long
+  // as the controller. None by default.
+  virtual std::vector<TunablePid> tunablePids() { return {}; }
 
   // --- State (safe to read from any thread) ---
   ControllerState state() const noexcept { return state_.load(std::memory_order_acquire); }

@@ -32,6 +32,7 @@
 #include "servoloop/controller_manager/controller_spec.hpp"
 #include "servoloop/controller_manager/duration_statistics.hpp"
 #include "servoloop/controller_manager/switch_request.hpp"
+#include "servoloop/controllers/pid.hpp"
 #include "servoloop/hardware_interface/robot_hw.hpp"
 #include "servoloop/core/time.hpp"
 
@@ -41,6 +42,12 @@ namespace detail {
 struct ControllerEntry;
 struct FaultRecord;
 }  // namespace detail
+
+// The gains of one of a controller's tunable PIDs (ControllerBase::tunablePids).
+struct PidGains {
+  std::string pid;  // its name under the controller, e.g. "pid", "gains/joint1"
+  controllers::Pid::Gains gains;
+};
 
 // Outcome of a manager service.
 struct ServiceResult {
@@ -156,6 +163,18 @@ class ControllerManager {
 
   // The loaded controller of that name, or nullptr. Valid until it is unloaded.
   ControllerBase* getController(const std::string& name);
+
+  // The gains of each tunable PID of a loaded controller, in the controller's
+  // order (none for a controller without PIDs). Fails when no controller of
+  // that name is loaded.
+  ServiceResult controllerGains(const std::string& name, std::vector<PidGains>& gains);
+  // Changes one of them, as ros_control's dynamic_reconfigure of the PID does:
+  // the controller takes the new gains at its next update, on the real-time
+  // thread, without allocating or waiting (running or not). Fails, changing
+  // nothing, for an unknown controller or PID (naming the PIDs it has), a
+  // gain that is not finite, or i_min > 0 or i_max < 0 (control_toolbox's
+  // ranges: i_clamp_min <= 0 <= i_clamp_max).
+  ServiceResult setControllerGains(const std::string& name, const PidGains& gains);
 
   // Any thread. How long each loaded controller's update() took, in load
   // order, over the timed cycles since the last reset (see setUpdateTiming).

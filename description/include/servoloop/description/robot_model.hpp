@@ -51,7 +51,9 @@ std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& x
 // urdfdom's parse alone, its console output captured rather than printed:
 // throws ConfigError naming source_name when urdfdom returns no model; with
 // report_warnings, its warnings and the errors it recovered from (an element
-// it leaves out) are logged as warnings. The one way servoloop calls urdfdom.
+// it leaves out) are logged as warnings, except an <inertial> it could not read
+// (its link would weigh nothing), which throws ConfigError naming the link and
+// urdfdom's reason. The one way servoloop calls urdfdom.
 // The model (this one and parseRobotModel's) frees its links one by one, not
 // down the tree by recursion, so a chain of any length is freed safely; a
 // link kept beyond its model has lost its child_links then.

@@ -76,6 +76,8 @@ class NodeOperations {
   nlohmann::json controlListJoints(RobotInstance& robot);
   static nlohmann::json controlSafety(RobotInstance& robot);
   static nlohmann::json controlStats(RobotInstance& robot, bool reset);
+  // control.gains: gains_operations.cpp.
+  nlohmann::json controlGains(RobotInstance& robot, const nlohmann::json& request);
   nlohmann::json paramOp(const std::string& op, const nlohmann::json& request);
   nlohmann::json topicList(RobotInstance& robot);
   nlohmann::json topicPub(RobotInstance& robot, const nlohmann::json& request);

@@ -38,6 +38,8 @@ class JointGroupPositionController
 
   // Any thread: joint i's PID (in `joints` order).
   Pid& pid(std::size_t joint_index) noexcept { return pids_[joint_index]; }
+  // Non-real-time: each joint's PID, as "<joint>/pid".
+  std::vector<controller_manager::TunablePid> tunablePids() override { return tunable_pids_; }
 
   // Controller thread, or once it stopped (diagnostics and tests).
   const std::vector<double>& setpoints() const noexcept { return setpoints_; }
@@ -49,6 +51,7 @@ class JointGroupPositionController
   std::vector<hardware_interface::JointHandle> joints_;
   std::vector<JointPositionError> position_errors_;
   std::unique_ptr<Pid[]> pids_;  // Pid holds a mutex: not movable, so not in a vector
+  std::vector<controller_manager::TunablePid> tunable_pids_;
   ArrayCommandInput command_input_;
 
   std::vector<double> setpoints_;  // clamped to each joint's position limits

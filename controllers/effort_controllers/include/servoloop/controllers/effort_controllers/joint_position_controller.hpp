@@ -49,6 +49,8 @@ class JointPositionController
 
   // Any thread: the PID's gains (setGains takes effect at the next update).
   Pid& pid() noexcept { return pid_; }
+  // Non-real-time: the PID, as "pid" (ros_control's <controller>/pid).
+  std::vector<controller_manager::TunablePid> tunablePids() override { return {{"pid", &pid_}}; }
 
   // Controller thread, or once it stopped (diagnostics and tests).
   double setpoint() const noexcept { return setpoint_; }

@@ -106,6 +106,11 @@ class GripperActionController : public controller_manager::Controller<Interface>
   // Real-time: stopped for a fault; the running goal is aborted with why.
   void setSafeOutput() override;
   ReturnType update(const Time& time, const Duration& period) override;
+  // Non-real-time: on an effort interface, the finger joint's PID as "gains/<joint>".
+  std::vector<controller_manager::TunablePid> tunablePids() override {
+    if (!pid_) return {};
+    return {{pid_name_, pid_.get()}};
+  }
 
   // Non-real-time (what the gripper_cmd action calls). Never null; while the
   // controller is not running the goal comes back rejected.
@@ -126,6 +131,7 @@ class GripperActionController : public controller_manager::Controller<Interface>
 
   typename Interface::Handle joint_;
   std::unique_ptr<Pid> pid_;  // effort interface
+  std::string pid_name_;      // "gains/<joint>"
   double goal_tolerance_ = 0.01;
   double default_max_effort_ = 0.0;
   double stall_velocity_threshold_ = 0.001;

@@ -48,6 +48,8 @@ class JointTrajectoryController : public controller_manager::Controller<Interfac
   // the follower stops and its goal is aborted with the reason.
   void setSafeOutput() override;
   ReturnType update(const Time& time, const Duration& period) override;
+  // Non-real-time: on velocity and effort interfaces, each joint's PID as "gains/<joint>".
+  std::vector<controller_manager::TunablePid> tunablePids() override { return tunable_pids_; }
 
   TrajectoryFollower& follower() noexcept { return follower_; }
   // Controller thread, or once it stopped (tests and diagnostics).
@@ -59,6 +61,7 @@ class JointTrajectoryController : public controller_manager::Controller<Interfac
   TrajectoryFollower follower_;
   std::vector<typename Interface::Handle> joints_;
   std::unique_ptr<Pid[]> pids_;      // velocity and effort
+  std::vector<controller_manager::TunablePid> tunable_pids_;  // pids_ as "gains/<joint>"
   std::vector<double> velocity_ff_;  // velocity
   std::vector<double> positions_;
   std::vector<double> velocities_;
