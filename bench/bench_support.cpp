@@ -1,5 +1,7 @@
 #include "bench_support.hpp"
 
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -99,18 +101,39 @@ std::string revoluteChainUrdf(std::size_t joints) {
   return xml + "</robot>";
 }
 
-double wallSecondsOfNodeRun(const std::string& launch_yaml, const std::filesystem::path& dir, double duration_s) {
+namespace {
+double clockSeconds(clockid_t clock) {
+  timespec now{};
+  clock_gettime(clock, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+}  // namespace
+
+RunTimer::RunTimer()
+    : wall_start_s_(clockSeconds(CLOCK_MONOTONIC)), cpu_start_s_(clockSeconds(CLOCK_PROCESS_CPUTIME_ID)) {}
+
+RunTimes RunTimer::elapsed() const {
+  const double cpu = clockSeconds(CLOCK_PROCESS_CPUTIME_ID);
+  const double wall = clockSeconds(CLOCK_MONOTONIC);
+  return {wall - wall_start_s_, cpu - cpu_start_s_};
+}
+
+RunTimes timesOfNodeRun(const std::string& launch_yaml, const std::filesystem::path& dir, double duration_s) {
   node::NodeOptions options;
   options.serve_ipc = false;
   options.real_time_factor = 0.0;
   options.duration_s = duration_s;
   node::Node node(node::parseLaunchFile(launch_yaml, "bench", dir), options);
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimer timer;
   node.start();
   node.waitUntilDone({}, std::chrono::milliseconds(5));
-  const auto end = std::chrono::steady_clock::now();
+  const RunTimes times = timer.elapsed();
   node.shutdown();
-  return std::chrono::duration<double>(end - start).count();
+  return times;
+}
+
+double wallSecondsOfNodeRun(const std::string& launch_yaml, const std::filesystem::path& dir, double duration_s) {
+  return timesOfNodeRun(launch_yaml, dir, duration_s).wall_s;
 }
 
 double median(std::vector<double> values) {

@@ -73,6 +73,31 @@ std::filesystem::path pluginDirectory();
 std::string sourcePath(const std::string& relative);
 std::string readTextFile(const std::string& path);
 
+// The wall and CPU seconds of a timed region. CPU is this process's user and
+// system time over every thread (CLOCK_PROCESS_CPUTIME_ID): the work done,
+// which a busy neighbour on a shared machine stretches far less than it
+// stretches the wall time.
+struct RunTimes {
+  double wall_s = 0.0;
+  double cpu_s = 0.0;
+};
+
+// Starts timing at construction; elapsed() is the time since.
+class RunTimer {
+ public:
+  RunTimer();
+  RunTimes elapsed() const;
+
+ private:
+  double wall_start_s_;
+  double cpu_start_s_;
+};
+
+// Wall and CPU seconds of a node (node::Node as `servoloop launch` builds it)
+// of the launch file `launch_yaml` (paths relative to `dir`), free-running for
+// `duration_s` simulated seconds; its construction is not counted.
+RunTimes timesOfNodeRun(const std::string& launch_yaml, const std::filesystem::path& dir, double duration_s);
+
 // Wall seconds of a node (node::Node as `servoloop launch` builds it) of the
 // launch file `launch_yaml` (paths relative to `dir`), free-running for
 // `duration_s` simulated seconds; its construction is not counted.

@@ -118,7 +118,7 @@ int main() {
 
   std::vector<double> raw, alone, view0, view1, view10;
   for (int r = 0; r < kRepetitions; ++r) {
-    raw.push_back(runRawBulletWorld(files, kArms, kSteps));
+    raw.push_back(runRawBulletWorld(files, kArms, kSteps).wall_s);
     alone.push_back(runNode(files, -1, duration_s, 0.0).wall_s);
     view0.push_back(runNode(files, 0, duration_s, 0.0).wall_s);
     view1.push_back(runNode(files, 1, duration_s, 0.0).wall_s);

@@ -18,11 +18,16 @@
 //   separate:    the same node with world.shared: false (each robot in a
 //                physics world of its own; nothing touches)
 //
-// Wall time of the run (the node's construction — URDFs, plugins — is not
-// counted, as the raw world's building is not), alternating the three, median
-// of 5; the ratios are of medians measured in this one run. The node runs its
-// loop on one thread and delivers its topics on others; the raw loop is one
-// thread.
+// Each repetition runs the three back to back (in turns of order: raw,
+// shared, separate, then the reverse), and each figure is the median over 9
+// repetitions of that repetition's own ratio, with the lowest and highest:
+// a ratio of two runs seconds apart, so that the machine's speed, which moves
+// on a shared VM, cancels. Two ratios: of wall time, and of CPU time (user +
+// system of every thread of the process: the work done, which a busy
+// neighbour stretches far less). The node's construction — URDFs, plugins —
+// is not counted, as the raw world's building is not. The node runs its loop
+// on one thread and delivers its topics on others (their CPU counted); the
+// raw loop is one thread.
 #include <unistd.h>
 
 #include <algorithm>
@@ -51,18 +56,26 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr std::uint64_t kSteps = 5000;
-constexpr int kRepetitions = 5;
+constexpr int kRepetitions = 9;
 
-// Seconds of wall time for kSteps of the node (built beforehand).
-double runNode(const WorldFiles& files, const std::string& backend, int arms, bool shared) {
-  return wallSecondsOfNodeRun(worldLaunchText(backend, arms, shared), files.dir, static_cast<double>(kSteps) * kTimeStepS);
+// Wall and CPU seconds of kSteps of the node (built beforehand).
+RunTimes runNode(const WorldFiles& files, const std::string& backend, int arms, bool shared) {
+  return timesOfNodeRun(worldLaunchText(backend, arms, shared), files.dir, static_cast<double>(kSteps) * kTimeStepS);
 }
 
-double runRaw(const WorldFiles& files, int arms) { return runRawBulletWorld(files, arms, kSteps); }
+RunTimes runRaw(const WorldFiles& files, int arms) { return runRawBulletWorld(files, arms, kSteps); }
+
+// "median [lowest–highest]" of per-repetition ratios.
+std::string ratioText(std::vector<double> ratios) {
+  std::sort(ratios.begin(), ratios.end());
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3f [%.3f-%.3f]", median(ratios), ratios.front(), ratios.back());
+  return text;
+}
 
 #ifdef SERVOLOOP_BENCH_MUJOCO
-// Seconds of wall time for kSteps of the same world in one MujocoWorld.
-double runRawMujoco(const WorldFiles& files, int arms) {
+// Wall and CPU seconds of kSteps of the same world in one MujocoWorld.
+RunTimes runRawMujoco(const WorldFiles& files, int arms) {
   const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
   const auto box_model = parseRobotModel(kBoxUrdf, "box");
   sim_mujoco::MujocoWorld world;
@@ -95,7 +108,7 @@ double runRawMujoco(const WorldFiles& files, int arms) {
     }
   }
   world.restart();
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimer timer;
   for (std::uint64_t n = 0; n < kSteps; ++n) {
     for (Arm& arm : laws) {
       arm.physics->setJointEffort(0, arm.law.effort(arm.physics->jointPosition(0), arm.physics->jointVelocity(0)));
@@ -103,13 +116,13 @@ double runRawMujoco(const WorldFiles& files, int arms) {
     }
     world.step();
   }
-  const auto end = std::chrono::steady_clock::now();
+  const RunTimes times = timer.elapsed();
   if (!(laws.front().physics->jointPosition(0) > 0.5)) {
     std::fprintf(stderr, "raw mujoco: the first arm did not swing towards its setpoint\n");
   }
   for (auto& body : bodies) world.remove(*body);
   bodies.clear();
-  return std::chrono::duration<double>(end - start).count();
+  return times;
 }
 #endif
 
@@ -135,9 +148,9 @@ int wholeProcessMode(int argc, char** argv) {
     const std::string engine = argv[3];
     const WorldFiles files(arms);
 #ifdef SERVOLOOP_BENCH_MUJOCO
-    if (engine == "mujoco") return runRawMujoco(files, arms) > 0.0 ? 0 : 1;
+    if (engine == "mujoco") return runRawMujoco(files, arms).wall_s > 0.0 ? 0 : 1;
 #endif
-    if (engine == "bullet") return runRaw(files, arms) > 0.0 ? 0 : 1;
+    if (engine == "bullet") return runRaw(files, arms).wall_s > 0.0 ? 0 : 1;
   }
   std::fprintf(stderr, "usage: servoloop_bench_world [mujoco] | --write DIR ARMS ENGINE | --raw ARMS ENGINE\n");
   return 2;
@@ -155,26 +168,42 @@ int main(int argc, char** argv) {
   (void)argc;
   (void)argv;
 #endif
-  std::printf("=== The shared world: %llu steps of 1 ms, 16 boxes beside N seed arms; wall time, median of %d ===\n",
+  std::printf("=== The shared world: %llu steps of 1 ms, 16 boxes beside N seed arms; medians of %d paired "
+              "repetitions, [lowest-highest] ===\n",
               static_cast<unsigned long long>(kSteps), kRepetitions);
-  std::printf("%-8s %-8s %12s %14s %14s %12s %18s\n", "engine", "arms", "raw (ms)", "shared (ms)", "separate (ms)",
-              "shared/raw", "separate/shared");
+  std::printf("%-7s %-5s %9s %11s %26s %26s %18s\n", "engine", "arms", "raw (ms)", "shared (ms)",
+              "shared/raw, wall", "shared/raw, CPU", "separate/shared");
   for (const std::string& backend : backends) {
     for (const int arms : {1, 4, 16}) {
       const WorldFiles files(arms);
-      std::vector<double> raw, shared, separate;
+      std::vector<double> raw_ms, shared_ms, wall_ratio, cpu_ratio, separate_ratio;
       for (int r = 0; r < kRepetitions; ++r) {
+        const auto raw_run = [&] {
 #ifdef SERVOLOOP_BENCH_MUJOCO
-        raw.push_back(backend == "mujoco" ? runRawMujoco(files, arms) : runRaw(files, arms));
+          return backend == "mujoco" ? runRawMujoco(files, arms) : runRaw(files, arms);
 #else
-        raw.push_back(runRaw(files, arms));
+          return runRaw(files, arms);
 #endif
-        shared.push_back(runNode(files, backend, arms, true));
-        separate.push_back(runNode(files, backend, arms, false));
+        };
+        RunTimes raw, shared, separate;
+        if (r % 2 == 0) {
+          raw = raw_run();
+          shared = runNode(files, backend, arms, true);
+          separate = runNode(files, backend, arms, false);
+        } else {
+          separate = runNode(files, backend, arms, false);
+          shared = runNode(files, backend, arms, true);
+          raw = raw_run();
+        }
+        raw_ms.push_back(raw.wall_s * 1e3);
+        shared_ms.push_back(shared.wall_s * 1e3);
+        wall_ratio.push_back(shared.wall_s / raw.wall_s);
+        cpu_ratio.push_back(shared.cpu_s / raw.cpu_s);
+        separate_ratio.push_back(separate.wall_s / shared.wall_s);
       }
-      const double raw_s = median(raw), shared_s = median(shared), separate_s = median(separate);
-      std::printf("%-8s %-8d %12.1f %14.1f %14.1f %12.3f %18.3f\n", backend.c_str(), arms, raw_s * 1e3,
-                  shared_s * 1e3, separate_s * 1e3, shared_s / raw_s, separate_s / shared_s);
+      std::printf("%-7s %-5d %9.1f %11.1f %26s %26s %18s\n", backend.c_str(), arms, median(raw_ms), median(shared_ms),
+                  ratioText(wall_ratio).c_str(), ratioText(cpu_ratio).c_str(), ratioText(separate_ratio).c_str());
+      std::fflush(stdout);
     }
   }
   return 0;

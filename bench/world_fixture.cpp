@@ -71,7 +71,7 @@ std::string worldLaunchText(const std::string& backend, int arms, bool shared) {
   return yaml;
 }
 
-double runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps) {
+RunTimes runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps) {
   const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
   const auto box_model = parseRobotModel(kBoxUrdf, "box");
   sim_bullet::SceneSettings scene_settings;
@@ -107,7 +107,7 @@ double runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps)
     bodies.push_back(std::make_unique<sim_bullet::BulletWorld>(*box_model, settings, scene));
   }
   scene.restart();
-  const auto start = std::chrono::steady_clock::now();
+  const RunTimer timer;
   for (std::uint64_t n = 0; n < steps; ++n) {
     for (Arm& arm : laws) {
       arm.world->setJointEffort(
@@ -115,13 +115,13 @@ double runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps)
     }
     scene.step();
   }
-  const auto end = std::chrono::steady_clock::now();
+  const RunTimes times = timer.elapsed();
   // The seed's gains take about 20 s to settle; in 5 s the arm is well on its way.
   if (!(laws.front().world->jointPosition(laws.front().joint) > 0.5)) {
     std::fprintf(stderr, "raw bullet: the first arm did not swing towards its setpoint\n");
   }
   bodies.clear();  // before the scene
-  return std::chrono::duration<double>(end - start).count();
+  return times;
 }
 
 }  // namespace servoloop::bench

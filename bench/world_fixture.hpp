@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <string>
 
+#include "bench_support.hpp"
+
 namespace servoloop::bench {
 
 inline constexpr int kWorldBoxes = 16;
@@ -35,8 +37,8 @@ struct WorldFiles {
 // The launch file of that world (arms, boxes, the arms' commands at t = 0).
 std::string worldLaunchText(const std::string& backend, int arms, bool shared);
 
-// Seconds of wall time for `steps` of the same world stepped by hand on raw
+// Wall and CPU seconds of `steps` of the same world stepped by hand on raw
 // Bullet (the world's building is not counted).
-double runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps);
+RunTimes runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps);
 
 }  // namespace servoloop::bench

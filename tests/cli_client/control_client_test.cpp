@@ -142,9 +142,12 @@ TEST_F(ControlTest, GainsSendsTheControllerThePidAndOnlyTheGainsGiven) {
   EXPECT_EQ(requests[0], json({{"id", requests[0]["id"]}, {"op", "control.gains"}, {"controller", "arm"}}));
   EXPECT_EQ(requests[1], json({{"id", requests[1]["id"]}, {"op", "control.gains"}, {"controller", "arm"},
                                {"pid", "gains/j1"}, {"i", 2.0}, {"i_clamp_max", 3.0}, {"antiwindup", false}}));
-  const CliResult bad = runCli({"control", "gains", "arm", "--p", "fast"}, run_dir_.scratch());
-  EXPECT_NE(bad.status, 0);
-  EXPECT_THAT(bad.err, HasSubstr("--p"));
+  for (const char* bad_value : {"fast", "nan", "inf"}) {
+    const CliResult bad = runCli({"control", "gains", "arm", "--p", bad_value}, run_dir_.scratch());
+    EXPECT_NE(bad.status, 0) << bad_value;
+    EXPECT_THAT(bad.err, HasSubstr("--p")) << bad_value;
+    EXPECT_EQ(lineCount(bad.err), 1) << bad.err;
+  }
   EXPECT_EQ(node.requestsFor("control.gains").size(), 2u);
 }
 

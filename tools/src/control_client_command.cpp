@@ -350,7 +350,9 @@ void addControlClientCommands(CLI::App& root) {
                                                  "Lower bound of the integral term (<= 0)",
                                                  "Upper bound of the integral term (>= 0)"};
     for (std::size_t k = 0; k < flags.size(); ++k) {
-      gains->add_option(flags[k], options->gains[k], meanings[k])->type_name("X")->check(CLI::Number);
+      gains->add_option(flags[k], options->gains[k], meanings[k])
+          ->type_name("X")
+          ->check(numberWithin(-1e12, 1e12, "a finite gain"));
     }
     gains->add_option("--antiwindup", options->antiwindup, "Keep the integral inside the clamp (true or false)")
         ->type_name("BOOL");

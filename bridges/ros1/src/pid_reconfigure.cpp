@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <set>
 #include <utility>
 #include <vector>
@@ -149,10 +150,16 @@ void writeParameters(const std::string& ros_namespace, const Gains& gains) {
 bool setParameters(NodeLink& link, PidState& state, const dr::Config& requested, dr::Config& reply) {
   std::lock_guard lock(state.mutex);
   json args = {{"controller", state.controller}, {"pid", state.pid}};
-  // Unknown names are ignored, as a dynamic_reconfigure server ignores them.
-  const auto take = [&args](const std::string& name, double value) {
+  // Unknown names are ignored, as a dynamic_reconfigure server ignores them;
+  // a value that is not a number leaves its gain as it is.
+  const auto take = [&args, &state](const std::string& name, double value) {
     for (const DoubleParameter& parameter : kDoubles) {
-      if (name == parameter.name) args[name] = std::clamp(value, parameter.min, parameter.max);
+      if (name != parameter.name) continue;
+      if (std::isnan(value)) {
+        ROS_ERROR("%s/set_parameters: %s is nan; it stays as it is", state.ros_namespace.c_str(), name.c_str());
+        continue;
+      }
+      args[name] = std::clamp(value, parameter.min, parameter.max);
     }
   };
   for (const dr::DoubleParameter& parameter : requested.doubles) take(parameter.name, parameter.value);
