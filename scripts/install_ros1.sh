@@ -3,8 +3,8 @@
 # tested with (docs/ros1.md): roscore and the command-line tools (rostopic,
 # rosservice, rosparam, rosbag), roscpp and the message headers, the message
 # generators, the Python message packages the tools read, and
-# robot_state_publisher, and dynamic_reconfigure (its message headers for the
-# bridge, dynparam for the tests). The next build finds them and builds the bridge.
+# robot_state_publisher, dynamic_reconfigure (its message headers for the
+# bridge, dynparam for the tests) and rosrun. The next build finds them and builds the bridge.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh \
@@ -15,4 +15,4 @@ bash scripts/install_deps.sh \
   python3-std-msgs python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-trajectory-msgs \
   python3-tf2-msgs python3-diagnostic-msgs python3-rosgraph-msgs \
   libactionlib-dev libactionlib-msgs-dev ros-actionlib-msgs python3-actionlib-msgs \
-  ros-robot-state-publisher libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  ros-robot-state-publisher libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure rosbash
