@@ -163,7 +163,21 @@ struct TopicBus::DeliveryThread {
   std::condition_variable wake;
   std::thread thread;
   bool stop_requested = false;
+  bool woken = false;  // wakeDelivery() since the thread last looked
 };
+
+namespace {
+// Whether a real-time publisher may queue messages that somebody waits for:
+// then the delivery thread polls every period; else nothing reaches a
+// subscriber but through a call that wakes it.
+bool pollingNeeded(detail::BusCore& core) {
+  std::lock_guard lock(core.structure_mutex);
+  for (const auto& [name, topic] : core.topics) {
+    if (topic->publisherCount() > 0 && topic->subscriberCount() > 0) return true;
+  }
+  return false;
+}
+}  // namespace
 
 TopicBus::TopicBus() : core_(std::make_shared<detail::BusCore>()), delivery_(std::make_unique<DeliveryThread>()) {}
 
@@ -202,16 +216,20 @@ Subscription TopicBus::subscribeAny(std::string_view topic, AnyCallback callback
     it->second->any_subscribers.push_back(entry);
     it->second->updateListened();
   }
+  wakeDelivery();
   return Subscription(core_, name, std::move(entry));
 }
 
 void TopicBus::publishView(std::string_view topic, const MessageView& msg) {
   const std::string name = normalizeTopicName(topic);
-  std::lock_guard lock(core_->structure_mutex);
-  detail::TopicBase& target = core_->topicForTypeLocked(name, msg.type);
-  if (target.type() != msg.type) detail::throwTypeMismatch(name, target.type(), msg.type);
-  target.publishViewLocked(msg, core_->clock->now());
-  core_->work->exchange(true, std::memory_order_release);
+  {
+    std::lock_guard lock(core_->structure_mutex);
+    detail::TopicBase& target = core_->topicForTypeLocked(name, msg.type);
+    if (target.type() != msg.type) detail::throwTypeMismatch(name, target.type(), msg.type);
+    target.publishViewLocked(msg, core_->clock->now());
+    core_->work->exchange(true, std::memory_order_release);
+  }
+  wakeDelivery();
 }
 
 bool TopicBus::hasTopic(std::string_view topic) const {
@@ -243,14 +261,29 @@ void TopicBus::start(std::chrono::microseconds period) {
   std::lock_guard lock(delivery.mutex);
   if (delivery.thread.joinable()) return;
   delivery.stop_requested = false;
+  delivery.woken = false;
   delivery.thread = std::thread([this, &delivery, period] {
     for (;;) {
       core_->deliverOnce();
+      const auto wait = pollingNeeded(*core_) ? std::chrono::duration_cast<std::chrono::microseconds>(period)
+                                              : std::chrono::microseconds(kIdleDeliveryPeriod);
       std::unique_lock wait_lock(delivery.mutex);
-      if (delivery.wake.wait_for(wait_lock, period, [&delivery] { return delivery.stop_requested; })) break;
+      delivery.wake.wait_for(wait_lock, wait, [&delivery] { return delivery.stop_requested || delivery.woken; });
+      if (delivery.stop_requested) break;
+      delivery.woken = false;
     }
     core_->deliverOnce();  // what was published before stop() still arrives
   });
+}
+
+void TopicBus::wakeDelivery() {
+  DeliveryThread& delivery = *delivery_;
+  {
+    std::lock_guard lock(delivery.mutex);
+    if (!delivery.thread.joinable()) return;
+    delivery.woken = true;
+  }
+  delivery.wake.notify_all();
 }
 
 void TopicBus::stop() {

@@ -132,6 +132,53 @@ TEST(TopicBus, APublisherNobodyListensToQueuesNothingAndListenersGetWhatFollows)
   EXPECT_EQ(types, (std::vector<std::string>{std::string(std_msgs::Float64::kTypeName)}));
 }
 
+// The delivery thread polls only while a real-time publisher has a listener;
+// in between it waits, and whatever starts traffic again (a subscription, a
+// command input, a publisher, a non-real-time publish) is still delivered.
+TEST(TopicBus, ARunningBusDeliversAcrossIdleAndBusySpells) {
+  TopicBus bus;
+  bus.start();
+  std::mutex mutex;
+  std::vector<double> received;
+  const auto arrived = [&](std::size_t count) {
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (std::chrono::steady_clock::now() < deadline) {
+      {
+        std::lock_guard lock(mutex);
+        if (received.size() >= count) return true;
+      }
+      std::this_thread::sleep_for(1ms);
+    }
+    return false;
+  };
+  const auto record = [&](const std_msgs::Float64& msg) {
+    std::lock_guard lock(mutex);
+    received.push_back(msg.data);
+  };
+
+  // Idle: a publisher nobody listens to.
+  auto publisher = bus.advertise<std_msgs::Float64>("/robot/state");
+  publisher.publish(std_msgs::Float64{0.0});
+  // A subscription starts the traffic: each message arrives, one at a time.
+  auto subscription = bus.subscribe<std_msgs::Float64>("/robot/state", record);
+  for (int k = 1; k <= 3; ++k) {
+    publisher.publish(std_msgs::Float64{static_cast<double>(k)});
+    ASSERT_TRUE(arrived(static_cast<std::size_t>(k))) << k;
+  }
+  // Idle again, then a non-real-time publish to a topic of its own.
+  subscription.reset();
+  auto other = bus.subscribe<std_msgs::Float64>("/robot/command", record);
+  bus.publish("/robot/command", std_msgs::Float64{4.0});
+  ASSERT_TRUE(arrived(4));
+  // A real-time publisher that comes after its subscriber.
+  auto late = bus.advertise<std_msgs::Float64>("/robot/command");
+  late.publish(std_msgs::Float64{5.0});
+  ASSERT_TRUE(arrived(5));
+  bus.stop();
+  std::lock_guard lock(mutex);
+  EXPECT_EQ(received, (std::vector<double>{1.0, 2.0, 3.0, 4.0, 5.0}));
+}
+
 TEST(TopicBus, APassFindsWhatWasQueuedWhileItRanAndForgetsClosedPublishers) {
   TopicBus bus;
   // A publisher closed with nothing queued is forgotten by the next pass.

@@ -108,8 +108,13 @@ class TopicBus {
 
   // --- delivery -----------------------------------------------------------------------
 
-  // Starts the delivery thread, which drains publishers every period.
+  // Starts the delivery thread, which drains publishers every period while a
+  // real-time publisher has somebody listening; otherwise it looks again every
+  // kIdleDeliveryPeriod (a bus nobody listens to, or whose topics only
+  // non-real-time code publishes, costs no wake-ups), and a subscription, a
+  // publisher or a non-real-time publish wakes it at once.
   void start(std::chrono::microseconds period = std::chrono::milliseconds(1));
+  static constexpr std::chrono::milliseconds kIdleDeliveryPeriod{100};
   // Stops it after one last delivery pass. Idempotent.
   void stop();
   bool running() const;
@@ -135,6 +140,9 @@ class TopicBus {
   // The delivery thread and what wakes it (topic_bus.cpp), kept out of this
   // header so that controllers including it do not parse <thread>.
   struct DeliveryThread;
+  // Non-real-time: the delivery thread looks again now (something changed
+  // what it must poll for, or a non-real-time publish waits). No-op without one.
+  void wakeDelivery();
 
   std::shared_ptr<detail::BusCore> core_;
   std::unique_ptr<DeliveryThread> delivery_;
@@ -153,6 +161,7 @@ RealtimePublisher<Msg> TopicBus::advertise(std::string_view topic, const Msg& pr
     target.publishers.push_back(channel);
     target.updateListened();
   }
+  wakeDelivery();
   return RealtimePublisher<Msg>(core_, name, std::move(channel));
 }
 
@@ -166,6 +175,7 @@ RealtimeSubscriber<Msg> TopicBus::commandInput(std::string_view topic, const Msg
     target.command_inputs.push_back(buffer);
     target.updateListened();
   }
+  wakeDelivery();
   return RealtimeSubscriber<Msg>(core_, name, std::move(buffer));
 }
 
@@ -179,15 +189,19 @@ Subscription TopicBus::subscribe(std::string_view topic, std::function<void(cons
     target.subscribers.push_back(entry);
     target.updateListened();
   }
+  wakeDelivery();
   return Subscription(core_, name, std::move(entry));
 }
 
 template <class Msg>
 void TopicBus::publish(std::string_view topic, const Msg& msg) {
   const std::string name = normalizeTopicName(topic);
-  std::lock_guard lock(core_->structure_mutex);
-  core_->typedTopicLocked<Msg>(name).publishLocked(msg, core_->clock->now());
-  core_->work->exchange(true, std::memory_order_release);
+  {
+    std::lock_guard lock(core_->structure_mutex);
+    core_->typedTopicLocked<Msg>(name).publishLocked(msg, core_->clock->now());
+    core_->work->exchange(true, std::memory_order_release);
+  }
+  wakeDelivery();
 }
 
 // The built-in message types are instantiated once, in the library, so that
