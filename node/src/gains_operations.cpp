@@ -25,17 +25,13 @@ json gainsToJson(const controller_manager::PidGains& pid) {
           {"d", g.d_gain},           {"i_clamp_min", g.i_min}, {"i_clamp_max", g.i_max},
           {"antiwindup", g.antiwindup}};
 }
-
-void throwIfRefused(const controller_manager::ServiceResult& result) {
-  if (!result) throw Error(result.message);
-}
 }  // namespace
 
 json NodeOperations::controlGains(RobotInstance& robot, const json& request) {
   const std::string controller = ipc::requireRequestString(request, "controller");
   controller_manager::ControllerManager& manager = robot.manager();
   std::vector<controller_manager::PidGains> pids;
-  throwIfRefused(manager.controllerGains(controller, pids));
+  throwIfFailed(manager.controllerGains(controller, pids));
 
   bool change = false;
   for (const char* field : kGainFields) change = change || ipc::findRequestField(request, field) != nullptr;
@@ -62,7 +58,7 @@ json NodeOperations::controlGains(RobotInstance& robot, const json& request) {
     g.i_min = ipc::requestNumber(request, "i_clamp_min", g.i_min);
     g.i_max = ipc::requestNumber(request, "i_clamp_max", g.i_max);
     g.antiwindup = ipc::requestBool(request, "antiwindup", g.antiwindup);
-    throwIfRefused(manager.setControllerGains(controller, changed));
+    throwIfFailed(manager.setControllerGains(controller, changed));
 
     // The parameters follow, as dynamic_reconfigure writes them to the
     // parameter server: a reload of the controller keeps the new gains.
@@ -76,7 +72,9 @@ json NodeOperations::controlGains(RobotInstance& robot, const json& request) {
     store.set(prefix + "i_clamp_min", g.i_min);
     store.set(prefix + "i_clamp_max", g.i_max);
     store.set(prefix + "antiwindup", g.antiwindup);
-    throwIfRefused(manager.controllerGains(controller, pids));
+    for (auto& pid : pids) {
+      if (pid.pid == pid_name) pid.gains = g;
+    }
   }
   json reply = json::array();
   for (const auto& pid : pids) reply.push_back(gainsToJson(pid));

@@ -47,10 +47,6 @@ std::string optionalString(const json& request, const char* field, const std::st
   return ipc::requestString(request, field, fallback);
 }
 
-void throwIfFailed(const controller_manager::ServiceResult& result) {
-  if (!result) throw Error(result.message);
-}
-
 }  // namespace
 
 std::vector<std::string> stringList(const json& request, const char* field) {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <set>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -194,11 +194,6 @@ PidReconfigureServers::PidReconfigureServers(ros::NodeHandle& nh, NodeLink& link
 
 PidReconfigureServers::~PidReconfigureServers() = default;
 
-std::size_t PidReconfigureServers::served() const {
-  std::lock_guard lock(mutex_);
-  return servers_.size();
-}
-
 void PidReconfigureServers::discover() {
   std::map<std::string, std::pair<std::string, json>> present;  // key -> (controller, PID's gains)
   for (const json& controller : link_.call("control.list").value("controllers", json::array())) {
@@ -213,7 +208,6 @@ void PidReconfigureServers::discover() {
       present[name + "/" + pid.value("name", "")] = {name, pid};
     }
   }
-  std::lock_guard lock(mutex_);
   for (auto it = servers_.begin(); it != servers_.end();) {
     it = present.count(it->first) != 0 ? std::next(it) : servers_.erase(it);
   }

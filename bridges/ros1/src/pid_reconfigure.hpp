@@ -15,7 +15,6 @@
 // logged, when the node refuses them).
 #include <map>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include <ros/node_handle.h>
@@ -33,17 +32,14 @@ class PidReconfigureServers {
   PidReconfigureServers& operator=(const PidReconfigureServers&) = delete;
 
   // Serves the PIDs of controllers loaded since the last call and drops those
-  // of controllers unloaded (control.list, control.gains).
+  // of controllers unloaded (control.list, control.gains). From one thread.
   void discover();
-
-  std::size_t served() const;
 
  private:
   struct Server;
   ros::NodeHandle& nh_;
   NodeLink& link_;
-  mutable std::mutex mutex_;                               // guards servers_
-  std::map<std::string, std::unique_ptr<Server>> servers_;  // by "<controller>/<pid>"
+  std::map<std::string, std::unique_ptr<Server>> servers_;  // by "<controller>/<pid>"; only discover() touches it
 };
 
 }  // namespace servoloop::ros1

@@ -41,12 +41,12 @@ std::shared_ptr<const urdf::ModelInterface> loadRobotModelFile(const std::string
 // paths (relative ones against the URDF's folder); `package://<pkg>/<rest>` is
 // looked up as <dir>/<pkg>/<rest> for every <dir> in ROS_PACKAGE_PATH, then for
 // every ancestor folder of the URDF that is itself named <pkg> or contains <pkg>.
+std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& xml,
+                                                            const std::string& source_name);
+
 // A joint type as the URDF writes it ("revolute", "continuous", "prismatic",
 // "floating", "planar", "fixed"); "unknown" for urdf::Joint::UNKNOWN.
 const char* jointTypeName(int type);
-
-std::shared_ptr<const urdf::ModelInterface> parseRobotModel(const std::string& xml,
-                                                            const std::string& source_name);
 
 // urdfdom's parse alone, its console output captured rather than printed:
 // throws ConfigError naming source_name when urdfdom returns no model; with
