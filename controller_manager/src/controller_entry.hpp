@@ -33,22 +33,23 @@ struct FaultRecord {
                double value = 0.0, bool started_fallbacks = false) noexcept;
 };
 
-struct ControllerEntry {
+struct alignas(64) ControllerEntry {
+  // What every cycle reads first, on one cache line: the controller, and the
+  // real-time thread's schedule of it.
+  ControllerPtr controller;
+  // The manager cycle of the next update(): the cycle in which starting() ran
+  // plus k·rate.divisor (real-time thread only).
+  std::uint64_t next_update_cycle = 0;
+  Time last_update_time;  // control time of starting() or the last update() (real-time thread only)
+  UpdateRateChoice rate;
+
   std::string name;
   std::string type;
-  ControllerPtr controller;
   hardware_interface::ControllerInfo info;  // name, type and claims, for the hardware
-  UpdateRateChoice rate;
   // Started when this controller faults in update(); loaded before it, each
   // claiming only what it claims. Fixed at load (the real-time thread reads it).
   std::vector<ControllerEntry*> fallbacks;
-
-  // Real-time thread only.
-  // The manager cycle of the next update(): the cycle in which starting() ran
-  // plus k·rate.divisor.
-  std::uint64_t next_update_cycle = 0;
-  Time last_update_time;          // control time of starting() or the last update()
-  bool stopped_by_hardware_failure = false;  // scratch of containHardwareFailure
+  bool stopped_by_hardware_failure = false;  // scratch of containHardwareFailure (real-time thread)
 
   FaultRecord fault;
   DurationStatistics update_time;  // written by the real-time thread (timed cycles)

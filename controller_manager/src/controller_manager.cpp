@@ -12,6 +12,7 @@
 
 #include "asymmetric_fence.hpp"
 #include "controller_entry.hpp"
+#include "servoloop/controller_manager/loop_clock.hpp"
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
 #include "servoloop/params/parameters_yaml.hpp"
@@ -136,6 +137,9 @@ ControllerManager::ControllerManager(hardware_interface::RobotHW* robot_hw,
       context_template_(std::move(context_template)),
       update_rate_hz_(update_rate_hz) {
   asymmetric_list_fence_ = asymmetric_fence::available();
+  // The clock timed updates read (setUpdateTiming), calibrated here, once per
+  // process, rather than on the real-time thread.
+  loop_clock::prepareCycleClock();
   if (robot_hw_ == nullptr) throw Error("ControllerManager: the RobotHW pointer is null");
   if (!factory_) throw Error("ControllerManager: the controller factory is null");
   if (!parameters_) throw Error("ControllerManager: no parameter lookup given");

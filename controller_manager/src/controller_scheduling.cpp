@@ -119,7 +119,6 @@ int ControllerManager::enterRealtimeList() noexcept {
 
 void ControllerManager::update(const Time& time, const Duration& /*period*/) noexcept {
   ++cycle_;
-  const bool reset_timing = update_timing_reset_.load(std::memory_order_acquire);
   SwitchPhase expected = SwitchPhase::pending;
   if (switch_phase_.load(std::memory_order_acquire) == SwitchPhase::pending &&
       switch_phase_.compare_exchange_strong(expected, SwitchPhase::executing,
@@ -128,19 +127,23 @@ void ControllerManager::update(const Time& time, const Duration& /*period*/) noe
     switch_phase_.store(SwitchPhase::done, std::memory_order_release);
   }
 
-  const int list_index = enterRealtimeList();
+  const std::vector<detail::ControllerEntry*>& list = realtime_lists_[enterRealtimeList()];
+  if (update_timing_reset_.load(std::memory_order_acquire)) [[unlikely]] {
+    for (detail::ControllerEntry* entry : list) entry->update_time.reset();
+    update_timing_reset_.store(false, std::memory_order_release);
+  }
   // Timed cycles read the clock once here and once after each update: a
   // controller's time runs from the previous reading, so it includes the
   // manager's few checks after the update before it (the controllers that did
   // not run, the finite-command check). A fault's handling is read past, so it
   // is nobody's update time.
-  std::int64_t clock_ns = time_updates_ ? loop_clock::cycleClockNs() : 0;
-  std::int64_t* const timing = time_updates_ ? &clock_ns : nullptr;
-  for (detail::ControllerEntry* entry : realtime_lists_[list_index]) {
-    if (reset_timing) entry->update_time.reset();
-    updateController(*entry, time, timing);
+  std::int64_t clock_ns = 0;
+  if (time_updates_) [[unlikely]] {
+    clock_ns = loop_clock::cycleClockNs();
+    for (detail::ControllerEntry* entry : list) updateController<true>(*entry, time, clock_ns);
+  } else {
+    for (detail::ControllerEntry* entry : list) updateController<false>(*entry, time, clock_ns);
   }
-  if (reset_timing) update_timing_reset_.store(false, std::memory_order_release);
   // Release is enough here: a publisher waiting for this list sees the -1
   // only after every read of the list above.
   realtime_reading_list_.store(-1, std::memory_order_release);
@@ -219,48 +222,63 @@ void ControllerManager::executeSwitch(const Time& time) noexcept {
   }
 }
 
-void ControllerManager::updateController(detail::ControllerEntry& entry, const Time& time,
-                                         std::int64_t* clock_ns) noexcept {
+template <bool kTimed>
+inline void ControllerManager::updateController(detail::ControllerEntry& entry, const Time& time,
+                                                std::int64_t& clock_ns) noexcept {
   ControllerBase& controller = *entry.controller;
-  if (!controller.isRunning()) return;
   // Every rate.divisor-th cycle after the one that started it (a comparison
   // rather than a modulo: this runs for every controller in every cycle).
-  if (cycle_ < entry.next_update_cycle) return;
+  if (!controller.isRunning() || cycle_ < entry.next_update_cycle) return;
   entry.next_update_cycle = cycle_ + entry.rate.divisor;
 
   const Duration period = time - entry.last_update_time;
   entry.last_update_time = time;
   ReturnType result = ReturnType::ok;
+  bool handled = false;
   try {
     result = controller.updateRequest(time, period);
-    if (clock_ns != nullptr) {
-      const std::int64_t now_ns = loop_clock::cycleClockNs();
-      entry.update_time.record(now_ns - *clock_ns);
-      *clock_ns = now_ns;
-    }
   } catch (const std::exception& e) {
-    containInUpdate(entry, FaultKind::update_threw, e.what(), time);
-    if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
-    return;
+    handled = containUpdateThrow(entry, e.what(), time);
   } catch (...) {
-    containInUpdate(entry, FaultKind::update_threw, "an exception not derived from std::exception", time);
-    if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
-    return;
+    handled = containUpdateThrow(entry, "an exception not derived from std::exception", time);
   }
+  if constexpr (kTimed) {
+    if (!handled) {
+      const std::int64_t now_ns = loop_clock::cycleClockNs();
+      entry.update_time.record(now_ns - clock_ns);
+      clock_ns = now_ns;
+    }
+  }
+  if (!handled) {
+    if (result == ReturnType::ok && controller.firstNonFiniteCommand() == ControllerBase::kAllCommandsFinite) [[likely]] {
+      return;
+    }
+    handled = handleUpdateResult(entry, result, time);
+  }
+  if constexpr (kTimed) {
+    if (handled) clock_ns = loop_clock::cycleClockNs();
+  }
+}
 
+bool ControllerManager::containUpdateThrow(detail::ControllerEntry& entry, const char* what,
+                                           const Time& time) noexcept {
+  containInUpdate(entry, FaultKind::update_threw, what, time);
+  return true;
+}
+
+bool ControllerManager::handleUpdateResult(detail::ControllerEntry& entry, ReturnType result,
+                                           const Time& time) noexcept {
+  ControllerBase& controller = *entry.controller;
   switch (result) {
     case ReturnType::ok: {
       const std::size_t bad = controller.firstNonFiniteCommand();
-      if (bad != ControllerBase::kAllCommandsFinite) {
-        containInUpdate(entry, FaultKind::non_finite_command, "", time, bad, *controller.claimedCommands()[bad].command);
-        if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
-      }
-      return;
+      if (bad == ControllerBase::kAllCommandsFinite) return false;
+      containInUpdate(entry, FaultKind::non_finite_command, "", time, bad, *controller.claimedCommands()[bad].command);
+      return true;
     }
     case ReturnType::error:
       containInUpdate(entry, FaultKind::update_returned_error, "", time);
-      if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
-      return;
+      return true;
     case ReturnType::deactivate:
       try {
         controller.stopRequest(time);
@@ -269,9 +287,9 @@ void ControllerManager::updateController(detail::ControllerEntry& entry, const T
       } catch (...) {
         contain(entry, FaultKind::stopping_threw, "an exception not derived from std::exception");
       }
-      if (clock_ns != nullptr) *clock_ns = loop_clock::cycleClockNs();
-      return;
+      return true;
   }
+  return false;
 }
 
 }  // namespace servoloop::controller_manager

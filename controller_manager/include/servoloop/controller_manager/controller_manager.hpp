@@ -251,10 +251,15 @@ class ControllerManager {
   // Real-time helpers.
   int enterRealtimeList() noexcept;
   void executeSwitch(const Time& time) noexcept;
-  // clock_ns: nullptr on untimed cycles; otherwise the loop clock's last
-  // reading, which the controller's update time is taken from and which is
-  // moved on to the reading after its update.
-  void updateController(detail::ControllerEntry& entry, const Time& time, std::int64_t* clock_ns) noexcept;
+  // One controller's update, when it runs and is due (inline in update()'s
+  // loop). kTimed: clock_ns is the loop clock's last reading, which the
+  // update's time is taken from and which moves on to the reading after it.
+  template <bool kTimed>
+  void updateController(detail::ControllerEntry& entry, const Time& time, std::int64_t& clock_ns) noexcept;
+  // Out of line, the rare ends of an update: an exception, an error or
+  // deactivate result, a non-finite command. True when one was handled.
+  bool containUpdateThrow(detail::ControllerEntry& entry, const char* what, const Time& time) noexcept;
+  bool handleUpdateResult(detail::ControllerEntry& entry, ReturnType result, const Time& time) noexcept;
   void contain(detail::ControllerEntry& entry, FaultKind kind, const char* what) noexcept;
   // contain(), then start the controller's fallback controllers (if any) in
   // the same cycle.

@@ -25,7 +25,7 @@ namespace servoloop::plugin {
 // class changes in a way that breaks already-built plugins (scripts/check_abi.sh
 // compares the plugin-facing libraries against a recorded baseline and fails
 // when their ABI changed without a bump).
-inline constexpr std::uint32_t kPluginApiVersion = 16;
+inline constexpr std::uint32_t kPluginApiVersion = 17;
 
 // Name of the one symbol a plugin library exports.
 inline constexpr const char* kPluginEntryPointName = "servoloop_plugin_manifest";

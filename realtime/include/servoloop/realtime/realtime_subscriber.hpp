@@ -28,7 +28,7 @@ class RealtimeSubscriber {
   RealtimeSubscriber() = default;
   RealtimeSubscriber(std::weak_ptr<detail::BusCore> core, std::string topic,
                      std::shared_ptr<RealtimeBuffer<Msg>> buffer)
-      : core_(std::move(core)), topic_(std::move(topic)), buffer_(std::move(buffer)) {}
+      : buffer_(std::move(buffer)), core_(std::move(core)), topic_(std::move(topic)) {}
 
   RealtimeSubscriber(RealtimeSubscriber&& other) noexcept = default;
   RealtimeSubscriber& operator=(RealtimeSubscriber&& other) noexcept {
@@ -71,9 +71,9 @@ class RealtimeSubscriber {
   }
 
  private:
+  std::shared_ptr<RealtimeBuffer<Msg>> buffer_;  // first: what a real-time reader uses
   std::weak_ptr<detail::BusCore> core_;
   std::string topic_;
-  std::shared_ptr<RealtimeBuffer<Msg>> buffer_;
 };
 
 }  // namespace servoloop::realtime

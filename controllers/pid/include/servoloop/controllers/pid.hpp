@@ -104,9 +104,25 @@ class Pid {
   // One attempt at reading the shared gains; false when a write was in progress.
   bool tryReadGains(Gains& gains) const noexcept;
 
+  // The every-cycle part of computeCommand, its inputs checked.
+  double computeFiniteCommand(double error, double error_dot, double dt) noexcept;
+
+  // Controller-thread state, first: what every computeCommand reads and
+  // writes, on two cache lines.
   // Gains shared with other threads: written under gains_write_mutex_ with an
   // odd sequence number while the write is in progress (a sequence lock).
   std::atomic<std::uint64_t> gains_sequence_{0};
+  // The sequence active_gains_ were read at (odd: none yet, as no writer
+  // leaves an odd one behind), so the shared gains are only read after a change.
+  std::uint64_t active_sequence_ = ~std::uint64_t{0};
+  Gains active_gains_;
+  double p_error_last_ = 0.0;  // error of the previous computeCommand(e, dt)
+  double p_error_ = 0.0;
+  double i_error_ = 0.0;
+  double d_error_ = 0.0;
+  double command_ = 0.0;
+
+  // The shared gains (see gains_sequence_).
   std::atomic<double> shared_p_gain_{0.0};
   std::atomic<double> shared_i_gain_{0.0};
   std::atomic<double> shared_d_gain_{0.0};
@@ -114,17 +130,6 @@ class Pid {
   std::atomic<double> shared_i_min_{0.0};
   std::atomic<bool> shared_antiwindup_{false};
   std::mutex gains_write_mutex_;  // serialises writers; computeCommand never takes it
-
-  // Controller-thread state.
-  Gains active_gains_;
-  // The sequence active_gains_ were read at (odd: none yet, as no writer
-  // leaves an odd one behind), so the shared gains are only read after a change.
-  std::uint64_t active_sequence_ = ~std::uint64_t{0};
-  double p_error_last_ = 0.0;  // error of the previous computeCommand(e, dt)
-  double p_error_ = 0.0;
-  double i_error_ = 0.0;
-  double d_error_ = 0.0;
-  double command_ = 0.0;
 };
 
 // The controller-thread computation, inline: it runs in every controller
@@ -138,13 +143,18 @@ inline double Pid::computeCommand(double error, double dt) noexcept {
     error_dot = (error - p_error_last_) / dt;
     p_error_last_ = error;
   }
-  return computeCommand(error, error_dot, dt);
+  if (!std::isfinite(error_dot)) return 0.0;
+  return computeFiniteCommand(error, error_dot, dt);
 }
 
 inline double Pid::computeCommand(double error, double error_dot, double dt) noexcept {
   if (dt == 0.0 || !std::isfinite(dt) || !std::isfinite(error) || !std::isfinite(error_dot)) {
     return 0.0;
   }
+  return computeFiniteCommand(error, error_dot, dt);
+}
+
+inline double Pid::computeFiniteCommand(double error, double error_dot, double dt) noexcept {
   // New gains take effect here; a write in progress leaves the previous ones
   // (and they are read again next time).
   const std::uint64_t sequence = gains_sequence_.load(std::memory_order_acquire);

@@ -58,8 +58,8 @@ class ScalarCommandInput {
   }
 
  private:
+  servoloop::realtime::RealtimeSubscriber<servoloop::std_msgs::Float64> input_;  // first: hasNew() every cycle
   std::string topic_;
-  servoloop::realtime::RealtimeSubscriber<servoloop::std_msgs::Float64> input_;
   servoloop::realtime::Subscription checker_;  // logs the first bad command, off the real-time thread
   std::shared_ptr<RejectedCommands> rejected_ = std::make_shared<RejectedCommands>();
 };

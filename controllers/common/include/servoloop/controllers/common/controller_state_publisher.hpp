@@ -24,7 +24,7 @@ class ControllerStatePublisher {
   void advertise(servoloop::realtime::TopicBus* bus, const std::string& topic);
 
   // Real-time: the next update publishes (call from starting()).
-  void reset() noexcept { update_count_ = 0; }
+  void reset() noexcept { updates_before_publish_ = 0; }
 
   // Real-time: call once per update. On the updates that publish, fill(msg)
   // writes the message (every field, it is reused) and it is published.
@@ -38,9 +38,12 @@ class ControllerStatePublisher {
   // publishing out of its every-cycle code: countUpdate() once per update,
   // and when it says so, publish(fill).
   bool countUpdate() noexcept {
-    const bool publish_now = update_count_ % kPublishEveryNthUpdate == 0;
-    ++update_count_;
-    return publish_now;
+    if (updates_before_publish_ != 0) {
+      --updates_before_publish_;
+      return false;
+    }
+    updates_before_publish_ = kPublishEveryNthUpdate - 1;
+    return true;
   }
   template <class Fill>
   void publish(Fill&& fill) noexcept {
@@ -62,8 +65,9 @@ class ControllerStatePublisher {
   const std::string& topic() const noexcept { return publisher_.topic(); }
 
  private:
+  // First: the one member every update reads (countUpdate).
+  std::uint64_t updates_before_publish_ = 0;  // updates until the next one that publishes
   servoloop::realtime::RealtimePublisher<Message> publisher_;
-  std::uint64_t update_count_ = 0;
 };
 
 }  // namespace servoloop::controllers

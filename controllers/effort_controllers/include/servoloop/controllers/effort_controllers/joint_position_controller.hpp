@@ -71,18 +71,18 @@ class JointPositionController
   [[gnu::noinline]] void publishState(const Time& time, double position, double velocity, double error,
                                       double dt) noexcept;
 
+  // In the order update() reads them, so that its data sits on few cache lines.
   hardware_interface::JointHandle joint_;
   JointPositionError position_error_;
-  Pid pid_;
-  ScalarCommandInput command_input_;
-  servoloop::realtime::RealtimeBuffer<Command> direct_command_;  // from setCommand()
-  ControllerStatePublisher state_publisher_;
-
   // Controller-thread state.
   double setpoint_ = 0.0;  // clamped to the position limits
   double velocity_target_ = 0.0;
   bool has_velocity_target_ = false;
   double effort_ = 0.0;
+  Pid pid_;
+  ControllerStatePublisher state_publisher_;
+  ScalarCommandInput command_input_;
+  servoloop::realtime::RealtimeBuffer<Command> direct_command_;  // from setCommand()
 };
 
 }  // namespace servoloop::controllers::effort_controllers
