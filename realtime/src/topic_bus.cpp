@@ -56,7 +56,7 @@ void reportCallbackError(const std::string& topic, const char* what) {
   logger().error("topic '{}': a subscriber callback threw: {}", topic, what);
 }
 
-void TopicBase::publishViewLocked(const MessageView& /*msg*/, Time /*stamp*/) {
+bool TopicBase::publishViewLocked(const MessageView& /*msg*/, Time /*stamp*/) {
   throw Error("topic '" + name_ +
               "' has no type yet (only untyped subscribers know it); give the message type to publish on it");
 }
@@ -222,14 +222,15 @@ Subscription TopicBus::subscribeAny(std::string_view topic, AnyCallback callback
 
 void TopicBus::publishView(std::string_view topic, const MessageView& msg) {
   const std::string name = normalizeTopicName(topic);
+  bool queued = false;
   {
     std::lock_guard lock(core_->structure_mutex);
     detail::TopicBase& target = core_->topicForTypeLocked(name, msg.type);
     if (target.type() != msg.type) detail::throwTypeMismatch(name, target.type(), msg.type);
-    target.publishViewLocked(msg, core_->clock->now());
-    core_->work->exchange(true, std::memory_order_release);
+    queued = target.publishViewLocked(msg, core_->clock->now());
+    if (queued) core_->work->exchange(true, std::memory_order_release);
   }
-  wakeDelivery();
+  if (queued) wakeDelivery();
 }
 
 bool TopicBus::hasTopic(std::string_view topic) const {

@@ -112,7 +112,7 @@ class TopicBus {
   // real-time publisher has somebody listening; otherwise it looks again every
   // kIdleDeliveryPeriod (a bus nobody listens to, or whose topics only
   // non-real-time code publishes, costs no wake-ups), and a subscription, a
-  // publisher or a non-real-time publish wakes it at once.
+  // publisher or a non-real-time publish with a subscriber wakes it at once.
   void start(std::chrono::microseconds period = std::chrono::milliseconds(1));
   static constexpr std::chrono::milliseconds kIdleDeliveryPeriod{100};
   // Stops it after one last delivery pass. Idempotent.
@@ -196,12 +196,15 @@ Subscription TopicBus::subscribe(std::string_view topic, std::function<void(cons
 template <class Msg>
 void TopicBus::publish(std::string_view topic, const Msg& msg) {
   const std::string name = normalizeTopicName(topic);
+  bool queued = false;
   {
     std::lock_guard lock(core_->structure_mutex);
-    core_->typedTopicLocked<Msg>(name).publishLocked(msg, core_->clock->now());
-    core_->work->exchange(true, std::memory_order_release);
+    queued = core_->typedTopicLocked<Msg>(name).publishLocked(msg, core_->clock->now());
+    if (queued) core_->work->exchange(true, std::memory_order_release);
   }
-  wakeDelivery();
+  // Nothing queued (no subscriber; command inputs have it already): nothing
+  // for the delivery thread to do.
+  if (queued) wakeDelivery();
 }
 
 // The built-in message types are instantiated once, in the library, so that

@@ -73,7 +73,8 @@ class TopicBase {
   virtual std::size_t publisherCount() const { return 0; }
   virtual std::size_t subscriberCount() const { return any_subscribers.size(); }
   // msg.data points to a message of msg.type == type(); throws when untyped.
-  virtual void publishViewLocked(const MessageView& msg, Time stamp);
+  // True when a subscriber's copy was queued for the delivery thread.
+  virtual bool publishViewLocked(const MessageView& msg, Time stamp);
   virtual void removeCommandInput(const void* /*buffer*/) {}
   virtual void removeSubscriber(const void* entry) {
     eraseEntry(any_subscribers, entry);
@@ -114,15 +115,18 @@ class Topic final : public TopicBase {
 
   // Non-real-time publish, structure_mutex held: command inputs see the value
   // at once, callbacks on the next delivery pass.
-  void publishLocked(const Msg& msg, Time stamp) {
+  // Command inputs take the message at once; subscribers get it from the
+  // delivery thread. True when it was queued for them (there are some).
+  bool publishLocked(const Msg& msg, Time stamp) {
     for (const auto& input : command_inputs) input->writeFromNonRT(msg);
-    if (subscribers.empty() && any_subscribers.empty()) return;
+    if (subscribers.empty() && any_subscribers.empty()) return false;
     if (pending.size() >= kMaxPending) pending.pop_front();
     pending.push_back(Pending{msg, stamp});
+    return true;
   }
 
-  void publishViewLocked(const MessageView& msg, Time stamp) override {
-    publishLocked(*static_cast<const Msg*>(msg.data), stamp);
+  bool publishViewLocked(const MessageView& msg, Time stamp) override {
+    return publishLocked(*static_cast<const Msg*>(msg.data), stamp);
   }
 
   void removeCommandInput(const void* buffer) override {
