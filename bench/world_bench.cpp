@@ -1,33 +1,34 @@
 // The shared world's loop against the raw engine stepping the same world:
 // 1, 4 and 16 seed arms (each under its position controller, commanded to
-// 1 rad) beside 16 free boxes resting on the ground, 5 s of 1 ms steps, on
-// bullet and (with the argument `mujoco`) on mujoco.
+// 1 rad) beside 16 free boxes resting on the ground, 1 ms steps, on bullet
+// and (with the argument `mujoco`) on mujoco.
 //
-//   raw bullet:  one BulletScene with every arm and box; per step, each arm's
-//                position law written out by hand (HandWrittenPositionLaw,
-//                the servoloop controller's law and limits) and one scene step
+//   raw bullet:  RawBulletWorld (world_fixture.hpp): one BulletScene with
+//                every arm and box, each arm's position law written out
 //   raw mujoco:  one MujocoWorld with every arm and box (servoloop's MuJoCo
 //                engine used directly, as servoloop_bench_loop_vs_mujoco's
 //                raw side: no SimRobotHW, transmissions, limits or
 //                controllers); per step the same law's efforts, then one
 //                mj_step of the world
-//   servoloop:   a node (node::Node, as `servoloop launch` builds and runs it)
-//                of the same robots, free-running: every robot's cycle
-//                (read, controllers, write) and the world's step, its topics
-//                delivered, in one world (world.shared: true)
+//   shared:      a node (node::Node as `servoloop launch` builds it) of the
+//                same robots in one world (world.shared: true), started
+//                paused and stepped by stepWorld() as the Python package's
+//                World.step() steps it: every robot's cycle (read,
+//                controllers, write) and the world's step, its topics
+//                delivered
 //   separate:    the same node with world.shared: false (each robot in a
 //                physics world of its own; nothing touches)
 //
-// Each repetition runs the three back to back (in turns of order: raw,
-// shared, separate, then the reverse), and each figure is the median over 9
-// repetitions of that repetition's own ratio, with the lowest and highest:
-// a ratio of two runs seconds apart, so that the machine's speed, which moves
-// on a shared VM, cancels. Two ratios: of wall time, and of CPU time (user +
-// system of every thread of the process: the work done, which a busy
-// neighbour stretches far less). The node's construction — URDFs, plugins —
-// is not counted, as the raw world's building is not. The node runs its loop
-// on one thread and delivers its topics on others (their CPU counted); the
-// raw loop is one thread.
+// The three are built side by side and stepped in turns, kChunkSteps steps
+// each (raw, shared, separate, then the reverse order), for kRoundSteps steps;
+// each is timed per turn. Turns a fraction of a second apart see the same
+// speed of the machine, which moves on a shared VM, and the three worlds are
+// in the same state at each turn (the same steps from the same start), so a
+// round's ratio of summed times compares equal work. Each figure is the
+// median of kRounds rounds (new worlds each) with the lowest and highest
+// round. Two ratios: of wall time, and of CPU time (user + system of every
+// thread of the process: the node steps its world on a thread of its own and
+// delivers topics on others). Building the worlds is not counted.
 #include <unistd.h>
 
 #include <algorithm>
@@ -55,15 +56,53 @@ namespace servoloop::bench {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr std::uint64_t kSteps = 5000;
-constexpr int kRepetitions = 9;
+constexpr std::uint64_t kSteps = 5000;  // the whole-process mode's run (--raw)
+constexpr std::uint64_t kRoundSteps = 5000;
+constexpr std::uint64_t kChunkSteps = 250;
+constexpr int kRounds = 3;
 
-// Wall and CPU seconds of kSteps of the node (built beforehand).
-RunTimes runNode(const WorldFiles& files, const std::string& backend, int arms, bool shared) {
-  return timesOfNodeRun(worldLaunchText(backend, arms, shared), files.dir, static_cast<double>(kSteps) * kTimeStepS);
+// A world stepped by hand: the raw engine's or a node's.
+class SteppedWorld {
+ public:
+  virtual ~SteppedWorld() = default;
+  virtual void step(std::uint64_t steps) = 0;
+};
+
+class RawBullet final : public SteppedWorld {
+ public:
+  RawBullet(const WorldFiles& files, int arms) : world_(files, arms) {}
+  void step(std::uint64_t steps) override { world_.step(steps); }
+
+ private:
+  RawBulletWorld world_;
+};
+
+// A node of the world's launch file, paused, stepped by stepWorld().
+class SteppedNode final : public SteppedWorld {
+ public:
+  SteppedNode(const WorldFiles& files, const std::string& backend, int arms, bool shared) {
+    node::NodeOptions options;
+    options.serve_ipc = false;
+    options.real_time_factor = 0.0;
+    options.start_paused = true;
+    node_ = std::make_unique<node::Node>(node::parseLaunchFile(worldLaunchText(backend, arms, shared), "bench", files.dir),
+                                         options);
+    node_->start();
+  }
+  ~SteppedNode() override { node_->shutdown(); }
+  void step(std::uint64_t steps) override {
+    if (node_->stepWorld(steps) != steps) std::fprintf(stderr, "the node ran fewer steps than asked\n");
+  }
+
+ private:
+  std::unique_ptr<node::Node> node_;
+};
+
+RunTimes timeSteps(SteppedWorld& world, std::uint64_t steps) {
+  const RunTimer timer;
+  world.step(steps);
+  return timer.elapsed();
 }
-
-RunTimes runRaw(const WorldFiles& files, int arms) { return runRawBulletWorld(files, arms, kSteps); }
 
 // "median [lowest–highest]" of per-repetition ratios.
 std::string ratioText(std::vector<double> ratios) {
@@ -74,56 +113,58 @@ std::string ratioText(std::vector<double> ratios) {
 }
 
 #ifdef SERVOLOOP_BENCH_MUJOCO
-// Wall and CPU seconds of kSteps of the same world in one MujocoWorld.
-RunTimes runRawMujoco(const WorldFiles& files, int arms) {
-  const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
-  const auto box_model = parseRobotModel(kBoxUrdf, "box");
-  sim_mujoco::MujocoWorld world;
-  world.init({kTimeStepS, {0.0, 0.0, -9.81}, true});
-  std::vector<std::unique_ptr<sim_mujoco::MujocoPhysics>> bodies;
+// The same world in one MujocoWorld, stepped by hand.
+class RawMujoco final : public SteppedWorld {
+ public:
+  RawMujoco(const WorldFiles& files, int arms) {
+    const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
+    const auto box_model = parseRobotModel(kBoxUrdf, "box");
+    world_.init({kTimeStepS, {0.0, 0.0, -9.81}, true});
+    const RobotCase seed = seedRobot();
+    const YAML::Node params = seed.namespaceParams();
+    for (int k = 0; k < arms + kWorldBoxes; ++k) {
+      const bool arm = k < arms;
+      sim_common::SimSettings settings;
+      settings.time_step_s = kTimeStepS;
+      settings.ground_plane = true;
+      settings.base = arm ? sim_common::BaseMode::fixed : sim_common::BaseMode::floating;
+      settings.base_position = arm ? Eigen::Vector3d(armX(k), 0.0, 0.0)
+                                   : Eigen::Vector3d(boxX(k - arms), boxY(k - arms), 0.1);
+      std::vector<sim_common::EngineJointConfig> joints;
+      if (arm) joints.push_back(sim_common::EngineJointConfig{"joint1"});
+      bodies_.push_back(std::make_unique<sim_mujoco::MujocoPhysics>());
+      bodies_.back()->joinWorld(world_);
+      bodies_.back()->init(arm ? *arm_model : *box_model, settings, joints, arm ? "arm" : "box");
+      if (arm) {
+        HandWrittenPositionLaw law = HandWrittenPositionLaw::forJoint(seed, params, 0, *arm_model);
+        law.setpoint_rad = 1.0;
+        arms_.push_back({bodies_.back().get(), law});
+      }
+    }
+    world_.restart();
+  }
+  ~RawMujoco() override {
+    for (auto& body : bodies_) world_.remove(*body);
+  }
+  void step(std::uint64_t steps) override {
+    for (std::uint64_t n = 0; n < steps; ++n) {
+      for (Arm& arm : arms_) {
+        arm.physics->setJointEffort(0, arm.law.effort(arm.physics->jointPosition(0), arm.physics->jointVelocity(0)));
+        arm.physics->step();
+      }
+      world_.step();
+    }
+  }
+
+ private:
   struct Arm {
     sim_mujoco::MujocoPhysics* physics;
     HandWrittenPositionLaw law;
   };
-  std::vector<Arm> laws;
-  const RobotCase seed = seedRobot();
-  const YAML::Node params = seed.namespaceParams();
-  for (int k = 0; k < arms + kWorldBoxes; ++k) {
-    const bool arm = k < arms;
-    sim_common::SimSettings settings;
-    settings.time_step_s = kTimeStepS;
-    settings.ground_plane = true;
-    settings.base = arm ? sim_common::BaseMode::fixed : sim_common::BaseMode::floating;
-    settings.base_position = arm ? Eigen::Vector3d(armX(k), 0.0, 0.0)
-                                 : Eigen::Vector3d(boxX(k - arms), boxY(k - arms), 0.1);
-    std::vector<sim_common::EngineJointConfig> joints;
-    if (arm) joints.push_back(sim_common::EngineJointConfig{"joint1"});
-    bodies.push_back(std::make_unique<sim_mujoco::MujocoPhysics>());
-    bodies.back()->joinWorld(world);
-    bodies.back()->init(arm ? *arm_model : *box_model, settings, joints, arm ? "arm" : "box");
-    if (arm) {
-      HandWrittenPositionLaw law = HandWrittenPositionLaw::forJoint(seed, params, 0, *arm_model);
-      law.setpoint_rad = 1.0;
-      laws.push_back({bodies.back().get(), law});
-    }
-  }
-  world.restart();
-  const RunTimer timer;
-  for (std::uint64_t n = 0; n < kSteps; ++n) {
-    for (Arm& arm : laws) {
-      arm.physics->setJointEffort(0, arm.law.effort(arm.physics->jointPosition(0), arm.physics->jointVelocity(0)));
-      arm.physics->step();
-    }
-    world.step();
-  }
-  const RunTimes times = timer.elapsed();
-  if (!(laws.front().physics->jointPosition(0) > 0.5)) {
-    std::fprintf(stderr, "raw mujoco: the first arm did not swing towards its setpoint\n");
-  }
-  for (auto& body : bodies) world.remove(*body);
-  bodies.clear();
-  return times;
-}
+  sim_mujoco::MujocoWorld world_;
+  std::vector<std::unique_ptr<sim_mujoco::MujocoPhysics>> bodies_;
+  std::vector<Arm> arms_;
+};
 #endif
 
 }  // namespace
@@ -148,9 +189,12 @@ int wholeProcessMode(int argc, char** argv) {
     const std::string engine = argv[3];
     const WorldFiles files(arms);
 #ifdef SERVOLOOP_BENCH_MUJOCO
-    if (engine == "mujoco") return runRawMujoco(files, arms).wall_s > 0.0 ? 0 : 1;
+    if (engine == "mujoco") {
+      RawMujoco(files, arms).step(kSteps);
+      return 0;
+    }
 #endif
-    if (engine == "bullet") return runRaw(files, arms).wall_s > 0.0 ? 0 : 1;
+    if (engine == "bullet") return runRawBulletWorld(files, arms, kSteps).wall_s > 0.0 ? 0 : 1;
   }
   std::fprintf(stderr, "usage: servoloop_bench_world [mujoco] | --write DIR ARMS ENGINE | --raw ARMS ENGINE\n");
   return 2;
@@ -168,40 +212,40 @@ int main(int argc, char** argv) {
   (void)argc;
   (void)argv;
 #endif
-  std::printf("=== The shared world: %llu steps of 1 ms, 16 boxes beside N seed arms; medians of %d paired "
-              "repetitions, [lowest-highest] ===\n",
-              static_cast<unsigned long long>(kSteps), kRepetitions);
-  std::printf("%-7s %-5s %9s %11s %26s %26s %18s\n", "engine", "arms", "raw (ms)", "shared (ms)",
-              "shared/raw, wall", "shared/raw, CPU", "separate/shared");
+  std::printf("=== The shared world: 16 boxes beside N seed arms, 1 ms steps; %d rounds of %llu steps in turns of "
+              "%llu; median of the rounds [lowest-highest] ===\n",
+              kRounds, static_cast<unsigned long long>(kRoundSteps), static_cast<unsigned long long>(kChunkSteps));
+  std::printf("%-7s %-5s %9s %11s %26s %26s %26s\n", "engine", "arms", "raw (ms)", "shared (ms)", "shared/raw, wall",
+              "shared/raw, CPU", "separate/shared, wall");
   for (const std::string& backend : backends) {
     for (const int arms : {1, 4, 16}) {
       const WorldFiles files(arms);
       std::vector<double> raw_ms, shared_ms, wall_ratio, cpu_ratio, separate_ratio;
-      for (int r = 0; r < kRepetitions; ++r) {
-        const auto raw_run = [&] {
+      for (int round = 0; round < kRounds; ++round) {
+        std::unique_ptr<SteppedWorld> raw;
 #ifdef SERVOLOOP_BENCH_MUJOCO
-          return backend == "mujoco" ? runRawMujoco(files, arms) : runRaw(files, arms);
-#else
-          return runRaw(files, arms);
+        if (backend == "mujoco") raw = std::make_unique<RawMujoco>(files, arms);
 #endif
-        };
-        RunTimes raw, shared, separate;
-        if (r % 2 == 0) {
-          raw = raw_run();
-          shared = runNode(files, backend, arms, true);
-          separate = runNode(files, backend, arms, false);
-        } else {
-          separate = runNode(files, backend, arms, false);
-          shared = runNode(files, backend, arms, true);
-          raw = raw_run();
+        if (!raw) raw = std::make_unique<RawBullet>(files, arms);
+        SteppedNode shared(files, backend, arms, true);
+        SteppedNode separate(files, backend, arms, false);
+        SteppedWorld* const worlds[3] = {raw.get(), &shared, &separate};
+        RunTimes sums[3];
+        for (std::uint64_t turn = 0; turn * kChunkSteps < kRoundSteps; ++turn) {
+          for (int i = 0; i < 3; ++i) {
+            const int which = turn % 2 == 0 ? i : 2 - i;
+            const RunTimes times = timeSteps(*worlds[which], kChunkSteps);
+            sums[which].wall_s += times.wall_s;
+            sums[which].cpu_s += times.cpu_s;
+          }
         }
-        raw_ms.push_back(raw.wall_s * 1e3);
-        shared_ms.push_back(shared.wall_s * 1e3);
-        wall_ratio.push_back(shared.wall_s / raw.wall_s);
-        cpu_ratio.push_back(shared.cpu_s / raw.cpu_s);
-        separate_ratio.push_back(separate.wall_s / shared.wall_s);
+        raw_ms.push_back(sums[0].wall_s * 1e3);
+        shared_ms.push_back(sums[1].wall_s * 1e3);
+        wall_ratio.push_back(sums[1].wall_s / sums[0].wall_s);
+        cpu_ratio.push_back(sums[1].cpu_s / sums[0].cpu_s);
+        separate_ratio.push_back(sums[2].wall_s / sums[1].wall_s);
       }
-      std::printf("%-7s %-5d %9.1f %11.1f %26s %26s %18s\n", backend.c_str(), arms, median(raw_ms), median(shared_ms),
+      std::printf("%-7s %-5d %9.1f %11.1f %26s %26s %26s\n", backend.c_str(), arms, median(raw_ms), median(shared_ms),
                   ratioText(wall_ratio).c_str(), ratioText(cpu_ratio).c_str(), ratioText(separate_ratio).c_str());
       std::fflush(stdout);
     }

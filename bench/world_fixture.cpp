@@ -71,20 +71,24 @@ std::string worldLaunchText(const std::string& backend, int arms, bool shared) {
   return yaml;
 }
 
-RunTimes runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps) {
-  const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
-  const auto box_model = parseRobotModel(kBoxUrdf, "box");
-  sim_bullet::SceneSettings scene_settings;
-  scene_settings.time_step_s = kTimeStepS;
-  scene_settings.ground_plane = true;
-  sim_bullet::BulletScene scene(scene_settings);
-  std::vector<std::unique_ptr<sim_bullet::BulletWorld>> bodies;
+struct RawBulletWorld::State {
   struct Arm {
     sim_bullet::BulletWorld* world;
     std::size_t joint;
     HandWrittenPositionLaw law;
   };
-  std::vector<Arm> laws;
+  std::unique_ptr<sim_bullet::BulletScene> scene;
+  std::vector<std::unique_ptr<sim_bullet::BulletWorld>> bodies;
+  std::vector<Arm> arms;
+};
+
+RawBulletWorld::RawBulletWorld(const WorldFiles& files, int arms) : state_(std::make_unique<State>()) {
+  const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
+  const auto box_model = parseRobotModel(kBoxUrdf, "box");
+  sim_bullet::SceneSettings scene_settings;
+  scene_settings.time_step_s = kTimeStepS;
+  scene_settings.ground_plane = true;
+  state_->scene = std::make_unique<sim_bullet::BulletScene>(scene_settings);
   const RobotCase seed = seedRobot();
   const YAML::Node params = seed.namespaceParams();
   for (int k = 0; k < arms; ++k) {
@@ -93,10 +97,10 @@ RunTimes runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t step
     settings.ground_plane = true;
     settings.fixed_base = sim_bullet::FixedBase::fixed;
     settings.initial_base_position = Eigen::Vector3d(armX(k), 0.0, 0.0);
-    bodies.push_back(std::make_unique<sim_bullet::BulletWorld>(*arm_model, settings, scene));
+    auto& body = state_->bodies.emplace_back(std::make_unique<sim_bullet::BulletWorld>(*arm_model, settings, *state_->scene));
     HandWrittenPositionLaw law = HandWrittenPositionLaw::forJoint(seed, params, 0, *arm_model);
     law.setpoint_rad = 1.0;
-    laws.push_back({bodies.back().get(), bodies.back()->jointIndex("joint1"), law});
+    state_->arms.push_back({body.get(), body->jointIndex("joint1"), law});
   }
   for (int k = 0; k < kWorldBoxes; ++k) {
     sim_bullet::WorldSettings settings;
@@ -104,23 +108,39 @@ RunTimes runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t step
     settings.ground_plane = true;
     settings.fixed_base = sim_bullet::FixedBase::floating;
     settings.initial_base_position = Eigen::Vector3d(boxX(k), boxY(k), 0.1);
-    bodies.push_back(std::make_unique<sim_bullet::BulletWorld>(*box_model, settings, scene));
+    state_->bodies.push_back(std::make_unique<sim_bullet::BulletWorld>(*box_model, settings, *state_->scene));
   }
-  scene.restart();
-  const RunTimer timer;
+  state_->scene->restart();
+}
+
+RawBulletWorld::~RawBulletWorld() {
+  state_->bodies.clear();  // before the scene
+}
+
+void RawBulletWorld::step(std::uint64_t steps) {
   for (std::uint64_t n = 0; n < steps; ++n) {
-    for (Arm& arm : laws) {
+    for (State::Arm& arm : state_->arms) {
       arm.world->setJointEffort(
           arm.joint, arm.law.effort(arm.world->jointPosition(arm.joint), arm.world->jointVelocity(arm.joint)));
     }
-    scene.step();
+    state_->scene->step();
   }
+}
+
+double RawBulletWorld::firstArmPosition() const {
+  const State::Arm& arm = state_->arms.front();
+  return arm.world->jointPosition(arm.joint);
+}
+
+RunTimes runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps) {
+  RawBulletWorld world(files, arms);
+  const RunTimer timer;
+  world.step(steps);
   const RunTimes times = timer.elapsed();
   // The seed's gains take about 20 s to settle; in 5 s the arm is well on its way.
-  if (!(laws.front().world->jointPosition(laws.front().joint) > 0.5)) {
+  if (!(world.firstArmPosition() > 0.5)) {
     std::fprintf(stderr, "raw bullet: the first arm did not swing towards its setpoint\n");
   }
-  bodies.clear();  // before the scene
   return times;
 }
 

@@ -6,6 +6,7 @@
 // position law written out: HandWrittenPositionLaw).
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "bench_support.hpp"
@@ -37,8 +38,27 @@ struct WorldFiles {
 // The launch file of that world (arms, boxes, the arms' commands at t = 0).
 std::string worldLaunchText(const std::string& backend, int arms, bool shared);
 
-// Wall and CPU seconds of `steps` of the same world stepped by hand on raw
-// Bullet (the world's building is not counted).
+// The same world stepped by hand on raw Bullet: one BulletScene with every
+// arm and box; per step, each arm's position law written out
+// (HandWrittenPositionLaw: the servoloop controller's law and limits), then
+// one scene step.
+class RawBulletWorld {
+ public:
+  RawBulletWorld(const WorldFiles& files, int arms);
+  ~RawBulletWorld();
+  RawBulletWorld(const RawBulletWorld&) = delete;
+  RawBulletWorld& operator=(const RawBulletWorld&) = delete;
+
+  void step(std::uint64_t steps);
+  double firstArmPosition() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// Wall and CPU seconds of `steps` of a new RawBulletWorld (its building is
+// not counted).
 RunTimes runRawBulletWorld(const WorldFiles& files, int arms, std::uint64_t steps);
 
 }  // namespace servoloop::bench
