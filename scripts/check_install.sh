@@ -162,6 +162,26 @@ list_types installed_example -u SERVOLOOP_PLUGIN_PATH
 check_types installed_example "$installed_plugin_dir/libmy_controllers.so" ||
   { cat "$work/installed_example.err" >&2; fail "see above"; }
 
+# --- 6a. an SDF world, read by the installed SDF reader module ----------------------------
+step "the installed servoloop launches an SDF world (its SDF reader module loaded from the prefix)"
+cat >"$work/box.world" <<'SDF'
+<?xml version="1.0"?>
+<sdf version="1.6"><world name="w">
+  <include><uri>model://ground_plane</uri></include>
+  <model name="box"><pose>0 0 0.5 0 0 0</pose><link name="link">
+    <inertial><mass>1</mass><inertia><ixx>0.1</ixx><iyy>0.1</iyy><izz>0.1</izz></inertia></inertial>
+    <collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision>
+  </link></model>
+</world></sdf>
+SDF
+if ! env -u SERVOLOOP_PLUGIN_PATH "$prefix/bin/servoloop" launch "$work/box.world" --duration 0.1 \
+    >"$work/world.log" 2>&1; then
+  show_log "$work/world.log"
+  fail "the installed servoloop could not launch an SDF world"
+fi
+grep -q "libservoloop_sdf_reader" <(LD_DEBUG=files env -u SERVOLOOP_PLUGIN_PATH "$prefix/bin/servoloop" \
+    launch "$work/box.world" --duration 0.01 2>&1) || fail "the SDF world was not read by the installed SDF reader"
+
 # --- 6. the Python package ----------------------------------------------------------------
 python_module=$(find "$prefix" -name '_servoloop*.so' -print -quit)
 if [[ -n "$python_module" ]]; then

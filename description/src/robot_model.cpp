@@ -9,9 +9,10 @@
 #include <map>
 #include <mutex>
 #include <optional>
-#include <regex>
 #include <set>
 #include <sstream>
+#include <string>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -407,9 +408,15 @@ urdf::ModelInterfaceSharedPtr parseUrdfWithUrdfdom(const std::string& xml, const
     // An <inertial> urdfdom cannot read (a mass written "  1.0  ") leaves
     // its link with a zero mass; refused here, naming the value, rather than
     // as a zero mass the user never wrote.
-    static const std::regex unreadable_inertial(R"(Could not parse inertial element for Link \[([^\]]*)\])");
-    if (std::smatch match; std::regex_search(handler.errors, match, unreadable_inertial)) {
-      fail(source_name, "link '" + match[1].str() + "': urdfdom could not read its <inertial> (" + handler.errors +
+    // (A string search, not std::regex: compiling one costs milliseconds of
+    // every start-up.)
+    constexpr std::string_view kUnreadableInertial = "Could not parse inertial element for Link [";
+    const std::size_t found = handler.errors.find(kUnreadableInertial);
+    const std::size_t name_start = found + kUnreadableInertial.size();
+    const std::size_t name_end = found == std::string::npos ? found : handler.errors.find(']', name_start);
+    if (name_end != std::string::npos) {
+      fail(source_name, "link '" + handler.errors.substr(name_start, name_end - name_start) +
+                            "': urdfdom could not read its <inertial> (" + handler.errors +
                             "); write each value as a plain number, e.g. <mass value=\"1.0\"/>, without spaces, "
                             "units or expressions");
     }
