@@ -162,7 +162,22 @@ void summary(const MedianTable& table, std::ostream& out) {
 }  // namespace
 }  // namespace servoloop::bench
 
+// The raw side of the node's whole-process comparison (scripts/bench_node.sh,
+// part 3): `--raw-process STEPS` loads the seed robot, builds its Bullet world
+// with its collision shapes and steps it STEPS times under the position law
+// written out (RawBulletPd), then exits. It prints the joint's last position.
+int rawProcess(const char* steps_text) {
+  using namespace servoloop::bench;
+  const auto steps = static_cast<std::uint64_t>(std::stoull(steps_text));
+  RawBulletPd raw(seedRobot());
+  raw.stepWithoutControl();
+  for (std::uint64_t n = 1; n < steps; ++n) raw.step();
+  std::printf("%.6f\n", raw.jointPosition(0));
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "--raw-process") return rawProcess(argv[2]);
   servoloop::bench::registerAll();
   return servoloop::bench::runWithSummary(
       argc, argv, {"--benchmark_repetitions=21", "--benchmark_enable_random_interleaving=true"},

@@ -15,6 +15,12 @@
 #      start and end (starting the loop thread, handing over to it and back;
 #      no per-step cost) is measured apart, with runs of one step.
 #
+#   3. whole processes: the same `servoloop launch` against a raw program
+#      (servoloop_bench_loop_vs_bullet --raw-process STEPS: loads the seed,
+#      builds its Bullet world with its collision shapes, steps it under the
+#      position law written out, exits), start to exit, in 2·ROUNDS+1 pairs of
+#      alternating order; wall and CPU ratios, median of the pairs.
+#
 #   scripts/bench_node.sh [--quick]
 #
 # Environment: BUILD_DIR (default <repo>/build), ROUNDS (default 5),
@@ -22,7 +28,7 @@
 # SIM_SECONDS (default 300: simulated seconds of each bullet run, about half a
 # second of wall time, so the fixed start and end weigh little), PRIORITY
 # (SCHED_FIFO priority for both in part 1; default 0: the normal scheduler),
-# PARTS (default "1 2": which parts to run).
+# PARTS (default "1 2 3": which parts to run).
 # Needs python3; part 1 needs cyclictest (apt install rt-tests) and is
 # skipped without it.
 set -euo pipefail
@@ -34,7 +40,7 @@ ROUNDS="${ROUNDS:-5}"
 SECONDS_PER_RUN="${SECONDS_PER_RUN:-10}"
 SIM_SECONDS="${SIM_SECONDS:-300}"
 PRIORITY="${PRIORITY:-0}"
-PARTS="${PARTS:-1 2}"
+PARTS="${PARTS:-1 2 3}"
 if [[ "${1:-}" == "--quick" ]]; then ROUNDS=2; SECONDS_PER_RUN=2; SIM_SECONDS=5; fi
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
@@ -120,7 +126,7 @@ else
 fi
 
 # --- 2. the node against raw Bullet -------------------------------------------------
-[[ " $PARTS " == *" 2 "* ]] || exit 0
+if [[ " $PARTS " == *" 2 "* ]]; then
 echo
 echo "== 2. seed on bullet, free-running: servoloop launch --duration $SIM_SECONDS vs raw Bullet stepping"
 for round in $(seq "$ROUNDS"); do
@@ -158,3 +164,39 @@ loop_ratios = [l / raw for raw, _, l in rows]
 print(f"  node / raw bullet: median {statistics.median(ratios):.3f} (rounds: {', '.join(f'{x:.3f}' for x in ratios)}); "
       f"loop thread / raw bullet: median {statistics.median(loop_ratios):.3f}; target <= 1.10")
 PY
+fi
+
+# --- 3. whole processes: the node against the raw program ------------------------------
+if [[ " $PARTS " == *" 3 "* ]]; then
+  echo
+  echo "== 3. seed on bullet, whole processes: servoloop launch --duration $SIM_SECONDS vs the raw program, in pairs"
+  python3 - "$BIN" "$ROOT" "$SIM_SECONDS" "$((2 * ROUNDS + 1))" <<'PY'
+import os, statistics, subprocess, sys, time
+bin_dir, root, sim_seconds, pairs = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+steps = str(round(float(sim_seconds) / 0.001))
+node = [f"{bin_dir}/servoloop", "launch", "robots/one_dof/one_dof_w_jnt_ctl.launch.yaml", "--duration", sim_seconds,
+        "--rtf", "0", "--pub", "/one_DOF_robot/joint1_position_controller/command:=1.0"]
+raw = [f"{bin_dir}/servoloop_bench_loop_vs_bullet", "--raw-process", steps]
+
+def timed(command):
+    """Wall and CPU (user + system) seconds of one process, start to exit."""
+    before, start = os.times(), time.perf_counter()
+    subprocess.run(command, cwd=root, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    wall, after = time.perf_counter() - start, os.times()
+    return wall, (after.children_user - before.children_user) + (after.children_system - before.children_system)
+
+timed(raw), timed(node)  # both programs' files in the page cache
+wall_ratios, cpu_ratios, raw_walls, node_walls = [], [], [], []
+for pair in range(pairs):
+    if pair % 2 == 0:
+        raw_times, node_times = timed(raw), timed(node)
+    else:
+        node_times, raw_times = timed(node), timed(raw)
+    raw_walls.append(raw_times[0]); node_walls.append(node_times[0])
+    wall_ratios.append(node_times[0] / raw_times[0]); cpu_ratios.append(node_times[1] / raw_times[1])
+print(f"  raw program {statistics.median(raw_walls) * 1e3:.0f} ms, node {statistics.median(node_walls) * 1e3:.0f} ms "
+      f"(medians of {pairs}; {steps} steps)")
+print(f"  node / raw, wall: median {statistics.median(wall_ratios):.3f} (pairs {min(wall_ratios):.3f}-{max(wall_ratios):.3f}); "
+      f"CPU: median {statistics.median(cpu_ratios):.3f}; target <= 1.05")
+PY
+fi
