@@ -27,6 +27,7 @@
 #include <sdf/sdf.hh>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/xml_escape.hpp"
 
 namespace servoloop {
 namespace fs = std::filesystem;
@@ -100,20 +101,6 @@ std::string origin(const Eigen::Isometry3d& pose) {
   const Eigen::Vector3d p = pose.translation();
   const auto rpy = rollPitchYaw(pose.linear());
   return fmt::format(R"(<origin xyz="{} {} {}" rpy="{} {} {}"/>)", p.x(), p.y(), p.z(), rpy[0], rpy[1], rpy[2]);
-}
-
-std::string xmlEscape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 // A pose resolved in the model's frame; the error names what it belongs to.

@@ -14,6 +14,7 @@
 
 #include "servoloop/core/errors.hpp"
 #include "servoloop/core/logging.hpp"
+#include "servoloop/core/xml_escape.hpp"
 #include "servoloop/sim_common/collision_mesh.hpp"
 #include "servoloop/sim_common/contact_friction.hpp"
 #include "servoloop/sim_common/wheel_contact.hpp"
@@ -49,21 +50,6 @@ std::string number(double value) {
 }
 
 std::string vec3(double x, double y, double z) { return number(x) + " " + number(y) + " " + number(z); }
-
-std::string xmlEscape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // pos="x y z" quat="w x y z" of a URDF pose.
 std::string poseAttributes(const urdf::Pose& pose) {
