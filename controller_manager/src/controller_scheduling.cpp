@@ -234,36 +234,28 @@ inline void ControllerManager::updateController(detail::ControllerEntry& entry, 
   const Duration period = time - entry.last_update_time;
   entry.last_update_time = time;
   ReturnType result = ReturnType::ok;
-  bool handled = false;
   try {
     result = controller.updateRequest(time, period);
   } catch (const std::exception& e) {
-    handled = containUpdateThrow(entry, e.what(), time);
+    containInUpdate(entry, FaultKind::update_threw, e.what(), time);
+    if constexpr (kTimed) clock_ns = loop_clock::cycleClockNs();
+    return;
   } catch (...) {
-    handled = containUpdateThrow(entry, "an exception not derived from std::exception", time);
+    containInUpdate(entry, FaultKind::update_threw, "an exception not derived from std::exception", time);
+    if constexpr (kTimed) clock_ns = loop_clock::cycleClockNs();
+    return;
   }
   if constexpr (kTimed) {
-    if (!handled) {
-      const std::int64_t now_ns = loop_clock::cycleClockNs();
-      entry.update_time.record(now_ns - clock_ns);
-      clock_ns = now_ns;
-    }
+    const std::int64_t now_ns = loop_clock::cycleClockNs();
+    entry.update_time.record(now_ns - clock_ns);
+    clock_ns = now_ns;
   }
-  if (!handled) {
-    if (result == ReturnType::ok && controller.firstNonFiniteCommand() == ControllerBase::kAllCommandsFinite) [[likely]] {
-      return;
-    }
-    handled = handleUpdateResult(entry, result, time);
+  if (result == ReturnType::ok && controller.firstNonFiniteCommand() == ControllerBase::kAllCommandsFinite) [[likely]] {
+    return;
   }
-  if constexpr (kTimed) {
-    if (handled) clock_ns = loop_clock::cycleClockNs();
+  if (handleUpdateResult(entry, result, time)) {
+    if constexpr (kTimed) clock_ns = loop_clock::cycleClockNs();
   }
-}
-
-bool ControllerManager::containUpdateThrow(detail::ControllerEntry& entry, const char* what,
-                                           const Time& time) noexcept {
-  containInUpdate(entry, FaultKind::update_threw, what, time);
-  return true;
 }
 
 bool ControllerManager::handleUpdateResult(detail::ControllerEntry& entry, ReturnType result,

@@ -411,14 +411,15 @@ urdf::ModelInterfaceSharedPtr parseUrdfWithUrdfdom(const std::string& xml, const
     // (A string search, not std::regex: compiling one costs milliseconds of
     // every start-up.)
     constexpr std::string_view kUnreadableInertial = "Could not parse inertial element for Link [";
-    const std::size_t found = handler.errors.find(kUnreadableInertial);
-    const std::size_t name_start = found + kUnreadableInertial.size();
-    const std::size_t name_end = found == std::string::npos ? found : handler.errors.find(']', name_start);
-    if (name_end != std::string::npos) {
-      fail(source_name, "link '" + handler.errors.substr(name_start, name_end - name_start) +
-                            "': urdfdom could not read its <inertial> (" + handler.errors +
-                            "); write each value as a plain number, e.g. <mass value=\"1.0\"/>, without spaces, "
-                            "units or expressions");
+    if (const std::size_t found = handler.errors.find(kUnreadableInertial); found != std::string::npos) {
+      const std::size_t name_start = found + kUnreadableInertial.size();
+      const std::size_t name_end = handler.errors.find(']', name_start);
+      if (name_end != std::string::npos) {
+        fail(source_name, "link '" + handler.errors.substr(name_start, name_end - name_start) +
+                              "': urdfdom could not read its <inertial> (" + handler.errors +
+                              "); write each value as a plain number, e.g. <mass value=\"1.0\"/>, without spaces, "
+                              "units or expressions");
+      }
     }
     for (const auto& w : handler.warnings) logger().warn("{}: urdfdom: {}", source_name, w);
     // Errors urdfdom recovers from (a <collision> it cannot read): ROS goes

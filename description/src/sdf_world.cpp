@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "servoloop/core/errors.hpp"
+#include "servoloop/core/executable_path.hpp"
 
 namespace servoloop {
 namespace fs = std::filesystem;
@@ -19,20 +20,16 @@ namespace {
 
 using ReadSdfWorldFunction = void (*)(const fs::path&, SdfWorld&);
 
-// Address inside this library, for dladdr.
+// Address inside this library, for loadedObjectDirectory.
 void sdfWorldAnchor() {}
 
 // The module beside this library: <libdir>/servoloop/libservoloop_sdf_reader.so,
 // in the build tree as in an install.
 fs::path sdfReaderModulePath() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&sdfWorldAnchor), &info) == 0 || info.dli_fname == nullptr) {
-    throw Error("cannot find where libservoloop_description is loaded from, to find its SDF reader");
-  }
   std::error_code error;
-  fs::path library = fs::weakly_canonical(fs::path(info.dli_fname), error);
-  if (error) library = fs::path(info.dli_fname);
-  return library.parent_path() / "servoloop" / "libservoloop_sdf_reader.so";
+  const fs::path library_dir = loadedObjectDirectory(reinterpret_cast<const void*>(&sdfWorldAnchor), error);
+  if (error) throw Error("cannot find where libservoloop_description is loaded from, to find its SDF reader");
+  return library_dir / "servoloop" / "libservoloop_sdf_reader.so";
 }
 
 ReadSdfWorldFunction loadSdfReader() {

@@ -1,7 +1,5 @@
 #include "servoloop/plugin/plugin_path.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <mutex>
@@ -35,7 +33,7 @@ void appendUnique(std::vector<fs::path>& dirs, const fs::path& dir) {
   if (std::find(dirs.begin(), dirs.end(), normal) == dirs.end()) dirs.push_back(normal);
 }
 
-// Address inside this library, for dladdr.
+// Address inside this library, for loadedObjectDirectory.
 void anchor() {}
 
 }  // namespace
@@ -67,11 +65,8 @@ std::vector<fs::path> defaultPluginDirectories() {
   }
   // A program outside the servoloop tree that links this library still finds
   // the plugins installed next to it.
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&anchor), &info) != 0 && info.dli_fname != nullptr) {
-    const fs::path library = fs::weakly_canonical(fs::path(info.dli_fname), error);
-    if (!error) appendUnique(dirs, pluginsUnder(library.parent_path()));
-  }
+  const fs::path library_dir = loadedObjectDirectory(reinterpret_cast<const void*>(&anchor), error);
+  if (!error) appendUnique(dirs, pluginsUnder(library_dir));
   return dirs;
 }
 

@@ -256,9 +256,8 @@ class ControllerManager {
   // update's time is taken from and which moves on to the reading after it.
   template <bool kTimed>
   void updateController(detail::ControllerEntry& entry, const Time& time, std::int64_t& clock_ns) noexcept;
-  // Out of line, the rare ends of an update: an exception, an error or
+  // Out of line, the rare ends of an update that returned: an error or
   // deactivate result, a non-finite command. True when one was handled.
-  bool containUpdateThrow(detail::ControllerEntry& entry, const char* what, const Time& time) noexcept;
   bool handleUpdateResult(detail::ControllerEntry& entry, ReturnType result, const Time& time) noexcept;
   void contain(detail::ControllerEntry& entry, FaultKind kind, const char* what) noexcept;
   // contain(), then start the controller's fallback controllers (if any) in

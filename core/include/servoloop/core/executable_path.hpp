@@ -11,4 +11,9 @@ namespace servoloop {
 // `error` set, when it cannot be read.
 std::filesystem::path executableDirectory(std::error_code& error);
 
+// The directory of the loaded file (shared library or executable) that holds
+// `address`, symbolic links resolved: a library finds what is installed
+// beside it. Empty, with `error` set, when it cannot be found.
+std::filesystem::path loadedObjectDirectory(const void* address, std::error_code& error);
+
 }  // namespace servoloop
