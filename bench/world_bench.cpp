@@ -68,10 +68,18 @@ class SteppedWorld {
   virtual void step(std::uint64_t steps) = 0;
 };
 
-class RawBullet final : public SteppedWorld {
+// A raw world, whose first arm shows that its law drove it (the seed's gains
+// take about 20 s to settle; in 5 s the arm is well on its way).
+class RawWorld : public SteppedWorld {
+ public:
+  virtual double firstArmPosition() const = 0;
+};
+
+class RawBullet final : public RawWorld {
  public:
   RawBullet(const WorldFiles& files, int arms) : world_(files, arms) {}
   void step(std::uint64_t steps) override { world_.step(steps); }
+  double firstArmPosition() const override { return world_.firstArmPosition(); }
 
  private:
   RawBulletWorld world_;
@@ -114,7 +122,7 @@ std::string ratioText(std::vector<double> ratios) {
 
 #ifdef SERVOLOOP_BENCH_MUJOCO
 // The same world in one MujocoWorld, stepped by hand.
-class RawMujoco final : public SteppedWorld {
+class RawMujoco final : public RawWorld {
  public:
   RawMujoco(const WorldFiles& files, int arms) {
     const auto arm_model = loadRobotModelFile((files.dir / "arm.urdf").string());
@@ -146,6 +154,7 @@ class RawMujoco final : public SteppedWorld {
   ~RawMujoco() override {
     for (auto& body : bodies_) world_.remove(*body);
   }
+  double firstArmPosition() const override { return arms_.front().physics->jointPosition(0); }
   void step(std::uint64_t steps) override {
     for (std::uint64_t n = 0; n < steps; ++n) {
       for (Arm& arm : arms_) {
@@ -222,7 +231,7 @@ int main(int argc, char** argv) {
       const WorldFiles files(arms);
       std::vector<double> raw_ms, shared_ms, wall_ratio, cpu_ratio, separate_ratio;
       for (int round = 0; round < kRounds; ++round) {
-        std::unique_ptr<SteppedWorld> raw;
+        std::unique_ptr<RawWorld> raw;
 #ifdef SERVOLOOP_BENCH_MUJOCO
         if (backend == "mujoco") raw = std::make_unique<RawMujoco>(files, arms);
 #endif
@@ -244,6 +253,9 @@ int main(int argc, char** argv) {
         wall_ratio.push_back(sums[1].wall_s / sums[0].wall_s);
         cpu_ratio.push_back(sums[1].cpu_s / sums[0].cpu_s);
         separate_ratio.push_back(sums[2].wall_s / sums[1].wall_s);
+        if (!(raw->firstArmPosition() > 0.5)) {
+          std::fprintf(stderr, "raw %s: the first arm did not swing towards its setpoint\n", backend.c_str());
+        }
       }
       std::printf("%-7s %-5d %9.1f %11.1f %26s %26s %26s\n", backend.c_str(), arms, median(raw_ms), median(shared_ms),
                   ratioText(wall_ratio).c_str(), ratioText(cpu_ratio).c_str(), ratioText(separate_ratio).c_str());
