@@ -40,6 +40,13 @@ bool available() noexcept {
   return registered;
 }
 
+namespace {
+// Registered while the library loads, when a program usually has one thread:
+// the kernel then needs no RCU grace period (about 10 ms of waiting once the
+// process has threads) to register it.
+[[maybe_unused]] const bool g_registered_at_load = available();
+}  // namespace
+
 void heavy() noexcept {
   if (available() && membarrier(MEMBARRIER_CMD_PRIVATE_EXPEDITED) == 0) return;
 #if !SERVOLOOP_UNDER_TSAN

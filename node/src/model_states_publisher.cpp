@@ -17,11 +17,14 @@ ModelStatesPublisher::ModelStatesPublisher(double time_step_s, double rate_hz) {
 
 void ModelStatesPublisher::setModels(std::vector<Model> models, realtime::TopicBus* bus) {
   models_ = std::move(models);
-  bus_ = bus;
-  message_.name.clear();
-  for (const Model& model : models_) message_.name.push_back(model.name);
-  message_.pose.assign(models_.size(), {});
-  message_.twist.assign(models_.size(), {});
+  gazebo_msgs::ModelStates prototype;
+  for (const Model& model : models_) prototype.name.push_back(model.name);
+  prototype.pose.assign(models_.size(), {});
+  prototype.twist.assign(models_.size(), {});
+  // A real-time publisher: the world's thread fills its staging message in
+  // place, and nothing is copied while the topic has no subscriber.
+  publisher_.reset();
+  if (bus != nullptr && !models_.empty()) publisher_ = bus->advertise(kTopic, prototype);
 }
 
 std::uint64_t ModelStatesPublisher::betweenSegments(std::uint64_t steps) {
@@ -29,11 +32,12 @@ std::uint64_t ModelStatesPublisher::betweenSegments(std::uint64_t steps) {
   last_steps_ = steps;
   if (steps >= next_step_) {
     next_step_ = (steps / steps_per_message_ + 1) * steps_per_message_;
-    if (bus_ != nullptr && !models_.empty()) {
+    if (publisher_.valid() && publisher_.trylock()) {
+      gazebo_msgs::ModelStates& message = publisher_.msg();
       for (std::size_t i = 0; i < models_.size(); ++i) {
         const Model& model = models_[i];
-        geometry_msgs::Pose& pose = message_.pose[i];
-        geometry_msgs::Twist& twist = message_.twist[i];
+        geometry_msgs::Pose& pose = message.pose[i];
+        geometry_msgs::Twist& twist = message.twist[i];
         hardware_interface::BaseGroundTruth base;
         if (model.floating != nullptr && model.floating->readBaseGroundTruth(base)) {
           pose.position = {base.position[0], base.position[1], base.position[2]};
@@ -45,7 +49,7 @@ std::uint64_t ModelStatesPublisher::betweenSegments(std::uint64_t steps) {
           twist = {};
         }
       }
-      bus_->publish(kTopic, message_);
+      publisher_.unlockAndPublish();
     }
   }
   return next_step_ - steps;

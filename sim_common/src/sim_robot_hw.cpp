@@ -306,7 +306,7 @@ void SimRobotHW::readEngineState() noexcept {
 
 ReturnType SimRobotHW::read(Time /*time*/, Duration /*period*/) {
   readEngineState();
-  sensors_.update(simTime().seconds);
+  if (!sensors_.empty()) sensors_.update(simTime().seconds);
   return ReturnType::ok;
 }
 

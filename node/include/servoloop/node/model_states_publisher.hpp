@@ -34,7 +34,8 @@ class ModelStatesPublisher final : public world::WorldObserver {
 
   // Non-real-time, with the world standing (WorldLoop::whilePaused) or not
   // yet started: the models to publish and the bus carrying the topic
-  // (nullptr: publish nothing). Both must stay valid until replaced.
+  // (nullptr: publish nothing). The models' hardware must stay valid until
+  // replaced; the bus must outlive this publisher.
   void setModels(std::vector<Model> models, realtime::TopicBus* bus);
 
   // World thread, between segments: publishes when a message is due.
@@ -48,8 +49,7 @@ class ModelStatesPublisher final : public world::WorldObserver {
   std::uint64_t next_step_ = 0;
   std::uint64_t last_steps_ = 0;
   std::vector<Model> models_;
-  realtime::TopicBus* bus_ = nullptr;
-  gazebo_msgs::ModelStates message_;
+  realtime::RealtimePublisher<gazebo_msgs::ModelStates> publisher_;
 };
 
 }  // namespace servoloop::node

@@ -68,6 +68,8 @@ class SimulatedSensors {
   void reset(double time_s) noexcept;
   // Real-time: reads the engine after a step; `time_s` is the simulated time.
   void update(double time_s) noexcept;
+  // True when the robot has no sensor: update() then has nothing to do.
+  bool empty() const noexcept { return imus_.empty() && force_torques_.empty() && contacts_.empty(); }
 
   std::size_t imuCount() const noexcept { return imus_.size(); }
   std::size_t forceTorqueCount() const noexcept { return force_torques_.size(); }
