@@ -31,7 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 constexpr std::uint64_t kSteps = 20000;
 constexpr int kSensors = 8;
-constexpr int kRepetitions = 7;
+constexpr int kRepetitions = 15;
 
 std::string sensorBlocks(const std::string& kind) {
   std::string out;
@@ -104,19 +104,26 @@ int main(int argc, char** argv) {
   std::vector<std::string> backends{"bullet"};
   for (int i = 1; i < argc; ++i) backends.push_back(argv[i]);  // e.g. mujoco
   const Files files;
-  std::printf("=== Sensors: the seed arm, %llu steps of 1 ms, %d sensors of a kind; wall time, median of %d ===\n",
+  std::printf("=== Sensors: the seed arm, %llu steps of 1 ms, %d sensors of a kind; wall time, median of %d alternating pairs (the cost: of the pairs' differences) ===\n",
               static_cast<unsigned long long>(kSteps), kSensors, kRepetitions);
   std::printf("%-8s %-14s %12s %12s %10s %22s\n", "engine", "sensors", "none (ms)", "with (ms)", "ratio",
               "per sensor per cycle");
   for (const std::string& backend : backends) {
     for (const std::string kind : {"imu", "imu+noise", "force_torque", "contact", "imu+ctl"}) {
-      std::vector<double> bare, with;
+      // Pairs in alternating order; the cost is the median of the pairs'
+      // differences, which a slow stretch of the machine shifts less than the
+      // difference of two medians.
+      std::vector<double> bare, with, differences;
       for (int r = 0; r < kRepetitions; ++r) {
-        bare.push_back(runNode(files, backend, "none"));
-        with.push_back(runNode(files, backend, kind));
+        const bool bare_first = r % 2 == 0;
+        const double first = runNode(files, backend, bare_first ? "none" : kind);
+        const double second = runNode(files, backend, bare_first ? kind : "none");
+        bare.push_back(bare_first ? first : second);
+        with.push_back(bare_first ? second : first);
+        differences.push_back(with.back() - bare.back());
       }
       const double bare_s = median(bare), with_s = median(with);
-      const double per_sensor_ns = (with_s - bare_s) / (kSensors * static_cast<double>(kSteps)) * 1e9;
+      const double per_sensor_ns = median(differences) / (kSensors * static_cast<double>(kSteps)) * 1e9;
       std::printf("%-8s %-14s %12.1f %12.1f %10.3f %19.0f ns\n", backend.c_str(), kind.c_str(), bare_s * 1e3,
                   with_s * 1e3, with_s / bare_s, per_sensor_ns);
     }

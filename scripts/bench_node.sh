@@ -18,7 +18,7 @@
 #   3. whole processes: the same `servoloop launch` against a raw program
 #      (servoloop_bench_loop_vs_bullet --raw-process STEPS: loads the seed,
 #      builds its Bullet world with its collision shapes, steps it under the
-#      position law written out, exits), start to exit, in 2·ROUNDS+1 pairs of
+#      position law written out, exits), start to exit, in PAIRS pairs of
 #      alternating order; wall and CPU ratios, median of the pairs.
 #
 #   scripts/bench_node.sh [--quick]
@@ -28,7 +28,7 @@
 # SIM_SECONDS (default 300: simulated seconds of each bullet run, about half a
 # second of wall time, so the fixed start and end weigh little), PRIORITY
 # (SCHED_FIFO priority for both in part 1; default 0: the normal scheduler),
-# PARTS (default "1 2 3": which parts to run).
+# PARTS (default "1 2 3": which parts to run), PAIRS (part 3; default 2·ROUNDS+1).
 # Needs python3; part 1 needs cyclictest (apt install rt-tests) and is
 # skipped without it.
 set -euo pipefail
@@ -42,6 +42,7 @@ SIM_SECONDS="${SIM_SECONDS:-300}"
 PRIORITY="${PRIORITY:-0}"
 PARTS="${PARTS:-1 2 3}"
 if [[ "${1:-}" == "--quick" ]]; then ROUNDS=2; SECONDS_PER_RUN=2; SIM_SECONDS=5; fi
+PAIRS="${PAIRS:-$((2 * ROUNDS + 1))}"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 export SERVOLOOP_RUN_DIR="$WORK/run"
@@ -170,7 +171,7 @@ fi
 if [[ " $PARTS " == *" 3 "* ]]; then
   echo
   echo "== 3. seed on bullet, whole processes: servoloop launch --duration $SIM_SECONDS vs the raw program, in pairs"
-  python3 - "$BIN" "$ROOT" "$SIM_SECONDS" "$((2 * ROUNDS + 1))" <<'PY'
+  python3 - "$BIN" "$ROOT" "$SIM_SECONDS" "$PAIRS" <<'PY'
 import os, statistics, subprocess, sys, time
 bin_dir, root, sim_seconds, pairs = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 steps = str(round(float(sim_seconds) / 0.001))
