@@ -561,7 +561,7 @@ def first_build(ctx):
                     f"{minutes(test_s)}" + (f", of which {minutes(float(test_time.group(1)))} run the tests" if test_time
                                             else "") +
                     (f"; {int(tests.group(3)) - int(tests.group(2))} of {tests.group(3)} passed" if tests else ""),
-                    f"as above, after the main job"))
+                    "as above, after the main job"))
     return rows
 
 
