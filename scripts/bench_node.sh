@@ -172,19 +172,23 @@ if [[ " $PARTS " == *" 3 "* ]]; then
   echo
   echo "== 3. seed on bullet, whole processes: servoloop launch --duration $SIM_SECONDS vs the raw program, in pairs"
   python3 - "$BIN" "$ROOT" "$SIM_SECONDS" "$PAIRS" <<'PY'
-import os, statistics, subprocess, sys, time
+import os, resource, statistics, subprocess, sys, time
 bin_dir, root, sim_seconds, pairs = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 steps = str(round(float(sim_seconds) / 0.001))
 node = [f"{bin_dir}/servoloop", "launch", "robots/one_dof/one_dof_w_jnt_ctl.launch.yaml", "--duration", sim_seconds,
         "--rtf", "0", "--pub", "/one_DOF_robot/joint1_position_controller/command:=1.0"]
 raw = [f"{bin_dir}/servoloop_bench_loop_vs_bullet", "--raw-process", steps]
 
+def children_cpu():
+    # getrusage, not os.times: the latter counts in clock ticks (10 ms).
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
 def timed(command):
     """Wall and CPU (user + system) seconds of one process, start to exit."""
-    before, start = os.times(), time.perf_counter()
+    before, start = children_cpu(), time.perf_counter()
     subprocess.run(command, cwd=root, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
-    wall, after = time.perf_counter() - start, os.times()
-    return wall, (after.children_user - before.children_user) + (after.children_system - before.children_system)
+    return time.perf_counter() - start, children_cpu() - before
 
 timed(raw), timed(node)  # both programs' files in the page cache
 wall_ratios, cpu_ratios, raw_walls, node_walls = [], [], [], []
