@@ -50,8 +50,9 @@ def git(*args):
 
 
 def commit():
+    """The commit measured: HEAD, and whether tracked files other than this page differ from it."""
     head = git("rev-parse", "--short", "HEAD") or "unknown"
-    dirty = git("status", "--porcelain", "--untracked-files=no")
+    dirty = git("status", "--porcelain", "--untracked-files=no", "--", ".", ":!docs/benchmarks.md")
     return f"{head} + working tree" if dirty else head
 
 
@@ -91,13 +92,15 @@ def measure(args, previous):
     context = runners.Context(ROOT, os.path.abspath(args.bin), args.results, args.quick)
     only = set(args.only.split(",")) if args.only else None
     sections, failures = {}, []
+    # Taken once: the benchmarks and scripts run are those of the start.
+    stamp = commit()
     for key, _, functions in SECTIONS:
         if only is not None and key not in only:
             sections[key] = previous.get("sections", {}).get(key, [])
             continue
         rows = []
         for function in functions:
-            started, stamp = now(), commit()
+            started = now()
             print(f"== {key}: {function.__name__} ({started})", flush=True)
             try:
                 measured = function(context)

@@ -232,8 +232,8 @@ def instructions(ctx):
         f"{whole['node'] / whole['raw']:.3f}",
         f"`valgrind --tool=callgrind`, runs of 1 and {steps + 1} steps of the two programs above (the difference "
         "is the per-step count); deterministic, unlike time on a shared VM"),
-        row("Where the node's extra instructions per step go (the node's count minus the raw program's, by the "
-            "library that runs them)", where,
+        row("Where the node's extra instructions per step go: the node's count minus the raw program's, by "
+            "servoloop module (`bench`: the raw program's own control law) or library (`c`: the C library)", where,
             "the same callgrind runs, `callgrind_annotate` self counts per function, grouped by library")]
 
 
