@@ -94,9 +94,9 @@ def manager(ctx):
             f"{label}: 1 / 8 / 64 joints",
             f"{one:.1f} / {eight:.0f} / {sixty_four:,.0f} ns; {per_joint:.1f} ns per added joint; "
             f"{one / empty:.1f} × the empty manager",
+            conditions,
             f"≤ 30 ns for 1 joint and ≤ 25 ns per joint: {verdict(target_met)}; under ros_control's "
-            f"(about 100 ns + 75 ns per joint) at 1–64 joints: {verdict(ros_control)}",
-            conditions))
+            f"(about 100 ns + 75 ns per joint) at 1–64 joints: {verdict(ros_control)}"))
     rows.append(row("Empty controller manager", f"{empty:.1f} ns", conditions))
     rows.append(row("JointStateController alone at 50 Hz: 1 / 8 / 64 joints",
                     " / ".join(f"{get('joint_states_only', n):.1f}" for n in (1, 8, 64)) + " ns", conditions))
