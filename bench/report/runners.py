@@ -55,6 +55,17 @@ def median(values):
     return statistics.median(values)
 
 
+def _benchmark_medians(path):
+    """Median thread CPU time (ns) of each benchmark in a Google Benchmark JSON report, over its repetitions."""
+    with open(path) as f:
+        report = json.load(f)
+    times = {}
+    for entry in report["benchmarks"]:
+        if entry.get("run_type") == "iteration":
+            times.setdefault(entry["run_name"], []).append(entry["cpu_time"])
+    return {name: median(values) for name, values in times.items()}
+
+
 # --- 1. the controller manager ---------------------------------------------------------------
 
 MANAGER_FILTER = ("manager/(empty|per_joint|per_joint_timed|group|trajectory|joint_states_only|diff_drive)/"
@@ -68,13 +79,7 @@ def manager(ctx):
              f"--benchmark_repetitions={repetitions}", f"--benchmark_min_time={0.02 if ctx.quick else 0.1}",
              "--benchmark_enable_random_interleaving=true", f"--benchmark_out={out}",
              "--benchmark_out_format=json"], "controller_manager.txt")
-    with open(out) as f:
-        report = json.load(f)
-    times = {}
-    for entry in report["benchmarks"]:
-        if entry.get("run_type") == "iteration":
-            times.setdefault(entry["run_name"], []).append(entry["cpu_time"])
-    ns = {name: median(values) for name, values in times.items()}
+    ns = _benchmark_medians(out)
 
     def get(kind, joints, jsc="jsc_50Hz"):
         return ns[f"manager/{kind}/{jsc}/joints:{joints}"]
@@ -124,13 +129,7 @@ def _loop(ctx, exe_name, engine, log_name):
                     "--benchmark_out_format=json"], log_name)
     paired = {m.group(1): (float(m.group(2)), int(m.group(3)))
               for m in re.finditer(r"^\s+(\S+): paired\s+([0-9.]+) median of (\d+) pairs", text, re.M)}
-    with open(out) as f:
-        report = json.load(f)
-    times = {}
-    for entry in report["benchmarks"]:
-        if entry.get("run_type") == "iteration":
-            times.setdefault(entry["run_name"], []).append(entry["cpu_time"])
-    ns = {name: median(values) for name, values in times.items()}
+    ns = _benchmark_medians(out)
     conditions = (f"`{exe_name}`, thread CPU time; {repetitions} interleaved repetitions, each one episode on a "
                   "fresh robot; paired: a raw and a servoloop episode back to back in alternating order, the "
                   "median of the per-pair ratios")
