@@ -11,7 +11,8 @@
 #                $BUILD_DIR/benchmark-results/<UTC time>; with --only, give the
 #                folder of an earlier run to keep its other sections' figures)
 #   JOBS         parallel build jobs (default 2)
-#   WRITE        the page to write (default <repo>/docs/benchmarks.md; empty: none)
+#   WRITE        the page to write (default <repo>/docs/benchmarks.md, none with
+#                --quick; empty: none)
 # --quick: fewer repetitions and shorter runs, to check that everything runs.
 # Nothing else should run on the machine meanwhile: every figure is a time.
 set -euo pipefail
@@ -19,7 +20,8 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
 JOBS="${JOBS:-2}"
-WRITE="${WRITE-$ROOT/docs/benchmarks.md}"
+# A quick run checks that everything runs; its figures do not replace the page's.
+if [[ " $* " == *" --quick "* ]]; then WRITE="${WRITE-}"; else WRITE="${WRITE-$ROOT/docs/benchmarks.md}"; fi
 
 echo "== configuring $BUILD_DIR with the benchmarks" >&2
 cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DSERVOLOOP_BUILD_BENCHMARKS=ON >/dev/null
