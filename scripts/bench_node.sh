@@ -171,34 +171,15 @@ fi
 if [[ " $PARTS " == *" 3 "* ]]; then
   echo
   echo "== 3. seed on bullet, whole processes: servoloop launch --duration $SIM_SECONDS vs the raw program, in pairs"
-  python3 - "$BIN" "$ROOT" "$SIM_SECONDS" "$PAIRS" <<'PY'
-import os, resource, statistics, subprocess, sys, time
+  PYTHONPATH="$ROOT/bench/report" python3 - "$BIN" "$ROOT" "$SIM_SECONDS" "$PAIRS" <<'PY'
+import statistics, sys
+from process_timing import paired
 bin_dir, root, sim_seconds, pairs = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 steps = str(round(float(sim_seconds) / 0.001))
 node = [f"{bin_dir}/servoloop", "launch", "robots/one_dof/one_dof_w_jnt_ctl.launch.yaml", "--duration", sim_seconds,
         "--rtf", "0", "--pub", "/one_DOF_robot/joint1_position_controller/command:=1.0"]
 raw = [f"{bin_dir}/servoloop_bench_loop_vs_bullet", "--raw-process", steps]
-
-def children_cpu():
-    # getrusage, not os.times: the latter counts in clock ticks (10 ms).
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-def timed(command):
-    """Wall and CPU (user + system) seconds of one process, start to exit."""
-    before, start = children_cpu(), time.perf_counter()
-    subprocess.run(command, cwd=root, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
-    return time.perf_counter() - start, children_cpu() - before
-
-timed(raw), timed(node)  # both programs' files in the page cache
-wall_ratios, cpu_ratios, raw_walls, node_walls = [], [], [], []
-for pair in range(pairs):
-    if pair % 2 == 0:
-        raw_times, node_times = timed(raw), timed(node)
-    else:
-        node_times, raw_times = timed(node), timed(raw)
-    raw_walls.append(raw_times[0]); node_walls.append(node_times[0])
-    wall_ratios.append(node_times[0] / raw_times[0]); cpu_ratios.append(node_times[1] / raw_times[1])
+wall_ratios, cpu_ratios, node_walls, raw_walls = paired(node, raw, pairs, root)
 print(f"  raw program {statistics.median(raw_walls) * 1e3:.0f} ms, node {statistics.median(node_walls) * 1e3:.0f} ms "
       f"(medians of {pairs}; {steps} steps)")
 print(f"  node / raw, wall: median {statistics.median(wall_ratios):.3f} (pairs {min(wall_ratios):.3f}-{max(wall_ratios):.3f}); "

@@ -9,12 +9,13 @@ raises Skipped with the reason; the page then says what was not measured.
 import json
 import os
 import re
-import resource
 import shutil
 import statistics
 import subprocess
 import tempfile
 import time
+
+from process_timing import paired, wall_and_cpu
 
 
 class Skipped(Exception):
@@ -127,7 +128,7 @@ def _loop(ctx, exe_name, engine, log_name):
     text = ctx.run([ctx.exe(exe_name), f"--benchmark_repetitions={repetitions}",
                     "--benchmark_enable_random_interleaving=true", f"--benchmark_out={out}",
                     "--benchmark_out_format=json"], log_name)
-    paired = {m.group(1): (float(m.group(2)), int(m.group(3)))
+    paired_ratios = {m.group(1): (float(m.group(2)), int(m.group(3)))
               for m in re.finditer(r"^\s+(\S+): paired\s+([0-9.]+) median of (\d+) pairs", text, re.M)}
     ns = _benchmark_medians(out)
     conditions = (f"`{exe_name}`, thread CPU time; {repetitions} interleaved repetitions, each one episode on a "
@@ -135,8 +136,8 @@ def _loop(ctx, exe_name, engine, log_name):
                   "median of the per-pair ratios")
     rows = []
     for robot in ("seed", "chain32", "chain32_group"):
-        if robot in paired:
-            ratio, pairs = paired[robot]
+        if robot in paired_ratios:
+            ratio, pairs = paired_ratios[robot]
             rows.append(row(f"Whole loop in process ÷ raw {engine} stepping with the control law inline, {robot}",
                             f"{ratio:.3f} ({pairs} pairs)", conditions, "≤ 1.10: " + verdict(ratio <= 1.10)))
     ratios = {m.group(1): float(m.group(2)) for m in re.finditer(
@@ -177,32 +178,6 @@ SEED_LAUNCH = "robots/one_dof/one_dof_w_jnt_ctl.launch.yaml"
 SEED_COMMAND = "/one_DOF_robot/joint1_position_controller/command:=1.0"
 
 
-def _children_cpu():
-    # getrusage, not os.times: the latter counts in clock ticks (10 ms).
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-
-def _wall_and_cpu(command, cwd):
-    """Wall and CPU (user + system) seconds of one process, start to exit."""
-    before, start = _children_cpu(), time.perf_counter()
-    subprocess.run(command, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
-    return time.perf_counter() - start, _children_cpu() - before
-
-
-def _paired(a, b, pairs, cwd):
-    """A and B whole processes in alternating order: per-pair wall and CPU ratios A ÷ B, and their walls."""
-    _wall_and_cpu(a, cwd), _wall_and_cpu(b, cwd)  # both programs' files in the page cache
-    wall, cpu, a_walls, b_walls = [], [], [], []
-    for pair in range(pairs):
-        if pair % 2 == 0:
-            ta, tb = _wall_and_cpu(a, cwd), _wall_and_cpu(b, cwd)
-        else:
-            tb, ta = _wall_and_cpu(b, cwd), _wall_and_cpu(a, cwd)
-        wall.append(ta[0] / tb[0]); cpu.append(ta[1] / tb[1]); a_walls.append(ta[0]); b_walls.append(tb[0])
-    return wall, cpu, a_walls, b_walls
-
-
 def instructions(ctx):
     """Instructions per step of the node and of the raw program (callgrind: deterministic)."""
     valgrind = shutil.which("valgrind")
@@ -221,7 +196,7 @@ def instructions(ctx):
             with open(out) as f:
                 totals[(name, n)] = next(int(line.split()[1]) for line in f if line.startswith("summary:"))
     per_step = {name: (totals[(name, steps + 1)] - totals[(name, 1)]) / steps for name in ("node", "raw")}
-    where = _instructions_by_library(ctx, steps)
+    where = _extra_instructions_by_module(ctx, steps)
     start = {name: totals[(name, 1)] for name in ("node", "raw")}
     whole = {name: start[name] + 300000 * per_step[name] for name in ("node", "raw")}
     return [row(
@@ -233,7 +208,7 @@ def instructions(ctx):
         "is the per-step count); deterministic, unlike time on a shared VM"),
         row("Where the node's extra instructions per step go: the node's count minus the raw program's, by "
             "servoloop module (`bench`: the raw program's own control law) or library (`c`: the C library)", where,
-            "the same callgrind runs, `callgrind_annotate` self counts per function, grouped by library")]
+            "the same callgrind runs, `callgrind_annotate` self counts per function, grouped by module")]
 
 
 def _self_counts(path):
@@ -248,23 +223,20 @@ def _self_counts(path):
     return counts
 
 
-def _instructions_by_library(ctx, steps):
+def _extra_instructions_by_module(ctx, steps):
     """The node's per-step self counts minus the raw program's, by servoloop module (the namespace) or library."""
-    per_step = {}
+    per_step = {}  # program -> function -> [instructions per step, group]
     for name in ("node", "raw"):
         one = _self_counts(os.path.join(ctx.results, f"callgrind.{name}.1.out"))
         many = _self_counts(os.path.join(ctx.results, f"callgrind.{name}.{steps + 1}.out"))
         per_step[name] = {}
         for key in set(one) | set(many):
-            # The raw program links the simulation's code into itself: a function is
-            # matched by its name, whichever object holds it.
-            function = re.sub(r"\s*\[[^\]]+\]$", "", key).split(":", 1)[-1] if key.startswith("???:") else key
-            function = re.sub(r"\s*\[[^\]]+\]$", "", function)
-            library = re.search(r"\[([^\]]+)\]$", key)
-            library = os.path.basename(library.group(1)) if library else "?"
+            # "source:function [object]". The raw program links the simulation's code
+            # into itself: a function is matched by its name, whichever object holds it.
+            function, _, library = re.match(r"[^:]*:(.*?)(\s*\[([^\]]+)\])?$", key).group(1, 2, 3)
             module = re.match(r"(?:void |bool |[\w:<>]+ )?servoloop::(\w+)::", function)
-            group = module.group(1) if module else re.sub(r"\.so[.0-9]*$", "", library).removeprefix("lib")
-            entry = per_step[name].setdefault(function, [0.0, group])
+            library = re.sub(r"\.so[.0-9]*$", "", os.path.basename(library or "?")).removeprefix("lib")
+            entry = per_step[name].setdefault(function, [0.0, module.group(1) if module else library])
             entry[0] += (many.get(key, 0) - one.get(key, 0)) / steps
     by_group = {}
     for function in set(per_step["node"]) | set(per_step["raw"]):
@@ -327,8 +299,8 @@ def node(ctx):
 def startup(ctx):
     servoloop = ctx.exe("servoloop")
     runs = 5 if ctx.quick else 15
-    version = [_wall_and_cpu([servoloop, "--version"], ctx.root) for _ in range(runs)]
-    launch = [_wall_and_cpu([servoloop, "launch", SEED_LAUNCH, "--duration", "0.001", "--rtf", "0"], ctx.root)
+    version = [wall_and_cpu([servoloop, "--version"], ctx.root) for _ in range(runs)]
+    launch = [wall_and_cpu([servoloop, "launch", SEED_LAUNCH, "--duration", "0.001", "--rtf", "0"], ctx.root)
               for _ in range(runs)]
     return [row("Start-up of a `servoloop` process: `servoloop --version` / a one-step `servoloop launch` of the "
                 "seed, wall (CPU)",
@@ -407,10 +379,8 @@ def spawner(ctx):
 
 def world(ctx):
     exe = ctx.exe("servoloop_bench_world")
-    has_mujoco = os.path.exists(os.path.join(ctx.root, "build", "lib", "servoloop", "plugins",
-                                             "libservoloop_sim_mujoco.so")) or \
-        os.path.exists(os.path.join(os.path.dirname(ctx.bin), "lib", "servoloop", "plugins",
-                                    "libservoloop_sim_mujoco.so"))
+    has_mujoco = os.path.exists(os.path.join(os.path.dirname(ctx.bin), "lib", "servoloop", "plugins",
+                                             "libservoloop_sim_mujoco.so"))
     text = ctx.run([exe] + (["mujoco"] if has_mujoco else []), "world.txt")
     rows = []
     conditions = ("`servoloop_bench_world`: 16 boxes beside N seed arms, 1 ms steps; the raw engine (the "
@@ -443,7 +413,7 @@ def world_processes(ctx):
             ctx.run([exe, "--write", directory, str(arms), "bullet"], f"world_write_{arms}.txt")
             node = [servoloop, "launch", os.path.join(directory, "world.launch.yaml"), "--duration", "5"]
             raw = [exe, "--raw", str(arms), "bullet"]
-            wall, cpu, _, _ = _paired(node, raw, pairs, ctx.root)
+            wall, cpu, _, _ = paired(node, raw, pairs, ctx.root)
             rows.append(row(f"Whole processes, the shared world on bullet with {arms} arm(s) and 16 boxes: "
                             "`servoloop launch … --duration 5` ÷ the raw program of the same world",
                             f"wall {median(wall):.3f} (pairs {min(wall):.3f}–{max(wall):.3f}), CPU {median(cpu):.3f}",
@@ -573,7 +543,7 @@ def first_build(ctx):
 
 def ros1_bridge(ctx):
     exe = os.path.join(ctx.bin, "servoloop_bench_ros1_bridge")
-    if not os.access(exe, os.X_OK) or shutil.which("roscore") is None and not os.path.exists("/usr/bin/roscore"):
+    if not os.access(exe, os.X_OK) or shutil.which("roscore") is None:
         raise Skipped("the ROS 1 bridge is not built or ROS 1 is not installed (scripts/install_ros1.sh)")
     text = ctx.run(["bash", os.path.join(ctx.root, "scripts", "bench_ros1.sh")], "ros1.txt",
                    env={"BUILD_DIR": os.path.dirname(ctx.bin)})
